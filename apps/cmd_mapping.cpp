@@ -1,0 +1,8 @@
+#include "apps/commands.hpp"
+
+namespace bipednav::app {
+
+// Filled in by the module's issue.
+void add_mapping_commands(CLI::App& /*app*/, CLI::App& /*bench*/) {}
+
+}  // namespace bipednav::app

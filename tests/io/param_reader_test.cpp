@@ -1,0 +1,45 @@
+#include <gtest/gtest.h>
+
+#include "bipednav/io/param_reader.hpp"
+
+using bipednav::FileError;
+using bipednav::io::ParamReader;
+
+TEST(ParamReader, ReadsPresentKeysAndKeepsDefaults) {
+  auto r = ParamReader::from_string("a: 2.5\nname: digit\nnested: {k: 3}\n", "t.yaml");
+  double a = 1.0, b = 7.0;
+  std::string name;
+  int k = 0;
+  EXPECT_TRUE(r.get("a", a));
+  EXPECT_FALSE(r.get("b", b));
+  r.get("name", name);
+  r.child("nested").get("k", k);
+  r.finish();
+  EXPECT_DOUBLE_EQ(a, 2.5);
+  EXPECT_DOUBLE_EQ(b, 7.0);
+  EXPECT_EQ(name, "digit");
+  EXPECT_EQ(k, 3);
+}
+
+TEST(ParamReader, WrongTypeNamesFileLineAndField) {
+  auto r = ParamReader::from_string("x: 1\nmax_vel_x_mps: fast\n", "robot.yaml");
+  double v = 0;
+  try {
+    r.get("max_vel_x_mps", v);
+    FAIL();
+  } catch (const FileError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("robot.yaml"), std::string::npos);
+    EXPECT_NE(msg.find("line 2"), std::string::npos);
+    EXPECT_NE(msg.find("max_vel_x_mps"), std::string::npos);
+    EXPECT_NE(msg.find("number"), std::string::npos);
+  }
+}
+
+TEST(ParamReader, UnknownKeyAndMalformedYamlAreRejected) {
+  auto r = ParamReader::from_string("typo_key: 1\n", "p.yaml");
+  EXPECT_THROW(r.finish(), FileError);
+  EXPECT_THROW(ParamReader::from_string("a: [1, 2\n", "bad.yaml"), FileError);
+  EXPECT_THROW(ParamReader::from_file("/nonexistent/file.yaml"), FileError);
+  EXPECT_THROW(ParamReader::from_string("- 1\n- 2\n", "list.yaml"), FileError);
+}
