@@ -1,0 +1,480 @@
+#include "bipednav/io/pcd.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <optional>
+#include <sstream>
+#include <vector>
+
+#include "bipednav/common/error.hpp"
+#include "bipednav/io/lzf.hpp"
+
+namespace bipednav::io {
+namespace detail {
+
+bool valid_scalar(char kind, std::size_t size) {
+  if (kind == 'F') return size == 4 || size == 8;
+  if (kind == 'U' || kind == 'I') return size == 1 || size == 2 || size == 4 || size == 8;
+  return false;
+}
+
+template <typename T>
+double load_as(const std::uint8_t* p) {
+  T v;
+  std::memcpy(&v, p, sizeof(T));
+  return static_cast<double>(v);
+}
+
+double load_scalar(const std::uint8_t* p, char kind, std::size_t size) {
+  if (kind == 'F') return size == 4 ? load_as<float>(p) : load_as<double>(p);
+  const bool u = kind == 'U';
+  switch (size) {
+    case 1:
+      return u ? load_as<std::uint8_t>(p) : load_as<std::int8_t>(p);
+    case 2:
+      return u ? load_as<std::uint16_t>(p) : load_as<std::int16_t>(p);
+    case 4:
+      return u ? load_as<std::uint32_t>(p) : load_as<std::int32_t>(p);
+    default:
+      return u ? load_as<std::uint64_t>(p) : load_as<std::int64_t>(p);
+  }
+}
+
+std::string read_file_bytes(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw FileError(file.string(), "", "cannot open the file for reading (does it exist?)");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return std::move(ss).str();
+}
+
+}  // namespace detail
+
+namespace {
+
+struct PcdField {
+  std::string name;
+  std::size_t size = 4;
+  char type = 'F';
+  std::size_t count = 1;
+  std::size_t offset = 0;  // byte offset inside one point record
+};
+
+struct PcdHeader {
+  std::vector<PcdField> fields;
+  std::size_t width = 0, height = 1, points = 0, point_size = 0;
+  std::string data;
+  std::size_t data_offset = 0;  // first byte after the DATA line
+  std::size_t data_line = 0;    // 1-based line number of the DATA line
+};
+
+std::vector<std::string> split_words(std::string_view line) {
+  std::vector<std::string> w;
+  std::size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+    const std::size_t s = i;
+    while (i < line.size() && !std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+    if (i > s) w.emplace_back(line.substr(s, i - s));
+  }
+  return w;
+}
+
+class HeaderParser {
+ public:
+  HeaderParser(std::string_view bytes, const std::string& name) : bytes_(bytes), name_(name) {}
+
+  PcdHeader parse() {
+    std::size_t pos = 0, line_no = 0;
+    while (pos < bytes_.size()) {
+      const std::size_t eol = bytes_.find('\n', pos);
+      const std::size_t end = eol == std::string_view::npos ? bytes_.size() : eol;
+      ++line_no;
+      line_ = "line " + std::to_string(line_no);
+      const auto words = split_words(bytes_.substr(pos, end - pos));
+      pos = eol == std::string_view::npos ? bytes_.size() : eol + 1;
+      if (words.empty() || words[0][0] == '#') continue;
+      if (words[0] == "DATA") {
+        keyword(words);
+        h_.data_offset = pos;
+        h_.data_line = line_no;
+        return finish();
+      }
+      keyword(words);
+    }
+    throw FileError(name_, "header", "no DATA line (expected 'DATA ascii|binary|binary_compressed')");
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& what) const { throw FileError(name_, line_, what); }
+
+  std::size_t to_size(const std::string& w, const std::string& key) const {
+    std::size_t v = 0;
+    const auto r = std::from_chars(w.data(), w.data() + w.size(), v);
+    if (r.ec != std::errc() || r.ptr != w.data() + w.size())
+      fail(key + ": expected a non-negative integer, found '" + w + "'");
+    return v;
+  }
+
+  void per_field(const std::vector<std::string>& w, std::size_t expected) const {
+    if (h_.fields.empty()) fail(w[0] + " before FIELDS: expected FIELDS first");
+    if (w.size() - 1 != expected)
+      fail(w[0] + " has " + std::to_string(w.size() - 1) + " entries, expected " + std::to_string(expected) +
+           " (one per FIELDS entry)");
+  }
+
+  void keyword(const std::vector<std::string>& w) {
+    const std::string& k = w[0];
+    seen_.push_back(k);
+    const std::size_t nf = h_.fields.size();
+    if (k == "VERSION") return;
+    if (k == "FIELDS" || k == "COLUMNS") {
+      if (w.size() < 2) fail("FIELDS: expected at least one field name");
+      for (std::size_t i = 1; i < w.size(); ++i) h_.fields.push_back({w[i]});
+    } else if (k == "SIZE") {
+      per_field(w, nf);
+      for (std::size_t i = 0; i < nf; ++i) h_.fields[i].size = to_size(w[i + 1], "SIZE");
+    } else if (k == "TYPE") {
+      per_field(w, nf);
+      for (std::size_t i = 0; i < nf; ++i) {
+        if (w[i + 1].size() != 1) fail("TYPE: expected F, U or I, found '" + w[i + 1] + "'");
+        h_.fields[i].type = w[i + 1][0];
+      }
+    } else if (k == "COUNT") {
+      per_field(w, nf);
+      for (std::size_t i = 0; i < nf; ++i) h_.fields[i].count = to_size(w[i + 1], "COUNT");
+    } else if (k == "WIDTH") {
+      h_.width = one_size(w);
+    } else if (k == "HEIGHT") {
+      h_.height = one_size(w);
+    } else if (k == "POINTS") {
+      h_.points = one_size(w);
+    } else if (k == "VIEWPOINT") {
+      if (w.size() != 8) fail("VIEWPOINT: expected 7 numbers (tx ty tz qw qx qy qz)");
+    } else if (k == "DATA") {
+      if (w.size() != 2 || (w[1] != "ascii" && w[1] != "binary" && w[1] != "binary_compressed"))
+        fail("DATA: expected ascii, binary or binary_compressed");
+      h_.data = w[1];
+    } else {
+      fail("unknown header keyword '" + k +
+           "' (expected VERSION, FIELDS, SIZE, TYPE, COUNT, WIDTH, HEIGHT, "
+           "VIEWPOINT, POINTS or DATA)");
+    }
+  }
+
+  std::size_t one_size(const std::vector<std::string>& w) const {
+    if (w.size() != 2) fail(w[0] + ": expected exactly one integer");
+    return to_size(w[1], w[0]);
+  }
+
+  bool has(const std::string& k) const { return std::find(seen_.begin(), seen_.end(), k) != seen_.end(); }
+
+  PcdHeader finish() {
+    for (const char* k : {"FIELDS", "SIZE", "TYPE", "WIDTH"})
+      if (!has(k) && !(std::string(k) == "FIELDS" && has("COLUMNS")))
+        fail(std::string("header has no ") + k + " line (expected before DATA)");
+    if (!has("POINTS")) h_.points = h_.width * h_.height;
+    if (h_.points != h_.width * h_.height)
+      fail("POINTS " + std::to_string(h_.points) +
+           " does not match WIDTH x HEIGHT = " + std::to_string(h_.width * h_.height));
+    for (auto& f : h_.fields) {
+      if (!detail::valid_scalar(f.type, f.size))
+        throw FileError(name_, "field '" + f.name + "'",
+                        "unsupported TYPE " + std::string(1, f.type) + " with SIZE " + std::to_string(f.size) +
+                            " (expected F 4/8, U or I 1/2/4/8)");
+      if (f.count == 0) throw FileError(name_, "field '" + f.name + "'", "COUNT 0 (expected >= 1)");
+      f.offset = h_.point_size;
+      h_.point_size += f.size * f.count;
+    }
+    return h_;
+  }
+
+  std::string_view bytes_;
+  const std::string& name_;
+  std::string line_;
+  std::vector<std::string> seen_;
+  PcdHeader h_;
+};
+
+enum class Target { x, y, z, intensity, time, ring };
+
+struct Mapped {
+  Target target;
+  const PcdField* field;
+  std::size_t column;  // index of the field's first value in an ASCII line
+};
+
+std::vector<Mapped> map_fields(const PcdHeader& h, const std::string& name) {
+  std::vector<Mapped> m;
+  std::size_t column = 0;
+  bool xyz[3] = {false, false, false};
+  for (const auto& f : h.fields) {
+    std::optional<Target> t;
+    if (f.name == "x" || f.name == "y" || f.name == "z") {
+      if (f.count != 1) throw FileError(name, "field '" + f.name + "'", "COUNT must be 1 for a coordinate");
+      t = static_cast<Target>(f.name[0] - 'x');
+      xyz[f.name[0] - 'x'] = true;
+    } else if (f.count == 1 && f.name == "intensity") {
+      t = Target::intensity;
+    } else if (f.count == 1 && (f.name == "time" || f.name == "t")) {
+      t = Target::time;
+    } else if (f.count == 1 && f.name == "ring") {
+      if (f.type == 'F') throw FileError(name, "field 'ring'", "expected an integer TYPE (U or I), found F");
+      t = Target::ring;
+    }
+    if (t) m.push_back({*t, &f, column});
+    column += f.count;
+  }
+  for (int a = 0; a < 3; ++a)
+    if (!xyz[a])
+      throw FileError(name, "FIELDS", std::string("no field '") + char('x' + a) + "' (x, y, z are required)");
+  return m;
+}
+
+void prepare(PointCloud& c, const std::vector<Mapped>& m, std::size_t n) {
+  c.points.resize(n);
+  for (const auto& f : m) {
+    if (f.target == Target::intensity) c.intensities.resize(n);
+    if (f.target == Target::time) c.time_offsets_s.resize(n);
+    if (f.target == Target::ring) c.rings.resize(n);
+  }
+}
+
+void store(PointCloud& c, const Mapped& f, std::size_t i, double v, const std::string& name) {
+  switch (f.target) {
+    case Target::x:
+    case Target::y:
+    case Target::z:
+      c.points[i][static_cast<int>(f.target)] = static_cast<float>(v);
+      break;
+    case Target::intensity:
+      c.intensities[i] = static_cast<float>(v);
+      break;
+    case Target::time:
+      c.time_offsets_s[i] = static_cast<float>(f.field->type == 'F' ? v : v * 1e-9);
+      break;
+    case Target::ring:
+      if (!(v >= 0.0 && v <= 65535.0))
+        throw FileError(name, "field 'ring', point " + std::to_string(i), "expected a value in [0, 65535]");
+      c.rings[i] = static_cast<std::uint16_t>(v);
+      break;
+  }
+}
+
+// Binary layouts: value i of a field sits at base + i * stride.
+void read_binary(PointCloud& c, const std::vector<Mapped>& m, const PcdHeader& h, const std::uint8_t* data,
+                 bool field_major, const std::string& name) {
+  const std::size_t n = h.points;
+  for (const auto& f : m) {
+    const std::size_t base = field_major ? n * f.field->offset : f.field->offset;
+    const std::size_t stride = field_major ? f.field->size * f.field->count : h.point_size;
+    const std::uint8_t* p = data + base;
+    if (f.target <= Target::z && f.field->type == 'F' && f.field->size == 4) {
+      const int axis = static_cast<int>(f.target);
+      for (std::size_t i = 0; i < n; ++i, p += stride) std::memcpy(&c.points[i][axis], p, 4);
+      continue;
+    }
+    for (std::size_t i = 0; i < n; ++i, p += stride)
+      store(c, f, i, detail::load_scalar(p, f.field->type, f.field->size), name);
+  }
+}
+
+void read_ascii(PointCloud& c, const std::vector<Mapped>& m, const PcdHeader& h, std::string_view bytes,
+                const std::string& name) {
+  std::size_t columns = 0;
+  for (const auto& f : h.fields) columns += f.count;
+  std::size_t pos = h.data_offset, line_no = h.data_line, i = 0;
+  while (pos < bytes.size() && i < h.points) {
+    const std::size_t eol = std::min(bytes.find('\n', pos), bytes.size());
+    const auto words = split_words(bytes.substr(pos, eol - pos));
+    pos = eol + 1;
+    ++line_no;
+    if (words.empty()) continue;
+    const std::string where = "line " + std::to_string(line_no);
+    if (words.size() != columns)
+      throw FileError(name, where,
+                      "expected " + std::to_string(columns) + " values, found " + std::to_string(words.size()));
+    for (const auto& f : m) {
+      const std::string& w = words[f.column];
+      double v = 0.0;
+      const auto r = std::from_chars(w.data(), w.data() + w.size(), v);
+      if (r.ec != std::errc() || r.ptr != w.data() + w.size())
+        throw FileError(name, where + ", field '" + f.field->name + "'", "expected a number, found '" + w + "'");
+      store(c, f, i, v, name);
+    }
+    ++i;
+  }
+  if (i != h.points)
+    throw FileError(name, "DATA",
+                    "truncated: expected " + std::to_string(h.points) + " points, found " + std::to_string(i));
+}
+
+std::uint32_t load_u32(const std::uint8_t* p) {
+  std::uint32_t v;
+  std::memcpy(&v, p, 4);
+  return v;
+}
+
+void read_compressed(PointCloud& c, const std::vector<Mapped>& m, const PcdHeader& h, std::string_view bytes,
+                     const std::string& name) {
+  const auto* data = reinterpret_cast<const std::uint8_t*>(bytes.data()) + h.data_offset;
+  const std::size_t avail = bytes.size() - h.data_offset;
+  if (avail < 8) throw FileError(name, "DATA", "truncated: expected 8 bytes of compressed/raw sizes");
+  const std::size_t csize = load_u32(data), rsize = load_u32(data + 4);
+  const std::size_t expected = h.points * h.point_size;
+  if (rsize != expected)
+    throw FileError(name, "DATA",
+                    "uncompressed size " + std::to_string(rsize) + " does not match POINTS x " +
+                        "point size = " + std::to_string(expected));
+  if (avail - 8 < csize)
+    throw FileError(
+        name, "DATA",
+        "truncated: expected " + std::to_string(csize) + " bytes of LZF data, found " + std::to_string(avail - 8));
+  if (expected == 0) return;
+  const auto raw = lzf_decompress(data + 8, csize, rsize);
+  if (!raw)
+    throw FileError(name, "DATA",
+                    "corrupt LZF data (expected a valid LZF stream of " + std::to_string(rsize) + " bytes)");
+  read_binary(c, m, h, raw->data(), true, name);
+}
+
+}  // namespace
+
+PointCloud parse_pcd(std::string_view bytes, const std::string& name) {
+  const PcdHeader h = HeaderParser(bytes, name).parse();
+  const std::vector<Mapped> m = map_fields(h, name);
+  PointCloud c;
+  prepare(c, m, h.points);
+  if (h.data == "ascii") {
+    read_ascii(c, m, h, bytes, name);
+  } else if (h.data == "binary") {
+    const std::size_t need = h.points * h.point_size, avail = bytes.size() - h.data_offset;
+    if (avail < need)
+      throw FileError(name, "DATA",
+                      "truncated: expected " + std::to_string(need) + " bytes of binary data (" +
+                          std::to_string(h.points) + " points), found " + std::to_string(avail));
+    read_binary(c, m, h, reinterpret_cast<const std::uint8_t*>(bytes.data()) + h.data_offset, false, name);
+  } else {
+    read_compressed(c, m, h, bytes, name);
+  }
+  return c;
+}
+
+PointCloud read_pcd(const std::filesystem::path& file) {
+  const std::string bytes = detail::read_file_bytes(file);
+  return parse_pcd(bytes, file.string());
+}
+
+namespace {
+
+struct OutField {
+  const char* name;
+  char type;
+  std::size_t size;
+};
+
+std::vector<OutField> out_fields(const PointCloud& c) {
+  std::vector<OutField> f = {{"x", 'F', 4}, {"y", 'F', 4}, {"z", 'F', 4}};
+  if (c.has_intensity()) f.push_back({"intensity", 'F', 4});
+  if (c.has_time()) f.push_back({"time", 'F', 4});
+  if (c.has_ring()) f.push_back({"ring", 'U', 2});
+  return f;
+}
+
+// Value i of output field k, as bytes at dst; fields are laid out as out_fields() lists them.
+void put_value(std::uint8_t* dst, const PointCloud& c, const OutField& f, std::size_t k, std::size_t i) {
+  if (k < 3) {
+    std::memcpy(dst, &c.points[i][static_cast<int>(k)], 4);
+  } else if (f.name[0] == 'i') {
+    std::memcpy(dst, &c.intensities[i], 4);
+  } else if (f.name[0] == 't') {
+    std::memcpy(dst, &c.time_offsets_s[i], 4);
+  } else {
+    std::memcpy(dst, &c.rings[i], 2);
+  }
+}
+
+void append_number(std::string& out, const PointCloud& c, const OutField& f, std::size_t k, std::size_t i) {
+  char buf[48];
+  std::to_chars_result r{};
+  if (f.type == 'U') {
+    r = std::to_chars(buf, buf + sizeof(buf), c.rings[i]);
+  } else {
+    float v = 0.0f;
+    put_value(reinterpret_cast<std::uint8_t*>(&v), c, f, k, i);
+    r = std::to_chars(buf, buf + sizeof(buf), v);  // shortest form that reads back bit-exactly
+  }
+  out.append(buf, r.ptr);
+}
+
+std::string pcd_header(const PointCloud& c, const std::vector<OutField>& f, PcdEncoding e) {
+  std::ostringstream fields, sizes, types, counts;
+  for (const auto& x : f) {
+    fields << ' ' << x.name;
+    sizes << ' ' << x.size;
+    types << ' ' << x.type;
+    counts << " 1";
+  }
+  const char* data = e == PcdEncoding::ascii ? "ascii" : e == PcdEncoding::binary ? "binary" : "binary_compressed";
+  std::ostringstream h;
+  h << "# .PCD v0.7 - Point Cloud Data file format (written by bipednav)\nVERSION 0.7\nFIELDS" << fields.str()
+    << "\nSIZE" << sizes.str() << "\nTYPE" << types.str() << "\nCOUNT" << counts.str() << "\nWIDTH " << c.size()
+    << "\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " << c.size() << "\nDATA " << data << '\n';
+  return h.str();
+}
+
+}  // namespace
+
+std::string pcd_bytes(const PointCloud& c, PcdEncoding encoding) {
+  if (!c.is_consistent()) throw Error("write_pcd: the cloud's optional fields do not match its point count");
+  const auto f = out_fields(c);
+  std::string out = pcd_header(c, f, encoding);
+  const std::size_t n = c.size();
+  if (encoding == PcdEncoding::ascii) {
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t k = 0; k < f.size(); ++k) {
+        if (k) out += ' ';
+        append_number(out, c, f[k], k, i);
+      }
+      out += '\n';
+    }
+    return out;
+  }
+  std::size_t point_size = 0;
+  for (const auto& x : f) point_size += x.size;
+  std::vector<std::uint8_t> raw(n * point_size);
+  const bool field_major = encoding == PcdEncoding::binary_compressed;
+  std::size_t offset = 0;
+  for (std::size_t k = 0; k < f.size(); ++k) {
+    const std::size_t base = field_major ? n * offset : offset, stride = field_major ? f[k].size : point_size;
+    for (std::size_t i = 0; i < n; ++i) put_value(raw.data() + base + i * stride, c, f[k], k, i);
+    offset += f[k].size;
+  }
+  if (!field_major) return out.append(reinterpret_cast<const char*>(raw.data()), raw.size());
+  const std::vector<std::uint8_t> packed = lzf_compress(raw.data(), raw.size());
+  const std::uint32_t sizes[2] = {static_cast<std::uint32_t>(packed.size()), static_cast<std::uint32_t>(raw.size())};
+  out.append(reinterpret_cast<const char*>(sizes), 8);
+  return out.append(reinterpret_cast<const char*>(packed.data()), packed.size());
+}
+
+void write_pcd(const std::filesystem::path& file, const PointCloud& cloud, PcdEncoding encoding) {
+  const std::string bytes = pcd_bytes(cloud, encoding);
+  std::ofstream out(file, std::ios::binary | std::ios::trunc);
+  if (!out) throw FileError(file.string(), "", "cannot open the file for writing");
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  if (!out) throw FileError(file.string(), "", "write failed (disk full?)");
+}
+
+PcdEncoding pcd_encoding_from_string(const std::string& s) {
+  if (s == "ascii") return PcdEncoding::ascii;
+  if (s == "binary") return PcdEncoding::binary;
+  if (s == "binary_compressed") return PcdEncoding::binary_compressed;
+  throw Error("unknown PCD encoding '" + s + "' (expected ascii, binary or binary_compressed)");
+}
+
+}  // namespace bipednav::io
