@@ -1,6 +1,6 @@
-#include <gtest/gtest.h>
-
 #include "bipednav/mapping/costmap2d.hpp"
+
+#include <gtest/gtest.h>
 
 using namespace bipednav::mapping;
 

@@ -1,0 +1,65 @@
+#include "bipednav/mapping/ray_trace.hpp"
+
+#include <cmath>
+
+namespace bipednav::mapping {
+
+std::vector<Cell> line_cells(Cell a, Cell b, bool include_end) {
+  std::vector<Cell> out;
+  out.reserve(static_cast<std::size_t>(std::max(std::abs(b.x - a.x), std::abs(b.y - a.y))) + 1);
+  for_each_line_cell(a, b, include_end, [&](int x, int y) { out.push_back({x, y}); });
+  return out;
+}
+
+bool clip_segment(Eigen::Vector2d& a, Eigen::Vector2d& b, const Eigen::Vector2d& lo, const Eigen::Vector2d& hi) {
+  const Eigen::Vector2d d = b - a;
+  double t0 = 0.0, t1 = 1.0;
+  for (int k = 0; k < 2; ++k) {
+    const double p[2] = {-d[k], d[k]};
+    const double q[2] = {a[k] - lo[k], hi[k] - a[k]};
+    for (int s = 0; s < 2; ++s) {
+      if (p[s] == 0.0) {
+        if (q[s] < 0.0) return false;
+        continue;
+      }
+      const double t = q[s] / p[s];
+      if (p[s] < 0.0) {
+        if (t > t1) return false;
+        t0 = std::max(t0, t);
+      } else {
+        if (t < t0) return false;
+        t1 = std::min(t1, t);
+      }
+    }
+  }
+  const Eigen::Vector2d a0 = a;
+  a = a0 + t0 * d;
+  b = a0 + t1 * d;
+  return true;
+}
+
+std::optional<ClippedRay> clip_ray(const GridGeometry& g, const Eigen::Vector2d& origin, const Eigen::Vector2d& point,
+                                   double max_length_m) {
+  if (!origin.allFinite() || !point.allFinite()) return std::nullopt;
+  const auto start = g.world_to_cell(origin.x(), origin.y());
+  if (!start) return std::nullopt;
+  Eigen::Vector2d a = origin, b = point;
+  bool clipped = false;
+  const double len = (b - a).norm();
+  if (len > max_length_m) {
+    b = a + (b - a) * (max_length_m / len);
+    clipped = true;
+  }
+  // Shrink the box by a hair so a clipped end never floors onto the cell past the last one.
+  const double eps = 1e-6 * g.resolution_m;
+  const Eigen::Vector2d lo(g.origin_x_m, g.origin_y_m);
+  const Eigen::Vector2d hi(g.origin_x_m + g.size_x_m() - eps, g.origin_y_m + g.size_y_m() - eps);
+  const Eigen::Vector2d b_before = b;
+  if (!clip_segment(a, b, lo, hi)) return std::nullopt;
+  if (b != b_before) clipped = true;
+  const auto end = g.world_to_cell(b.x(), b.y());
+  if (!end) return std::nullopt;
+  return ClippedRay{*start, *end, clipped};
+}
+
+}  // namespace bipednav::mapping

@@ -1,0 +1,67 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdlib>
+#include <optional>
+#include <vector>
+
+#include "bipednav/mapping/grid_geometry.hpp"
+
+namespace bipednav::mapping {
+
+// Visits the cells of the 8-connected Bresenham line from `a` to `b`: `a` first, `b` last (only
+// when `include_end`). Every step moves one cell along the major axis, so the line has
+// max(|dx|, |dy|) + 1 cells and no cell twice.
+template <typename Visit>
+void for_each_line_cell(Cell a, Cell b, bool include_end, Visit&& visit) {
+  const int dx = std::abs(b.x - a.x), dy = std::abs(b.y - a.y);
+  const int sx = b.x >= a.x ? 1 : -1, sy = b.y >= a.y ? 1 : -1;
+  int x = a.x, y = a.y;
+  if (dx >= dy) {
+    int err = 2 * dy - dx;
+    for (int i = 0; i < dx; ++i) {
+      visit(x, y);
+      if (err > 0) {
+        y += sy;
+        err -= 2 * dx;
+      }
+      err += 2 * dy;
+      x += sx;
+    }
+  } else {
+    int err = 2 * dx - dy;
+    for (int i = 0; i < dy; ++i) {
+      visit(x, y);
+      if (err > 0) {
+        x += sx;
+        err -= 2 * dy;
+      }
+      err += 2 * dx;
+      y += sy;
+    }
+  }
+  if (include_end) visit(x, y);
+}
+
+// The cells of the Bresenham line from `a` to `b` (see for_each_line_cell).
+std::vector<Cell> line_cells(Cell a, Cell b, bool include_end = true);
+
+// Clips the segment a-b to the axis-aligned box [lo, hi] (Liang-Barsky). Returns false when the
+// segment misses the box; otherwise moves a and/or b onto the box boundary.
+bool clip_segment(Eigen::Vector2d& a, Eigen::Vector2d& b, const Eigen::Vector2d& lo, const Eigen::Vector2d& hi);
+
+// A ray from a sensor to a return, clipped to the grid and to a maximum length, in cells.
+// `end_included` is true when the ray was clipped (the return lies beyond `end`, so the end cell
+// was seen free); false when `end` is the return's own cell (an obstacle, not to be cleared).
+struct ClippedRay {
+  Cell start;
+  Cell end;
+  bool end_included = false;
+};
+
+// Clips the ray origin->point to `max_length_m` and to the grid. nullopt when the origin is
+// outside the grid, the ray has zero length or any coordinate is not finite.
+std::optional<ClippedRay> clip_ray(const GridGeometry& g, const Eigen::Vector2d& origin, const Eigen::Vector2d& point,
+                                   double max_length_m);
+
+}  // namespace bipednav::mapping

@@ -1,0 +1,60 @@
+#include "bipednav/mapping/ray_trace.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+
+using namespace bipednav::mapping;
+
+TEST(RayTrace, BresenhamLinesAreConnectedAndEndExact) {
+  for (int bx = -7; bx <= 7; ++bx)
+    for (int by = -7; by <= 7; ++by) {
+      const auto cells = line_cells({2, 3}, {2 + bx, 3 + by});
+      ASSERT_EQ(cells.size(), static_cast<std::size_t>(std::max(std::abs(bx), std::abs(by)) + 1));
+      EXPECT_EQ(cells.front(), (Cell{2, 3}));
+      EXPECT_EQ(cells.back(), (Cell{2 + bx, 3 + by}));
+      for (std::size_t i = 1; i < cells.size(); ++i) {
+        EXPECT_LE(std::abs(cells[i].x - cells[i - 1].x), 1);
+        EXPECT_LE(std::abs(cells[i].y - cells[i - 1].y), 1);
+      }
+      // Every cell is within half a cell of the ideal line (Bresenham's error bound).
+      for (const auto& c : cells) {
+        const double cross = std::abs(double(bx) * (c.y - 3) - double(by) * (c.x - 2));
+        EXPECT_LE(cross / std::max(1.0, std::hypot(bx, by)), 0.5 * std::sqrt(2.0) + 1e-9);
+      }
+      const auto open = line_cells({2, 3}, {2 + bx, 3 + by}, false);
+      EXPECT_EQ(open.size(), cells.size() - 1);
+    }
+  const auto l = line_cells({0, 0}, {5, 2});
+  const std::vector<Cell> expect{{0, 0}, {1, 0}, {2, 1}, {3, 1}, {4, 2}, {5, 2}};
+  EXPECT_EQ(l, expect);
+}
+
+TEST(RayTrace, ClipSegmentToBox) {
+  Eigen::Vector2d a(-1, 0.5), b(3, 0.5);
+  ASSERT_TRUE(clip_segment(a, b, {0, 0}, {2, 1}));
+  EXPECT_NEAR(a.x(), 0.0, 1e-12);
+  EXPECT_NEAR(b.x(), 2.0, 1e-12);
+  Eigen::Vector2d c(-1, 5), d(3, 5);
+  EXPECT_FALSE(clip_segment(c, d, {0, 0}, {2, 1}));
+}
+
+TEST(RayTrace, ClipRayToRangeAndGrid) {
+  const GridGeometry g{100, 100, 0.1, 0.0, 0.0};
+  auto r = clip_ray(g, {1.05, 1.05}, {3.05, 1.05}, 10.0);
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->start, (Cell{10, 10}));
+  EXPECT_EQ(r->end, (Cell{30, 10}));
+  EXPECT_FALSE(r->end_included);
+  r = clip_ray(g, {1.05, 1.05}, {3.05, 1.05}, 1.0);  // clipped by range at x = 2.05
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->end, (Cell{20, 10}));
+  EXPECT_TRUE(r->end_included);
+  r = clip_ray(g, {1.05, 1.05}, {50.0, 1.05}, 100.0);  // leaves the grid
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->end, (Cell{99, 10}));
+  EXPECT_TRUE(r->end_included);
+  EXPECT_FALSE(clip_ray(g, {-1.0, 1.0}, {3.0, 1.0}, 10.0));  // origin outside
+  EXPECT_FALSE(clip_ray(g, {1.0, 1.0}, {std::nan(""), 1.0}, 10.0));
+}
