@@ -1,0 +1,81 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "bipednav/common/point_cloud.hpp"
+#include "bipednav/common/pose2.hpp"
+#include "bipednav/mapping/heightmap.hpp"
+
+namespace bipednav::mapping {
+
+// Per-cell Kalman height filter of section IV of the humanoid reference (eq. 2-3).
+struct HeightmapFusionParams {
+  double variance_per_m2 = 1e-4;              // sigma_z^2 = variance_per_m2 * (distance to sensor)^2
+  double min_observation_variance_m2 = 1e-6;  // floor of sigma_z^2 (points right at the sensor)
+  double min_cell_variance_m2 = 1e-6;         // the belief never gets stiffer than this
+  double max_cell_variance_m2 = 1.0;          // cap of the variance raised by gate failures
+  double gate_sigma = 3.0;                    // Mahalanobis gate on (z - h) / sqrt(sigma_c^2 + sigma_z^2)
+  double variance_growth_factor = 4.0;        // sigma_c^2 *= this when an observation fails the gate
+  double max_range_m = 10.0;                  // points farther from the sensor are ignored
+
+  void validate() const;
+};
+
+// Result of fusing one observation into one cell.
+enum class FuseResult { kInitialised, kFused, kRejected };
+
+// One Kalman update (eq. 2-3) of a cell's belief N(h, var) with an observation z of variance
+// var_z. An unknown cell (non-finite h) takes the observation. An observation failing the gate
+// leaves h unchanged and multiplies var by variance_growth_factor, so that a real change (a moved
+// object) is accepted after a few frames while a single outlier is not.
+FuseResult fuse_height(float& h, float& var, float z, float var_z, const HeightmapFusionParams& p);
+
+struct HeightmapUpdateStats {
+  std::size_t points_used = 0;     // finite, in the map and in range
+  std::size_t cells_fused = 0;     // initialised or fused
+  std::size_t cells_rejected = 0;  // failed the gate
+};
+
+// Fuses point clouds (world frame) into a Heightmap: points are binned into cells, the highest
+// point per cell is the observation z_c, its variance grows with the squared sensor distance.
+class HeightmapFusion {
+ public:
+  explicit HeightmapFusion(const GridGeometry& geometry, const HeightmapFusionParams& params = {});
+
+  HeightmapUpdateStats update(const std::vector<Eigen::Vector3f>& points_world, const Eigen::Vector3d& sensor_world);
+  HeightmapUpdateStats update(const PointCloud& cloud_world, const Eigen::Vector3d& sensor_world) {
+    return update(cloud_world.points, sensor_world);
+  }
+
+  const Heightmap& map() const { return map_; }
+  Heightmap& map() { return map_; }
+  const HeightmapFusionParams& params() const { return params_; }
+
+ private:
+  HeightmapFusionParams params_;
+  Heightmap map_;
+  std::vector<float> best_z_;         // scratch per cell: highest z this update
+  std::vector<float> best_d2_;        // scratch per cell: its squared distance to the sensor
+  std::vector<std::uint32_t> stamp_;  // scratch per cell: update counter when last touched
+  std::vector<std::uint32_t> touched_;
+  std::uint32_t update_count_ = 0;
+};
+
+// Height / variance at a world point (nullopt outside the map or when the cell is unobserved).
+std::optional<float> height_at(const Heightmap& map, double x_m, double y_m);
+std::optional<float> variance_at(const Heightmap& map, double x_m, double y_m);
+
+// Heights under a rotated rectangle (centre pose, length along its heading, width across):
+// min/max over observed cells whose centre lies inside (NaN when none).
+struct FootprintHeights {
+  float min_m = 0.0f;
+  float max_m = 0.0f;
+  int known_cells = 0;
+  int cells = 0;
+};
+FootprintHeights footprint_heights(const Heightmap& map, const Pose2& center, double length_m, double width_m);
+
+}  // namespace bipednav::mapping
