@@ -1,0 +1,77 @@
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bipednav/common/outcome.hpp"
+#include "bipednav/common/path.hpp"
+#include "bipednav/common/pose2.hpp"
+#include "bipednav/mapping/costmap2d.hpp"
+#include "bipednav/planning/global/grid_cost_model.hpp"
+#include "bipednav/planning/global/search_types.hpp"
+
+namespace bipednav::planning {
+
+struct GlobalPlannerParams {
+  GridCostParams cost;
+  // Lets the search leave a start cell that is inscribed or unknown (the robot standing close to
+  // an obstacle); a lethal start cell is always BLOCKED_START.
+  bool allow_start_in_inscribed = true;
+  double max_planning_time_ms = 0.0;  // 0 = no limit; otherwise PLAN_PAT_EXCEEDED past it
+  // D* Lite: compare its map snapshot with the given map and repair cells missing from the
+  // change set (costs one pass over the grid's bytes).
+  bool verify_changes = true;
+
+  void validate() const;
+};
+
+struct PlanResult {
+  Result result;      // SUCCESS, NO_PATH_FOUND, BLOCKED_START, BLOCKED_GOAL, PLAN_OUT_OF_MAP, PLAN_PAT_EXCEEDED
+  Path path;          // start pose, cell centres, goal pose (with the goal's yaw)
+  double cost = 0.0;  // path cost under the cost model (m x factor); length for unit costs
+  std::size_t expansions = 0;        // vertices expanded in this call
+  double time_ms = 0.0;              // wall time of this call
+  std::vector<mapping::Cell> cells;  // the cell path, start cell first
+};
+
+// One global planning algorithm on a 2D costmap. Implementations keep state between calls:
+// `changes_since_last_call` lists cells changed since the previous call (an incremental planner
+// repairs its search with them when the goal and grid geometry are unchanged).
+class GlobalPlanner {
+ public:
+  virtual ~GlobalPlanner() = default;
+  virtual PlanResult plan(const mapping::Costmap2D& map, const Pose2& start, const Pose2& goal,
+                          const mapping::ChangeSet& changes_since_last_call) = 0;
+  // Forgets all search state; the next plan() starts from scratch.
+  virtual void reset() = 0;
+  virtual std::string name() const = 0;
+};
+
+// Explicit factory table: "dstar_lite" or "astar"; anything else raises ParamError.
+std::unique_ptr<GlobalPlanner> make_global_planner(const std::string& name, const GlobalPlannerParams& params);
+std::vector<std::string> global_planner_names();
+
+// ---- helpers shared by the implementations ----
+
+// Start and goal resolved to cells, or the failure outcome explaining why not.
+struct Endpoints {
+  std::size_t start = 0;
+  std::size_t goal = 0;
+  bool start_exempt = false;  // the start cell is impassable but may be left
+};
+std::optional<Endpoints> resolve_endpoints(const mapping::Costmap2D& map, const Pose2& start, const Pose2& goal,
+                                           const GlobalPlannerParams& params, Result& failure);
+
+// World path from a cell path: the start pose, the centres of the cells between, the goal pose;
+// intermediate yaws point to the next pose, the goal keeps its yaw.
+Path make_world_path(const mapping::GridGeometry& geometry, const std::vector<std::size_t>& cells, const Pose2& start,
+                     const Pose2& goal);
+
+// Turns a search outcome into the plan's result (reason message), path, cells and cost.
+void finish_plan(PlanResult& out, const SearchOutcome& search, const mapping::GridGeometry& geometry,
+                 const Endpoints& ends, const Pose2& start, const Pose2& goal, const GlobalPlannerParams& params);
+
+}  // namespace bipednav::planning

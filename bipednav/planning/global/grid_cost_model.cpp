@@ -1,0 +1,43 @@
+#include "bipednav/planning/global/grid_cost_model.hpp"
+
+#include <algorithm>
+
+#include "bipednav/common/error.hpp"
+
+namespace bipednav::planning {
+
+void GridCostParams::validate() const {
+  require(std::isfinite(cost_weight) && cost_weight >= 0.0, "cost_weight", "a finite value >= 0");
+  require(unknown_cost >= 0 && unknown_cost <= 252, "unknown_cost", "a cost value in [0, 252]");
+}
+
+double cell_factor(std::uint8_t cost, const GridCostParams& p) {
+  if (cost == mapping::kUnknown) {
+    if (p.unknown_is_obstacle) return kInfCost;
+    cost = static_cast<std::uint8_t>(p.unknown_cost);
+  }
+  if (cost >= mapping::kInscribed) return kInfCost;
+  return 1.0 + p.cost_weight * static_cast<double>(cost) / 252.0;
+}
+
+GridCostModel::GridCostModel(const GridCostParams& params) : params_(params) {
+  params_.validate();
+  for (int c = 0; c < 256; ++c) lut_[c] = cell_factor(static_cast<std::uint8_t>(c), params_);
+  // The cheapest factor any cell can have keeps the heuristic admissible.
+  min_factor_ = *std::min_element(lut_.begin(), lut_.end());
+  // An exempted start cell costs as much as the most expensive traversable cell.
+  exempt_factor_ = 1.0 + params_.cost_weight;
+}
+
+void GridCostModel::assign(const mapping::Costmap2D& map) {
+  width_ = map.width();
+  height_ = map.height();
+  resolution_m_ = map.resolution_m();
+  cost_ = map.data();
+  exempt_ = -1;
+  for (int k = 0; k < kNumNeighbours; ++k) step_len_[k] = (k < 4 ? 1.0 : std::sqrt(2.0)) * resolution_m_;
+}
+
+void GridCostModel::set_exempt(std::int64_t cell) { exempt_ = cell; }
+
+}  // namespace bipednav::planning
