@@ -1,0 +1,302 @@
+#include "bipednav/io/map_server.hpp"
+
+#include <cairo.h>
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <memory>
+#include <sstream>
+
+#include "bipednav/common/error.hpp"
+
+namespace bipednav::io {
+
+using mapping::Costmap2D;
+
+namespace {
+
+// Next whitespace-separated PGM header token, skipping '#' comments.
+std::string pgm_token(std::istream& in) {
+  std::string tok;
+  char c;
+  while (in.get(c)) {
+    if (c == '#') {
+      std::string rest;
+      std::getline(in, rest);
+      if (!tok.empty()) break;
+      continue;
+    }
+    if (std::isspace(static_cast<unsigned char>(c))) {
+      if (!tok.empty()) break;
+      continue;
+    }
+    tok += c;
+  }
+  return tok;
+}
+
+int pgm_int(std::istream& in, const std::string& file, const std::string& field) {
+  const std::string t = pgm_token(in);
+  try {
+    std::size_t used = 0;
+    const int v = std::stoi(t, &used);
+    if (used == t.size() && v >= 0) return v;
+  } catch (const std::exception&) {
+  }
+  throw FileError(file, field, "expected a non-negative integer, got '" + t + "'");
+}
+
+}  // namespace
+
+GrayImage read_pgm(const std::filesystem::path& path) {
+  const std::string f = path.string();
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw FileError(f, "", "cannot open the file for reading (does it exist?)");
+  const std::string magic = pgm_token(in);
+  if (magic != "P5" && magic != "P2")
+    throw FileError(f, "magic", "expected P5 or P2 (a PGM image), got '" + magic + "'");
+  GrayImage img;
+  img.width = pgm_int(in, f, "width");
+  img.height = pgm_int(in, f, "height");
+  const int maxval = pgm_int(in, f, "maxval");
+  if (img.width <= 0 || img.height <= 0 || std::size_t(img.width) * img.height > 400'000'000u)
+    throw FileError(f, "width/height", "expected a size between 1 and 4e8 pixels");
+  if (maxval < 1 || maxval > 65535) throw FileError(f, "maxval", "expected 1..65535");
+  const std::size_t n = std::size_t(img.width) * img.height;
+  img.pixels.resize(n);
+  const auto to8 = [&](unsigned v) {
+    return static_cast<std::uint8_t>(std::lround(255.0 * std::min<unsigned>(v, maxval) / maxval));
+  };
+  if (magic == "P2") {
+    for (std::size_t i = 0; i < n; ++i)
+      img.pixels[i] = to8(static_cast<unsigned>(pgm_int(in, f, "pixel " + std::to_string(i))));
+    return img;
+  }
+  const std::size_t bytes = maxval > 255 ? 2 : 1;
+  std::vector<unsigned char> raw(n * bytes);
+  in.read(reinterpret_cast<char*>(raw.data()), static_cast<std::streamsize>(raw.size()));
+  if (static_cast<std::size_t>(in.gcount()) != raw.size())
+    throw FileError(f, "pixels",
+                    "expected " + std::to_string(raw.size()) + " bytes of pixel data, got " +
+                        std::to_string(in.gcount()) + " (truncated file?)");
+  for (std::size_t i = 0; i < n; ++i)
+    img.pixels[i] = to8(bytes == 2 ? (unsigned(raw[2 * i]) << 8) | raw[2 * i + 1] : raw[i]);
+  return img;
+}
+
+GrayImage read_png_gray(const std::filesystem::path& path) {
+  const std::string f = path.string();
+  if (!std::filesystem::exists(path)) throw FileError(f, "", "cannot open the file for reading (does it exist?)");
+  std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)> s(cairo_image_surface_create_from_png(f.c_str()),
+                                                                       cairo_surface_destroy);
+  if (cairo_surface_status(s.get()) != CAIRO_STATUS_SUCCESS)
+    throw FileError(
+        f, "", std::string("not a readable PNG image (") + cairo_status_to_string(cairo_surface_status(s.get())) + ")");
+  cairo_surface_flush(s.get());
+  GrayImage img;
+  img.width = cairo_image_surface_get_width(s.get());
+  img.height = cairo_image_surface_get_height(s.get());
+  const int stride = cairo_image_surface_get_stride(s.get());
+  const cairo_format_t fmt = cairo_image_surface_get_format(s.get());
+  const unsigned char* data = cairo_image_surface_get_data(s.get());
+  if (!data || (fmt != CAIRO_FORMAT_ARGB32 && fmt != CAIRO_FORMAT_RGB24 && fmt != CAIRO_FORMAT_A8))
+    throw FileError(f, "", "unsupported PNG pixel format");
+  const std::size_t n = std::size_t(img.width) * img.height;
+  img.pixels.resize(n);
+  if (fmt == CAIRO_FORMAT_ARGB32) img.alpha.resize(n);
+  for (int y = 0; y < img.height; ++y) {
+    for (int x = 0; x < img.width; ++x) {
+      const std::size_t i = std::size_t(y) * img.width + x;
+      if (fmt == CAIRO_FORMAT_A8) {
+        img.pixels[i] = data[std::size_t(y) * stride + x];
+        continue;
+      }
+      std::uint32_t px;
+      std::memcpy(&px, data + std::size_t(y) * stride + 4 * x, 4);
+      const unsigned a = fmt == CAIRO_FORMAT_ARGB32 ? px >> 24 : 255;
+      unsigned r = (px >> 16) & 0xff, g = (px >> 8) & 0xff, b = px & 0xff;
+      if (a > 0 && a < 255) {  // cairo premultiplies alpha
+        r = r * 255 / a;
+        g = g * 255 / a;
+        b = b * 255 / a;
+      }
+      img.pixels[i] = static_cast<std::uint8_t>((r + g + b) / 3);
+      if (!img.alpha.empty()) img.alpha[i] = static_cast<std::uint8_t>(a);
+    }
+  }
+  return img;
+}
+
+namespace {
+
+double yaml_number(const YAML::Node& root, const std::string& key, const std::string& file, bool required,
+                   double fallback) {
+  const YAML::Node n = root[key];
+  if (!n) {
+    if (required) throw FileError(file, key, "required key is missing");
+    return fallback;
+  }
+  try {
+    const double v = n.as<double>();
+    if (std::isfinite(v)) return v;
+  } catch (const YAML::Exception&) {
+  }
+  throw FileError(file, key, "expected a finite number");
+}
+
+MapServerMetadata parse_metadata(const std::filesystem::path& yaml_path) {
+  const std::string f = yaml_path.string();
+  if (!std::filesystem::exists(yaml_path)) throw FileError(f, "", "cannot open the file for reading (does it exist?)");
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(f);
+  } catch (const YAML::Exception& e) {
+    throw FileError(f, "line " + std::to_string(e.mark.line + 1), "invalid YAML: " + e.msg);
+  }
+  if (!root.IsMap()) throw FileError(f, "", "expected a YAML mapping with image, resolution, origin");
+  MapServerMetadata m;
+  try {
+    if (!root["image"]) throw FileError(f, "image", "required key is missing");
+    m.image = root["image"].as<std::string>();
+    if (root["mode"]) m.mode = root["mode"].as<std::string>();
+  } catch (const YAML::Exception&) {
+    throw FileError(f, "image/mode", "expected a string");
+  }
+  if (m.mode != "trinary" && m.mode != "scale")
+    throw FileError(f, "mode", "expected trinary or scale, got '" + m.mode + "'");
+  m.resolution_m = yaml_number(root, "resolution", f, true, 0.0);
+  if (m.resolution_m <= 0.0) throw FileError(f, "resolution", "expected > 0 m per pixel");
+  const YAML::Node o = root["origin"];
+  if (!o) throw FileError(f, "origin", "required key is missing");
+  if (!o.IsSequence() || o.size() != 3) throw FileError(f, "origin", "expected [x, y, yaw]");
+  double xyz[3];
+  for (std::size_t i = 0; i < 3; ++i) {
+    try {
+      xyz[i] = o[i].as<double>();
+    } catch (const YAML::Exception&) {
+      throw FileError(f, "origin[" + std::to_string(i) + "]", "expected a number");
+    }
+    if (!std::isfinite(xyz[i])) throw FileError(f, "origin[" + std::to_string(i) + "]", "expected a finite number");
+  }
+  m.origin_x_m = xyz[0];
+  m.origin_y_m = xyz[1];
+  m.origin_yaw_rad = xyz[2];
+  if (std::abs(m.origin_yaw_rad) > 1e-9)
+    throw FileError(f, "origin[2]", "expected yaw 0 (rotated maps are not supported)");
+  if (const YAML::Node n = root["negate"]) {
+    const std::string s = n.Scalar();
+    if (s == "0" || s == "false" || s == "False")
+      m.negate = false;
+    else if (s == "1" || s == "true" || s == "True")
+      m.negate = true;
+    else
+      throw FileError(f, "negate", "expected 0 or 1, got '" + s + "'");
+  }
+  m.occupied_thresh = yaml_number(root, "occupied_thresh", f, false, m.occupied_thresh);
+  m.free_thresh = yaml_number(root, "free_thresh", f, false, m.free_thresh);
+  if (m.occupied_thresh < 0.0 || m.occupied_thresh > 1.0) throw FileError(f, "occupied_thresh", "expected in [0, 1]");
+  if (m.free_thresh < 0.0 || m.free_thresh > m.occupied_thresh)
+    throw FileError(f, "free_thresh", "expected in [0, occupied_thresh]");
+  return m;
+}
+
+// map_server's occupancy of one pixel (100, 0..99 in scale mode, 0, -1 unknown) as a cost.
+std::uint8_t pixel_cost(double gray, int alpha, const MapServerMetadata& m) {
+  if (m.negate) gray = 255.0 - gray;
+  const double occ = (255.0 - gray) / 255.0;
+  if (occ > m.occupied_thresh) return mapping::kLethal;
+  if (occ < m.free_thresh) return mapping::kFree;
+  if (m.mode == "trinary" || alpha == 0) return mapping::kUnknown;
+  const int occupancy = static_cast<int>(99.0 * (occ - m.free_thresh) / (m.occupied_thresh - m.free_thresh));
+  // Nav2 static layer (trinary_costmap: false): cost = occupancy / 100 * LETHAL_OBSTACLE.
+  return static_cast<std::uint8_t>(occupancy / 100.0 * mapping::kLethal);
+}
+
+}  // namespace
+
+Costmap2D read_map_server(const std::filesystem::path& yaml_path, MapServerMetadata* metadata) {
+  const MapServerMetadata m = parse_metadata(yaml_path);
+  std::filesystem::path image = m.image;
+  if (image.is_relative()) image = yaml_path.parent_path() / image;
+  std::string ext = image.extension().string();
+  for (auto& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  GrayImage img;
+  if (ext == ".pgm")
+    img = read_pgm(image);
+  else if (ext == ".png")
+    img = read_png_gray(image);
+  else
+    throw FileError(yaml_path.string(), "image", "expected a .pgm or .png file, got '" + m.image + "'");
+  Costmap2D map({img.width, img.height, m.resolution_m, m.origin_x_m, m.origin_y_m}, mapping::kUnknown);
+  for (int row = 0; row < img.height; ++row)
+    for (int x = 0; x < img.width; ++x) {
+      const std::size_t i = std::size_t(row) * img.width + x;
+      map.set_cost(x, img.height - 1 - row, pixel_cost(img.pixels[i], img.alpha.empty() ? 255 : img.alpha[i], m));
+    }
+  if (metadata) *metadata = m;
+  return map;
+}
+
+void write_map_server(const std::filesystem::path& yaml_path, const Costmap2D& costmap) {
+  std::filesystem::path pgm = yaml_path;
+  pgm.replace_extension(".pgm");
+  {
+    std::ofstream out(pgm, std::ios::binary);
+    if (!out) throw FileError(pgm.string(), "", "cannot open the file for writing");
+    out << "P5\n# bipednav costmap\n" << costmap.width() << " " << costmap.height() << "\n255\n";
+    std::vector<unsigned char> row(static_cast<std::size_t>(costmap.width()));
+    for (int y = costmap.height() - 1; y >= 0; --y) {
+      for (int x = 0; x < costmap.width(); ++x) {
+        const std::uint8_t c = costmap.cost(x, y);
+        row[x] = c == mapping::kLethal ? 0 : (c == mapping::kUnknown ? 205 : 254);
+      }
+      out.write(reinterpret_cast<const char*>(row.data()), static_cast<std::streamsize>(row.size()));
+    }
+    if (!out) throw FileError(pgm.string(), "", "write failed");
+  }
+  std::ofstream y(yaml_path);
+  if (!y) throw FileError(yaml_path.string(), "", "cannot open the file for writing");
+  y.precision(17);
+  const auto& g = costmap.geometry();
+  y << "image: " << pgm.filename().string() << "\nresolution: " << g.resolution_m << "\norigin: [" << g.origin_x_m
+    << ", " << g.origin_y_m << ", 0.0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\nmode: trinary\n";
+  if (!y) throw FileError(yaml_path.string(), "", "write failed");
+}
+
+namespace {
+
+std::uint32_t cost_color(std::uint8_t c) {
+  const auto rgb = [](unsigned r, unsigned g, unsigned b) { return 0xff000000u | (r << 16) | (g << 8) | b; };
+  if (c == mapping::kFree) return rgb(235, 235, 235);
+  if (c == mapping::kUnknown) return rgb(160, 160, 160);
+  if (c == mapping::kLethal) return rgb(0, 0, 0);
+  if (c == mapping::kInscribed) return rgb(120, 20, 150);
+  const double t = c / 252.0;  // inflated: light to deep blue
+  return rgb(unsigned(200 - 170 * t), unsigned(220 - 170 * t), unsigned(255 - 55 * t));
+}
+
+}  // namespace
+
+void write_costmap_png(const std::filesystem::path& path, const Costmap2D& costmap, int scale) {
+  if (scale < 1 || scale > 64) throw Error("write_costmap_png: scale must be 1..64 pixels per cell");
+  if (costmap.width() <= 0 || costmap.height() <= 0) throw Error("write_costmap_png: empty costmap");
+  const int w = costmap.width() * scale, h = costmap.height() * scale;
+  std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)> s(
+      cairo_image_surface_create(CAIRO_FORMAT_ARGB32, w, h), cairo_surface_destroy);
+  if (cairo_surface_status(s.get()) != CAIRO_STATUS_SUCCESS) throw Error("write_costmap_png: image too large");
+  cairo_surface_flush(s.get());
+  unsigned char* data = cairo_image_surface_get_data(s.get());
+  const int stride = cairo_image_surface_get_stride(s.get());
+  for (int py = 0; py < h; ++py)
+    for (int px = 0; px < w; ++px) {
+      const std::uint32_t c = cost_color(costmap.cost(px / scale, costmap.height() - 1 - py / scale));
+      std::memcpy(data + std::size_t(py) * stride + 4 * px, &c, 4);
+    }
+  cairo_surface_mark_dirty(s.get());
+  if (cairo_surface_write_to_png(s.get(), path.string().c_str()) != CAIRO_STATUS_SUCCESS)
+    throw FileError(path.string(), "", "cannot write the PNG file");
+}
+
+}  // namespace bipednav::io
