@@ -1,0 +1,150 @@
+#include "bipednav/planning/local/costmap_obstacles.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <utility>
+
+namespace bipednav::planning::local {
+
+namespace {
+
+double cross(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
+}
+
+// 8-connected components of the lethal cells, each as a list of cell indices (scan order).
+std::vector<std::vector<std::size_t>> lethal_components(const mapping::Costmap2D& costmap) {
+  const auto& g = costmap.geometry();
+  const auto& data = costmap.data();
+  std::vector<int> label(data.size(), -1);
+  std::vector<std::vector<std::size_t>> comps;
+  std::vector<std::size_t> stack;
+  for (std::size_t i = 0; i < data.size(); ++i) {
+    if (data[i] != mapping::kLethal || label[i] >= 0) continue;
+    const int id = static_cast<int>(comps.size());
+    comps.emplace_back();
+    label[i] = id;
+    stack.assign(1, i);
+    while (!stack.empty()) {
+      const std::size_t c = stack.back();
+      stack.pop_back();
+      comps.back().push_back(c);
+      const mapping::Cell cell = g.cell_of(c);
+      for (int dy = -1; dy <= 1; ++dy) {
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int nx = cell.x + dx, ny = cell.y + dy;
+          if (!g.in_bounds(nx, ny)) continue;
+          const std::size_t n = g.index(nx, ny);
+          if (data[n] == mapping::kLethal && label[n] < 0) label[n] = id, stack.push_back(n);
+        }
+      }
+    }
+    std::sort(comps.back().begin(), comps.back().end());
+  }
+  return comps;
+}
+
+}  // namespace
+
+std::vector<Eigen::Vector2d> convex_hull(std::vector<Eigen::Vector2d> pts) {
+  std::sort(pts.begin(), pts.end(),
+            [](const auto& a, const auto& b) { return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y()); });
+  pts.erase(std::unique(pts.begin(), pts.end()), pts.end());
+  if (pts.size() < 3) return pts;
+  std::vector<Eigen::Vector2d> hull(2 * pts.size());
+  std::size_t k = 0;
+  for (const auto& p : pts) {
+    while (k >= 2 && cross(hull[k - 2], hull[k - 1], p) <= 0.0) --k;
+    hull[k++] = p;
+  }
+  for (std::size_t i = pts.size() - 1, t = k + 1; i-- > 0;) {
+    while (k >= t && cross(hull[k - 2], hull[k - 1], pts[i]) <= 0.0) --k;
+    hull[k++] = pts[i];
+  }
+  hull.resize(k - 1);
+  return hull;
+}
+
+Obstacle make_obstacle(const std::vector<Eigen::Vector2d>& pts, double half_cell_m, const ObstacleParams& params) {
+  Obstacle o;
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  for (const auto& p : pts) mean += p;
+  mean /= static_cast<double>(pts.size());
+  o.centroid = mean;
+  double rmax = 0.0;
+  Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
+  for (const auto& p : pts) {
+    rmax = std::max(rmax, (p - mean).norm());
+    cov += (p - mean) * (p - mean).transpose();
+  }
+  o.radius_m = rmax + half_cell_m;
+  if (2.0 * rmax <= params.point_max_extent_m) {
+    o.kind = Obstacle::Kind::kPoint;
+    o.vertices = {mean};
+    return o;
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(cov);
+  const Eigen::Vector2d major = es.eigenvectors().col(1);
+  const Eigen::Vector2d minor = es.eigenvectors().col(0);
+  double lo = 1e300, hi = -1e300, wlo = 1e300, whi = -1e300;
+  for (const auto& p : pts) {
+    const double s = (p - mean).dot(major), w = (p - mean).dot(minor);
+    lo = std::min(lo, s), hi = std::max(hi, s), wlo = std::min(wlo, w), whi = std::max(whi, w);
+  }
+  if (whi - wlo <= params.line_max_width_m) {
+    o.kind = Obstacle::Kind::kLine;
+    o.vertices = {mean + lo * major, mean + hi * major};
+    return o;
+  }
+  std::vector<Eigen::Vector2d> corners;
+  corners.reserve(pts.size() * 4);
+  for (const auto& p : pts) {
+    for (const double sx : {-half_cell_m, half_cell_m})
+      for (const double sy : {-half_cell_m, half_cell_m}) corners.emplace_back(p.x() + sx, p.y() + sy);
+  }
+  o.kind = Obstacle::Kind::kPolygon;
+  o.vertices = convex_hull(std::move(corners));
+  return o;
+}
+
+std::vector<Obstacle> extract_obstacles(const mapping::Costmap2D& costmap, const ObstacleParams& params) {
+  std::vector<Obstacle> out;
+  if (costmap.width() <= 0 || costmap.height() <= 0) return out;
+  const auto& g = costmap.geometry();
+  const double half = 0.5 * g.resolution_m;
+  for (const auto& comp : lethal_components(costmap)) {
+    // Cut large components into blocks so that hulls stay local (a wall's L or U stays concave).
+    std::map<std::pair<long, long>, std::vector<Eigen::Vector2d>> blocks;
+    for (const std::size_t i : comp) {
+      const Eigen::Vector2d c = g.cell_center(g.cell_of(i));
+      const std::pair<long, long> key{static_cast<long>(std::floor(c.x() / params.cluster_block_m)),
+                                      static_cast<long>(std::floor(c.y() / params.cluster_block_m))};
+      blocks[key].push_back(c);
+    }
+    for (const auto& [key, pts] : blocks) {
+      if (static_cast<int>(out.size()) >= params.max_obstacles) return out;
+      out.push_back(make_obstacle(pts, half, params));
+    }
+  }
+  return out;
+}
+
+std::vector<int> nearest_obstacles(const std::vector<Obstacle>& obstacles, const Eigen::Vector2d& p, int k,
+                                   double max_dist_m) {
+  std::vector<std::pair<double, int>> cand;
+  for (std::size_t i = 0; i < obstacles.size(); ++i) {
+    // Cheap bounding-circle rejection before the exact distance.
+    if ((obstacles[i].centroid - p).norm() - obstacles[i].radius_m > max_dist_m) continue;
+    const double d = obstacle_distance(obstacles[i], p.x(), p.y());
+    if (d <= max_dist_m) cand.emplace_back(d, static_cast<int>(i));
+  }
+  const std::size_t n = std::min<std::size_t>(cand.size(), static_cast<std::size_t>(std::max(k, 0)));
+  std::partial_sort(cand.begin(), cand.begin() + static_cast<long>(n), cand.end());
+  std::vector<int> idx;
+  for (std::size_t i = 0; i < n; ++i) idx.push_back(cand[i].second);
+  return idx;
+}
+
+}  // namespace bipednav::planning::local

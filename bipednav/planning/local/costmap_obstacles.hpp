@@ -1,0 +1,43 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "bipednav/mapping/costmap2d.hpp"
+#include "bipednav/planning/local/teb_params.hpp"
+#include "bipednav/planning/local/teb_terms.hpp"
+
+namespace bipednav::planning::local {
+
+// An obstacle of eq. 5.15 as a simply connected region: a point (1 vertex), a line segment
+// (2 vertices) or a convex polygon (>= 3 vertices, counter-clockwise).
+struct Obstacle {
+  enum class Kind { kPoint, kLine, kPolygon };
+  Kind kind = Kind::kPoint;
+  std::vector<Eigen::Vector2d> vertices;
+  Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
+  double radius_m = 0.0;  // bounding circle around the centroid
+};
+
+// The minimal Euclidean distance rho(s_k, O_l) of eq. 5.15 (negative inside a polygon).
+template <typename T>
+T obstacle_distance(const Obstacle& o, const T& x, const T& y) {
+  return distance_to_polygon(x, y, o.vertices);
+}
+
+// Builds an obstacle from a set of points: a point when the set is smaller than point_max_extent,
+// a segment along the principal axis when thinner than line_max_width, else the convex hull.
+Obstacle make_obstacle(const std::vector<Eigen::Vector2d>& pts, double half_cell_m, const ObstacleParams& params);
+
+// Convex hull (counter-clockwise, no collinear points) of a point set (Andrew's monotone chain).
+std::vector<Eigen::Vector2d> convex_hull(std::vector<Eigen::Vector2d> pts);
+
+// Clusters the lethal cells of the costmap into 8-connected components, cuts large ones into
+// cluster_block_m blocks and converts each piece with make_obstacle. Deterministic order.
+std::vector<Obstacle> extract_obstacles(const mapping::Costmap2D& costmap, const ObstacleParams& params);
+
+// Indices of the (at most k) obstacles nearest to p within max_dist_m, nearest first.
+std::vector<int> nearest_obstacles(const std::vector<Obstacle>& obstacles, const Eigen::Vector2d& p, int k,
+                                   double max_dist_m);
+
+}  // namespace bipednav::planning::local

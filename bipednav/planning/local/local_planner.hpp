@@ -1,0 +1,50 @@
+#pragma once
+
+#include <memory>
+#include <string_view>
+
+#include "bipednav/common/outcome.hpp"
+#include "bipednav/common/path.hpp"
+#include "bipednav/common/pose2.hpp"
+#include "bipednav/common/twist.hpp"
+#include "bipednav/mapping/costmap2d.hpp"
+#include "bipednav/planning/local/teb_params.hpp"
+#include "bipednav/planning/local/tracker_params.hpp"
+
+namespace bipednav::planning::local {
+
+// One control cycle's answer. `result.outcome` is SUCCESS, NO_VALID_CMD, COLLISION (the best
+// trajectory is infeasible: zero command), OSCILLATION, or for bad input INVALID_PATH (empty or
+// non-finite global plan), CTRL_TF_ERROR (non-finite robot pose or velocity), CTRL_MAP_ERROR
+// (empty costmap), CTRL_OUT_OF_MAP (robot outside the local costmap). `cmd` is always finite and
+// within the velocity/acceleration limits (zero on every outcome but SUCCESS).
+struct LocalPlanResult {
+  Result result;
+  Twist cmd;
+  Path trajectory;            // timed local trajectory in the map frame (for display)
+  bool goal_reached = false;  // within the xy and yaw tolerance of the global plan's last pose
+};
+
+// A local planner / controller: one call per control cycle.
+class LocalPlanner {
+ public:
+  virtual ~LocalPlanner() = default;
+  // T_map_base: robot pose in the map frame; current_velocity in the base frame; global_plan and
+  // local_costmap in the map frame; now_s: (simulated) time of the cycle.
+  virtual LocalPlanResult compute(const Pose2& T_map_base, const Twist& current_velocity, const Path& global_plan,
+                                  const mapping::Costmap2D& local_costmap, double now_s) = 0;
+  // Forgets the warm start, the selected homotopy class and the oscillation history.
+  virtual void reset() = 0;
+  virtual std::string_view name() const = 0;
+};
+
+struct LocalPlannerParams {
+  TebParams teb;
+  TrackerParams tracker;
+  void validate() const;
+};
+
+// Factory table: "teb" or "tracker"; throws ParamError for another name.
+std::unique_ptr<LocalPlanner> make_local_planner(std::string_view name, const LocalPlannerParams& params);
+
+}  // namespace bipednav::planning::local

@@ -1,0 +1,148 @@
+#include "bipednav/planning/local/plan_utils.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "bipednav/common/angles.hpp"
+
+namespace bipednav::planning::local {
+
+std::optional<Result> check_inputs(const Pose2& T_map_base, const Twist& velocity, const Path& plan,
+                                   const mapping::Costmap2D& costmap) {
+  if (!T_map_base.is_finite()) return Result{Outcome::CTRL_TF_ERROR, "robot pose is not finite"};
+  if (!velocity.is_finite()) return Result{Outcome::CTRL_TF_ERROR, "current velocity is not finite"};
+  if (plan.empty()) return Result{Outcome::INVALID_PATH, "global plan is empty"};
+  for (const auto& p : plan.poses) {
+    if (!p.is_finite()) return Result{Outcome::INVALID_PATH, "global plan contains a non-finite pose"};
+  }
+  if (costmap.width() <= 0 || costmap.height() <= 0 || costmap.data().size() != costmap.geometry().size())
+    return Result{Outcome::CTRL_MAP_ERROR, "local costmap is empty"};
+  if (!costmap.geometry().world_to_cell(T_map_base.x, T_map_base.y))
+    return Result{Outcome::CTRL_OUT_OF_MAP, "robot is outside the local costmap"};
+  return std::nullopt;
+}
+
+namespace {
+
+bool inside_window(const mapping::GridGeometry& g, const Pose2& p, double margin) {
+  return p.x >= g.origin_x_m + margin && p.y >= g.origin_y_m + margin && p.x <= g.origin_x_m + g.size_x_m() - margin &&
+         p.y <= g.origin_y_m + g.size_y_m() - margin;
+}
+
+}  // namespace
+
+LocalGoal select_local_goal(const Path& plan, const Pose2& T_map_base, const mapping::Costmap2D& costmap,
+                            double lookahead_m, double margin_m, double via_sep_m) {
+  const auto& g = costmap.geometry();
+  const auto& P = plan.poses;
+  // Nearest plan pose, searched until the plan first leaves the window after having been inside.
+  std::size_t nearest = 0;
+  double best = 1e300;
+  bool was_inside = false;
+  for (std::size_t i = 0; i < P.size(); ++i) {
+    const bool in = inside_window(g, P[i], 0.0);
+    if (was_inside && !in) break;
+    was_inside = was_inside || in;
+    const double d = distance(P[i], T_map_base);
+    if (d < best) best = d, nearest = i;
+  }
+  LocalGoal lg;
+  std::size_t goal_idx = nearest;
+  double arc = 0.0, since_via = 0.0;
+  for (std::size_t i = nearest + 1; i < P.size(); ++i) {
+    const double step = distance(P[i - 1], P[i]);
+    if (!inside_window(g, P[i], margin_m) || arc + step > lookahead_m) break;
+    arc += step, since_via += step;
+    goal_idx = i;
+    if (since_via >= via_sep_m) lg.via_points.push_back(P[i].position()), since_via = 0.0;
+  }
+  lg.is_final = goal_idx + 1 == P.size();
+  lg.goal = P[goal_idx];
+  if (!lg.is_final) {
+    // Intermediate goals face along the path (global planners often leave theta at 0).
+    const Pose2& a = P[goal_idx];
+    const Pose2& b = P[goal_idx + 1];
+    if (distance(a, b) > 1e-9) lg.goal.theta = std::atan2(b.y - a.y, b.x - a.x);
+  }
+  if (!lg.via_points.empty() && (lg.via_points.back() - lg.goal.position()).norm() < 0.5 * via_sep_m)
+    lg.via_points.pop_back();
+  return lg;
+}
+
+Twist clamp_command(const Twist& desired, const Twist& current, const CommandLimits& lim, double period_s) {
+  if (!desired.is_finite()) return {};
+  const Twist cur = current.is_finite() ? current : Twist{};
+  const double dv = lim.acc_lim_x_mps2 * period_s, dw = lim.acc_lim_theta_radps2 * period_s;
+  Twist out;
+  out.linear_x = std::clamp(desired.linear_x, cur.linear_x - dv, cur.linear_x + dv);
+  out.angular_z = std::clamp(desired.angular_z, cur.angular_z - dw, cur.angular_z + dw);
+  out.linear_x = std::clamp(out.linear_x, -lim.max_vel_x_backwards_mps, lim.max_vel_x_mps);
+  out.angular_z = std::clamp(out.angular_z, -lim.max_vel_theta_radps, lim.max_vel_theta_radps);
+  return out;
+}
+
+bool poses_feasible(const std::vector<Pose2>& poses, const mapping::Costmap2D& costmap) {
+  if (poses.empty()) return true;
+  const auto& g = costmap.geometry();
+  const auto cost_at = [&](double x, double y) -> int {
+    const auto c = g.world_to_cell(x, y);
+    return c ? costmap.cost(*c) : -1;
+  };
+  const int own = cost_at(poses.front().x, poses.front().y);
+  const int limit = own >= mapping::kInscribed && own != mapping::kUnknown ? mapping::kLethal : mapping::kInscribed;
+  const auto bad = [&](double x, double y) {
+    const int c = cost_at(x, y);
+    return c >= limit && c != mapping::kUnknown;
+  };
+  for (std::size_t i = 1; i < poses.size(); ++i) {
+    const double len = distance(poses[i - 1], poses[i]);
+    const int steps = std::max(1, static_cast<int>(std::ceil(len / g.resolution_m)));
+    for (int s = 1; s <= steps; ++s) {
+      const double f = static_cast<double>(s) / steps;
+      if (bad(poses[i - 1].x + f * (poses[i].x - poses[i - 1].x), poses[i - 1].y + f * (poses[i].y - poses[i - 1].y)))
+        return false;
+    }
+  }
+  return true;
+}
+
+GoalApproach approach_goal(const Pose2& T_map_base, const Pose2& goal, double xy_tol_m, double yaw_tol_rad,
+                           double rotate_gain, double max_vel_theta_radps) {
+  GoalApproach a;
+  a.near = distance(T_map_base, goal) <= xy_tol_m;
+  if (!a.near) return a;
+  const double err = angle_diff(goal.theta, T_map_base.theta);
+  a.reached = std::abs(err) <= yaw_tol_rad;
+  if (!a.reached) a.cmd.angular_z = std::clamp(rotate_gain * err, -max_vel_theta_radps, max_vel_theta_radps);
+  return a;
+}
+
+OscillationDetector::OscillationDetector(int window, double max_vel_x_mps, double max_vel_theta_radps)
+    : window_(static_cast<std::size_t>(std::max(window, 4))), max_v_(max_vel_x_mps), max_w_(max_vel_theta_radps) {}
+
+void OscillationDetector::update(const Twist& cmd) {
+  history_.push_back(cmd);
+  if (history_.size() > window_) history_.erase(history_.begin());
+}
+
+bool OscillationDetector::oscillating() const {
+  if (history_.size() < window_) return false;
+  double mv = 0.0, mw = 0.0, av = 0.0, aw = 0.0;
+  int flips_v = 0, flips_w = 0, last_v = 0, last_w = 0;
+  for (const auto& t : history_) {
+    mv += t.linear_x, mw += t.angular_z, av += std::abs(t.linear_x), aw += std::abs(t.angular_z);
+    const int sv = t.linear_x > 0.05 * max_v_ ? 1 : (t.linear_x < -0.05 * max_v_ ? -1 : 0);
+    const int sw = t.angular_z > 0.05 * max_w_ ? 1 : (t.angular_z < -0.05 * max_w_ ? -1 : 0);
+    if (sv != 0 && last_v != 0 && sv != last_v) ++flips_v;
+    if (sw != 0 && last_w != 0 && sw != last_w) ++flips_w;
+    if (sv != 0) last_v = sv;
+    if (sw != 0) last_w = sw;
+  }
+  const double n = static_cast<double>(history_.size());
+  mv /= n, mw /= n, av /= n, aw /= n;
+  const bool small_mean = std::abs(mv) < 0.1 * max_v_ && std::abs(mw) < 0.1 * max_w_;
+  const bool active = av > 0.1 * max_v_ || aw > 0.1 * max_w_;
+  return small_mean && active && (flips_v >= 3 || flips_w >= 3);
+}
+
+}  // namespace bipednav::planning::local

@@ -1,0 +1,72 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <optional>
+#include <vector>
+
+#include "bipednav/common/outcome.hpp"
+#include "bipednav/common/path.hpp"
+#include "bipednav/common/pose2.hpp"
+#include "bipednav/common/twist.hpp"
+#include "bipednav/mapping/costmap2d.hpp"
+
+namespace bipednav::planning::local {
+
+// Rejects bad input with a typed outcome: non-finite pose/velocity (CTRL_TF_ERROR), empty or
+// non-finite plan (INVALID_PATH), empty costmap (CTRL_MAP_ERROR), robot off the map (CTRL_OUT_OF_MAP).
+std::optional<Result> check_inputs(const Pose2& T_map_base, const Twist& velocity, const Path& plan,
+                                   const mapping::Costmap2D& costmap);
+
+// The local goal: the last pose of the global plan that is still inside the costmap window (with
+// a margin) and within lookahead_m of arc length from the plan point nearest to the robot.
+struct LocalGoal {
+  Pose2 goal;
+  std::vector<Eigen::Vector2d> via_points;  // plan points between robot and goal, every via_sep_m
+  bool is_final = false;                    // the goal is the plan's last pose
+};
+LocalGoal select_local_goal(const Path& plan, const Pose2& T_map_base, const mapping::Costmap2D& costmap,
+                            double lookahead_m, double margin_m, double via_sep_m);
+
+// Velocity and acceleration limits of the command.
+struct CommandLimits {
+  double max_vel_x_mps = 0.5;
+  double max_vel_x_backwards_mps = 0.2;
+  double max_vel_theta_radps = 0.8;
+  double acc_lim_x_mps2 = 0.5;
+  double acc_lim_theta_radps2 = 1.0;
+};
+
+// Clamps a desired command to the acceleration limits over one control period from the current
+// velocity, then to the velocity limits (those win). Non-finite input gives zero. linear_y = 0.
+Twist clamp_command(const Twist& desired, const Twist& current, const CommandLimits& lim, double period_s);
+
+// True when none of the poses (and the straight pieces between consecutive ones, sampled at the
+// grid resolution) lies in a lethal cell, or in an inscribed one unless the robot is already in
+// inscribed space. Off-map and unknown cells count as free.
+bool poses_feasible(const std::vector<Pose2>& poses, const mapping::Costmap2D& costmap);
+
+// Near the final goal: zero once within both tolerances, else a turn on the spot to the goal yaw.
+struct GoalApproach {
+  bool near = false;     // within the xy tolerance
+  bool reached = false;  // ... and the yaw tolerance
+  Twist cmd;             // desired (unclamped) command
+};
+GoalApproach approach_goal(const Pose2& T_map_base, const Pose2& goal, double xy_tol_m, double yaw_tol_rad,
+                           double rotate_gain, double max_vel_theta_radps);
+
+// Detects oscillation in the command history: the mean velocities stay small while the yaw rate
+// (or the forward speed) keeps changing sign.
+class OscillationDetector {
+ public:
+  OscillationDetector(int window, double max_vel_x_mps, double max_vel_theta_radps);
+  void update(const Twist& cmd);
+  bool oscillating() const;
+  void clear() { history_.clear(); }
+
+ private:
+  std::size_t window_;
+  double max_v_, max_w_;
+  std::vector<Twist> history_;
+};
+
+}  // namespace bipednav::planning::local

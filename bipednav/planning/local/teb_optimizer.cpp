@@ -1,0 +1,276 @@
+#include "bipednav/planning/local/teb_optimizer.hpp"
+
+#include <ceres/ceres.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "bipednav/common/angles.hpp"
+
+namespace bipednav::planning::local {
+
+namespace {
+
+// Weights read by the cost functors at evaluation time, so outer iterations can adapt them.
+struct Weights {
+  double nh, back, vel_x, vel_th, acc_x, acc_th, time, obstacle, via;
+};
+
+Weights base_weights(const TebOptimizerParams& p) {
+  return {p.weight_kinematics_nh, p.weight_backwards,   p.weight_max_vel_x, p.weight_max_vel_theta, p.weight_acc_lim_x,
+          p.weight_acc_lim_theta, p.weight_optimaltime, p.weight_obstacle,  p.weight_viapoint};
+}
+
+struct Context {
+  const TebLimits* limits;
+  const TebOptimizerParams* params;
+  const Weights* w;
+};
+
+// Terms between s_k and s_{k+1}: eq. 5.16 (non-holonomic), backwards penalty, eq. 5.13 (velocity
+// limits, asymmetric forward/backward), eq. 5.4 (time).
+struct EdgeFunctor {
+  Context c;
+  template <typename T>
+  bool operator()(const T* a, const T* b, const T* dt, T* r) const {
+    using std::sqrt;
+    const auto& L = *c.limits;
+    const double eps = c.params->penalty_epsilon;
+    const T v = linear_velocity(a[0], a[1], a[2], b[0], b[1], dt[0], c.params->sign_gain);
+    const T w = angular_velocity(a[2], b[2], dt[0]);
+    r[0] = sqrt(c.w->nh) * nonholonomic_error(a[0], a[1], a[2], b[0], b[1], b[2]);
+    r[1] = sqrt(c.w->back) * backwards_error(a[0], a[1], a[2], b[0], b[1]);
+    r[2] = sqrt(c.w->vel_x) * penalty_interval(v, -L.max_vel_x_backwards_mps, L.max_vel_x_mps, eps);
+    r[3] = sqrt(c.w->vel_th) * penalty_symmetric(w, L.max_vel_theta_radps, eps);
+    r[4] = sqrt(c.w->time) * time_error(dt[0]);
+    return true;
+  }
+};
+
+// eq. 5.11-5.12, 5.14 over s_k, s_{k+1}, s_{k+2}.
+struct AccFunctor {
+  Context c;
+  template <typename T>
+  bool operator()(const T* a, const T* b, const T* d, const T* dt1, const T* dt2, T* r) const {
+    using std::sqrt;
+    const double eps = c.params->penalty_epsilon, g = c.params->sign_gain;
+    const T v1 = linear_velocity(a[0], a[1], a[2], b[0], b[1], dt1[0], g);
+    const T v2 = linear_velocity(b[0], b[1], b[2], d[0], d[1], dt2[0], g);
+    const T w1 = angular_velocity(a[2], b[2], dt1[0]);
+    const T w2 = angular_velocity(b[2], d[2], dt2[0]);
+    r[0] = sqrt(c.w->acc_x) * penalty_symmetric(acceleration(v1, v2, dt1[0], dt2[0]), c.limits->acc_lim_x_mps2, eps);
+    r[1] = sqrt(c.w->acc_th) *
+           penalty_symmetric(acceleration(w1, w2, dt1[0], dt2[0]), c.limits->acc_lim_theta_radps2, eps);
+    return true;
+  }
+};
+
+// Acceleration of the first interval from the robot's current velocity.
+struct StartAccFunctor {
+  Context c;
+  Twist v0;
+  template <typename T>
+  bool operator()(const T* a, const T* b, const T* dt, T* r) const {
+    using std::sqrt;
+    const double eps = c.params->penalty_epsilon;
+    const T v = linear_velocity(a[0], a[1], a[2], b[0], b[1], dt[0], c.params->sign_gain);
+    const T w = angular_velocity(a[2], b[2], dt[0]);
+    r[0] = sqrt(c.w->acc_x) * penalty_symmetric(T((v - T(v0.linear_x)) / dt[0]), c.limits->acc_lim_x_mps2, eps);
+    r[1] = sqrt(c.w->acc_th) * penalty_symmetric(T((w - T(v0.angular_z)) / dt[0]), c.limits->acc_lim_theta_radps2, eps);
+    return true;
+  }
+};
+
+// eq. 5.15 / 5.19 for one pose against its associated nearest obstacles (padded with zeros).
+struct ObstacleFunctor {
+  Context c;
+  const std::vector<Obstacle>* obstacles;
+  const std::vector<int>* assoc;
+  template <typename T>
+  bool operator()(const T* p, T* r) const {
+    using std::sqrt;
+    const int k = c.params->obstacles_per_pose;
+    for (int i = 0; i < k; ++i) {
+      r[i] = T(0.0);
+      if (i >= static_cast<int>(assoc->size())) continue;
+      const T d = obstacle_distance((*obstacles)[static_cast<std::size_t>((*assoc)[i])], p[0], p[1]);
+      r[i] = sqrt(c.w->obstacle) * penalty_below(d, c.limits->min_obstacle_dist_m, c.params->penalty_epsilon);
+    }
+    return true;
+  }
+};
+
+struct ViaFunctor {
+  Context c;
+  Eigen::Vector2d via;
+  template <typename T>
+  bool operator()(const T* p, T* r) const {
+    const auto e = via_point_error(p[0], p[1], via);
+    r[0] = sqrt(c.w->via) * e[0];
+    r[1] = sqrt(c.w->via) * e[1];
+    return true;
+  }
+};
+
+// Nearest inner pose of the band for each via point (ordered along the band).
+std::vector<std::pair<std::size_t, Eigen::Vector2d>> assign_via_points(const std::vector<double>& x, std::size_t n,
+                                                                       const std::vector<Eigen::Vector2d>& via) {
+  std::vector<std::pair<std::size_t, Eigen::Vector2d>> out;
+  if (n < 3) return out;
+  std::size_t from = 1;
+  for (const auto& v : via) {
+    std::size_t best = from;
+    double bd = 1e300;
+    for (std::size_t k = from; k + 1 < n; ++k) {
+      const double d = std::hypot(x[3 * k] - v.x(), x[3 * k + 1] - v.y());
+      if (d < bd) bd = d, best = k;
+    }
+    out.emplace_back(best, v);
+    from = best;
+  }
+  return out;
+}
+
+ceres::LinearSolverType solver_type(const std::string& name) {
+  if (name == "dense_normal_cholesky") return ceres::DENSE_NORMAL_CHOLESKY;
+  if (name == "dense_qr") return ceres::DENSE_QR;
+  if (name == "dense_schur") return ceres::DENSE_SCHUR;
+  return ceres::SPARSE_NORMAL_CHOLESKY;
+}
+
+// One Levenberg-Marquardt solve over the band stored in x (3 per pose) and dt.
+bool solve_once(std::vector<double>& x, std::vector<double>& dt, const TebProblemInput& input,
+                std::vector<std::vector<int>>& assoc, const Context& ctx, const TebBandParams& bp) {
+  const std::size_t n = dt.size() + 1;
+  ceres::Problem problem;
+  for (std::size_t k = 0; k < n; ++k) problem.AddParameterBlock(&x[3 * k], 3);
+  for (std::size_t k = 0; k + 1 < n; ++k) {
+    problem.AddParameterBlock(&dt[k], 1);
+    problem.SetParameterLowerBound(&dt[k], 0, bp.dt_min_s);
+  }
+  problem.SetParameterBlockConstant(&x[0]);
+  problem.SetParameterBlockConstant(&x[3 * (n - 1)]);
+  for (std::size_t k = 0; k + 1 < n; ++k) {
+    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<EdgeFunctor, 5, 3, 3, 1>(new EdgeFunctor{ctx}), nullptr,
+                             &x[3 * k], &x[3 * k + 3], &dt[k]);
+  }
+  for (std::size_t k = 0; k + 2 < n; ++k) {
+    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<AccFunctor, 2, 3, 3, 3, 1, 1>(new AccFunctor{ctx}),
+                             nullptr, &x[3 * k], &x[3 * k + 3], &x[3 * k + 6], &dt[k], &dt[k + 1]);
+  }
+  problem.AddResidualBlock(
+      new ceres::AutoDiffCostFunction<StartAccFunctor, 2, 3, 3, 1>(new StartAccFunctor{ctx, input.start_velocity}),
+      nullptr, &x[0], &x[3], &dt[0]);
+  const int kobs = ctx.params->obstacles_per_pose;
+  if (input.obstacles != nullptr && kobs > 0) {
+    for (std::size_t k = 1; k + 1 < n; ++k) {
+      if (assoc[k].empty()) continue;
+      auto* f = new ObstacleFunctor{ctx, input.obstacles, &assoc[k]};
+      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<ObstacleFunctor, ceres::DYNAMIC, 3>(f, kobs), nullptr,
+                               &x[3 * k]);
+    }
+  }
+  for (const auto& [k, v] : assign_via_points(x, n, input.via_points)) {
+    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<ViaFunctor, 2, 3>(new ViaFunctor{ctx, v}), nullptr,
+                             &x[3 * k]);
+  }
+  ceres::Solver::Options opt;
+  opt.minimizer_type = ceres::TRUST_REGION;
+  opt.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
+  opt.linear_solver_type = solver_type(ctx.params->linear_solver);
+  opt.max_num_iterations = ctx.params->no_inner_iterations;
+  opt.num_threads = 1;
+  opt.logging_type = ceres::SILENT;
+  opt.minimizer_progress_to_stdout = false;
+  ceres::Solver::Summary summary;
+  ceres::Solve(opt, &problem, &summary);
+  return summary.termination_type != ceres::FAILURE && std::isfinite(summary.final_cost);
+}
+
+void associate(const std::vector<double>& x, std::size_t n, const TebProblemInput& input, const TebOptimizerParams& p,
+               std::vector<std::vector<int>>& assoc) {
+  assoc.assign(n, {});
+  if (input.obstacles == nullptr) return;
+  for (std::size_t k = 1; k + 1 < n; ++k) {
+    assoc[k] = nearest_obstacles(*input.obstacles, {x[3 * k], x[3 * k + 1]}, p.obstacles_per_pose,
+                                 p.obstacle_influence_dist_m);
+  }
+}
+
+}  // namespace
+
+bool optimize_band(TebBand& band, const TebProblemInput& input, const TebLimits& limits,
+                   const TebBandParams& band_params, const TebOptimizerParams& params) {
+  if (band.size() < 2) return false;
+  Weights w = base_weights(params);
+  const Context ctx{&limits, &params, &w};
+  TebBand work = band;
+  std::vector<double> x, dt;
+  std::vector<std::vector<int>> assoc;
+  for (int outer = 0; outer < params.no_outer_iterations; ++outer) {
+    resample_band(work, band_params);
+    const std::size_t n = work.size();
+    x.resize(3 * n);
+    for (std::size_t k = 0; k < n; ++k) {
+      x[3 * k] = work.poses[k].x, x[3 * k + 1] = work.poses[k].y, x[3 * k + 2] = work.poses[k].theta;
+    }
+    dt = work.dt_s;
+    associate(x, n, input, params, assoc);
+    if (!solve_once(x, dt, input, assoc, ctx, band_params)) return false;
+    for (std::size_t k = 0; k < n; ++k) work.poses[k] = {x[3 * k], x[3 * k + 1], normalize_angle(x[3 * k + 2])};
+    work.dt_s = dt;
+    w.obstacle *= params.weight_adapt_factor;  // weight adaptation between outer iterations
+    w.nh *= params.weight_adapt_factor;
+  }
+  for (const auto& p : work.poses) {
+    if (!p.is_finite()) return false;
+  }
+  band = std::move(work);
+  return true;
+}
+
+BandCost evaluate_band(const TebBand& band, const TebProblemInput& input, const TebLimits& limits,
+                       const TebOptimizerParams& params) {
+  BandCost c;
+  const Weights w = base_weights(params);
+  const double eps = params.penalty_epsilon, g = params.sign_gain;
+  const auto& s = band.poses;
+  const auto sq = [](double v) { return v * v; };
+  std::vector<double> v(band.dt_s.size()), om(band.dt_s.size());
+  for (std::size_t k = 0; k < band.dt_s.size(); ++k) {
+    const double dt = band.dt_s[k];
+    const double h = nonholonomic_error(s[k].x, s[k].y, s[k].theta, s[k + 1].x, s[k + 1].y, s[k + 1].theta);
+    c.max_nh_error = std::max(c.max_nh_error, std::abs(h));
+    c.kinematics += w.nh * sq(h) + w.back * sq(backwards_error(s[k].x, s[k].y, s[k].theta, s[k + 1].x, s[k + 1].y));
+    v[k] = linear_velocity(s[k].x, s[k].y, s[k].theta, s[k + 1].x, s[k + 1].y, dt, g);
+    om[k] = angular_velocity(s[k].theta, s[k + 1].theta, dt);
+    c.velocity += w.vel_x * sq(penalty_interval(v[k], -limits.max_vel_x_backwards_mps, limits.max_vel_x_mps, eps)) +
+                  w.vel_th * sq(penalty_symmetric(om[k], limits.max_vel_theta_radps, eps));
+    c.time += w.time * sq(dt);
+    c.duration_s += dt;
+  }
+  for (std::size_t k = 0; k + 1 < v.size(); ++k) {
+    const double a = acceleration(v[k], v[k + 1], band.dt_s[k], band.dt_s[k + 1]);
+    const double aw = acceleration(om[k], om[k + 1], band.dt_s[k], band.dt_s[k + 1]);
+    c.acceleration += w.acc_x * sq(penalty_symmetric(a, limits.acc_lim_x_mps2, eps)) +
+                      w.acc_th * sq(penalty_symmetric(aw, limits.acc_lim_theta_radps2, eps));
+  }
+  if (input.obstacles != nullptr) {
+    for (std::size_t k = 1; k + 1 < s.size(); ++k) {
+      for (const int i : nearest_obstacles(*input.obstacles, s[k].position(), params.obstacles_per_pose,
+                                           params.obstacle_influence_dist_m)) {
+        const double d = obstacle_distance((*input.obstacles)[static_cast<std::size_t>(i)], s[k].x, s[k].y);
+        c.min_obstacle_dist_m = std::min(c.min_obstacle_dist_m, d);
+        c.obstacle += w.obstacle * sq(penalty_below(d, limits.min_obstacle_dist_m, eps));
+      }
+    }
+  }
+  for (const auto& via : input.via_points) {
+    double best = 1e300;
+    for (const auto& p : s) best = std::min(best, (p.position() - via).squaredNorm());
+    c.viapoint += w.via * best;
+  }
+  return c;
+}
+
+}  // namespace bipednav::planning::local

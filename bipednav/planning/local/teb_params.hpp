@@ -1,0 +1,102 @@
+#pragma once
+
+#include <string>
+
+namespace bipednav::planning::local {
+
+// Kinematic limits of a walking robot modelled as a differential drive (thesis 5.2): forward
+// speed and yaw rate only, no lateral velocity; backwards walking allowed but slower and penalised.
+struct TebLimits {
+  double max_vel_x_mps = 0.5;
+  double max_vel_x_backwards_mps = 0.2;
+  double max_vel_theta_radps = 0.8;
+  double acc_lim_x_mps2 = 0.5;
+  double acc_lim_theta_radps2 = 1.0;
+  double min_obstacle_dist_m = 0.35;  // rho_min of eq. 5.15, from the robot centre
+
+  void validate() const;
+};
+
+// The band's temporal resolution and its re-sampling hysteresis.
+struct TebBandParams {
+  double dt_ref_s = 0.3;
+  double dt_hysteresis_s = 0.1;
+  int min_samples = 3;
+  int max_samples = 100;
+  double dt_min_s = 0.01;               // lower bound of every dT_k
+  double reinit_goal_dist_m = 1.0;      // re-initialise the band when the local goal jumps further
+  double reinit_goal_angle_rad = 1.57;  // ... or turns further
+
+  void validate() const;
+};
+
+// Weights of the quadratic penalties (eq. 5.16-5.21) and the solver schedule.
+struct TebOptimizerParams {
+  double weight_optimaltime = 1.0;       // dT^2, eq. 5.4
+  double weight_kinematics_nh = 1000.0;  // eq. 5.16
+  double weight_backwards = 2.0;         // walking backwards is allowed but costs extra
+  double weight_max_vel_x = 2.0;         // eq. 5.13
+  double weight_max_vel_theta = 1.0;
+  double weight_acc_lim_x = 1.0;  // eq. 5.14
+  double weight_acc_lim_theta = 1.0;
+  double weight_obstacle = 50.0;  // eq. 5.19
+  double weight_viapoint = 1.0;
+  double weight_adapt_factor = 2.0;  // obstacle/kinematics weights grow by this per outer iteration
+  double penalty_epsilon = 0.05;     // epsilon margin of the inequality penalties
+  double sign_gain = 100.0;          // gamma of the smooth sign approximation, eq. 5.10
+  int no_inner_iterations = 5;       // Levenberg-Marquardt iterations per solve
+  int no_outer_iterations = 3;       // solves, with weight adaptation in between
+  int obstacles_per_pose = 2;        // nearest obstacles entering the problem per pose
+  double obstacle_influence_dist_m = 1.5;
+  // "sparse_normal_cholesky" (SuiteSparse), "dense_normal_cholesky", "dense_qr" or "dense_schur".
+  std::string linear_solver = "sparse_normal_cholesky";
+
+  void validate() const;
+};
+
+// Converting lethal costmap cells into point, line and polygon obstacles.
+struct ObstacleParams {
+  double point_max_extent_m = 0.15;  // clusters smaller than this become a point
+  double line_max_width_m = 0.12;    // elongated clusters thinner than this become a segment
+  double cluster_block_m = 1.0;      // large clusters are cut into blocks so hulls stay local
+  int max_obstacles = 400;
+
+  void validate() const;
+};
+
+// Topologically distinct candidate trajectories (homotopy classes), optimised in parallel.
+struct HomotopyParams {
+  bool enabled = true;
+  int max_classes = 3;
+  int num_threads = 1;
+  double selection_hysteresis = 0.9;  // the selected class's cost is scaled by this when comparing
+  double corridor_halfwidth_m = 2.0;  // obstacles further off the start-goal line get no keypoints
+  int max_keypoint_obstacles = 6;
+  double keypoint_margin_m = 0.1;
+  int max_path_expansions = 500;
+  double signature_tolerance_rad = 1.0;
+
+  void validate() const;
+};
+
+// The whole TEB planner.
+struct TebParams {
+  TebLimits limits;
+  TebBandParams band;
+  TebOptimizerParams optim;
+  ObstacleParams obstacles;
+  HomotopyParams homotopy;
+  double lookahead_m = 3.0;      // local goal: at most this far along the global path
+  double window_margin_m = 0.2;  // ... and this far inside the local costmap border
+  double via_point_separation_m = 0.5;
+  double xy_goal_tolerance_m = 0.2;
+  double yaw_goal_tolerance_rad = 0.2;
+  double rotate_gain = 1.5;  // yaw-rate per rad of yaw error when turning on the goal
+  double control_period_s = 0.1;
+  int feasibility_check_poses = 5;
+  int oscillation_window = 20;  // commands in the oscillation detector's buffer
+
+  void validate() const;
+};
+
+}  // namespace bipednav::planning::local

@@ -1,0 +1,93 @@
+#include "bipednav/planning/local/teb_planner.hpp"
+
+#include <cmath>
+
+#include "bipednav/common/angles.hpp"
+
+namespace bipednav::planning::local {
+
+Twist band_command(const TebBand& band) {
+  Twist t;
+  if (band.size() < 2 || band.dt_s.empty() || !(band.dt_s[0] > 0.0)) return t;
+  const Pose2& a = band.poses[0];
+  const Pose2& b = band.poses[1];
+  t.linear_x = exact_linear_velocity(a.x, a.y, a.theta, b.x, b.y, band.dt_s[0]);
+  t.angular_z = angle_diff(b.theta, a.theta) / band.dt_s[0];
+  return t.is_finite() ? t : Twist{};
+}
+
+TebPlanner::TebPlanner(TebParams params)
+    : params_((params.validate(), std::move(params))),
+      homotopy_(params_),
+      oscillation_(params_.oscillation_window, params_.limits.max_vel_x_mps, params_.limits.max_vel_theta_radps) {}
+
+void TebPlanner::reset() {
+  homotopy_.reset();
+  oscillation_.clear();
+  obstacles_.clear();
+}
+
+CommandLimits TebPlanner::command_limits() const {
+  const auto& L = params_.limits;
+  return {L.max_vel_x_mps, L.max_vel_x_backwards_mps, L.max_vel_theta_radps, L.acc_lim_x_mps2, L.acc_lim_theta_radps2};
+}
+
+LocalPlanResult TebPlanner::finish(LocalPlanResult r, const Twist& desired, const Twist& current) {
+  r.cmd = clamp_command(desired, current, command_limits(), params_.control_period_s);
+  if (!r.result.ok()) {
+    r.cmd = Twist{};
+    return r;
+  }
+  oscillation_.update(r.cmd);
+  if (oscillation_.oscillating()) {
+    oscillation_.clear();
+    r.result = {Outcome::OSCILLATION, "the commands oscillate without progress"};
+    r.cmd = Twist{};
+  }
+  return r;
+}
+
+LocalPlanResult TebPlanner::compute(const Pose2& T_map_base, const Twist& current_velocity, const Path& global_plan,
+                                    const mapping::Costmap2D& local_costmap, double /*now_s*/) {
+  LocalPlanResult r;
+  r.trajectory.frame_id = global_plan.frame_id;
+  if (auto bad = check_inputs(T_map_base, current_velocity, global_plan, local_costmap)) {
+    r.result = *bad;
+    return r;
+  }
+  const Pose2 robot{T_map_base.x, T_map_base.y, normalize_angle(T_map_base.theta)};
+  const GoalApproach ga =
+      approach_goal(robot, global_plan.poses.back(), params_.xy_goal_tolerance_m, params_.yaw_goal_tolerance_rad,
+                    params_.rotate_gain, params_.limits.max_vel_theta_radps);
+  if (ga.near) {
+    // Turn on the spot to the goal yaw; the band is not needed any more.
+    homotopy_.reset();
+    r.goal_reached = ga.reached;
+    r.result.message = ga.reached ? "goal reached" : "rotating to the goal yaw";
+    r.trajectory.poses = {robot};
+    r.trajectory.times_s = {0.0};
+    return finish(std::move(r), ga.cmd, current_velocity);
+  }
+  const LocalGoal lg = select_local_goal(global_plan, robot, local_costmap, params_.lookahead_m,
+                                         params_.window_margin_m, params_.via_point_separation_m);
+  obstacles_ = extract_obstacles(local_costmap, params_.obstacles);
+  const BandCandidate* best = homotopy_.plan(robot, lg.goal, current_velocity, lg.via_points, obstacles_);
+  if (best == nullptr) {
+    r.result = {Outcome::NO_VALID_CMD, "no candidate trajectory could be optimised"};
+    return finish(std::move(r), {}, current_velocity);
+  }
+  r.trajectory = best->band.to_path(global_plan.frame_id);
+  const std::size_t n_check =
+      std::min(best->band.size(), static_cast<std::size_t>(params_.feasibility_check_poses) + 1);
+  const std::vector<Pose2> head(best->band.poses.begin(), best->band.poses.begin() + static_cast<long>(n_check));
+  if (!poses_feasible(head, local_costmap)) {
+    homotopy_.reset();  // start afresh next cycle: the warm start led into an obstacle
+    r.result = {Outcome::COLLISION, "the best trajectory enters lethal or inscribed cells"};
+    return finish(std::move(r), {}, current_velocity);
+  }
+  const Twist desired = band_command(best->band);
+  r.result.message = "ok";
+  return finish(std::move(r), desired, current_velocity);
+}
+
+}  // namespace bipednav::planning::local

@@ -1,0 +1,156 @@
+#pragma once
+
+// The numeric terms of the Timed-Elastic-Band objective (thesis section 5.2). Every term is a free
+// function templated on the scalar so that the same code runs on doubles (tests, diagnostics) and
+// on ceres::Jet (automatic Jacobians in the optimiser).
+
+#include <Eigen/Core>
+#include <cmath>
+#include <vector>
+
+namespace bipednav::planning::local {
+
+// Euclidean norm with a tiny floor so the derivative stays finite at zero length.
+template <typename T>
+T safe_norm(const T& dx, const T& dy) {
+  using std::sqrt;
+  return sqrt(dx * dx + dy * dy + T(1e-12));
+}
+
+// Angle wrapped to (-pi, pi] in a form that is differentiable for Jets.
+template <typename T>
+T wrap_angle(const T& a) {
+  using std::atan2;
+  using std::cos;
+  using std::sin;
+  return atan2(sin(a), cos(a));
+}
+
+// eq. 5.6-5.7: h_k = (q_k + q_{k+1}) x d_{k,k+1} (z component); zero when both poses lie on a
+// common arc of constant curvature (eq. 5.5).
+template <typename T>
+T nonholonomic_error(const T& x1, const T& y1, const T& th1, const T& x2, const T& y2, const T& th2) {
+  using std::cos;
+  using std::sin;
+  const T dx = x2 - x1;
+  const T dy = y2 - y1;
+  return (cos(th1) + cos(th2)) * dy - (sin(th1) + sin(th2)) * dx;
+}
+
+// eq. 5.10: smooth sign gamma*a / (1 + |gamma*a|) in [-1, 1].
+template <typename T>
+T smooth_sign(const T& a, double gain) {
+  using std::abs;
+  const T g = T(gain) * a;
+  return g / (T(1.0) + abs(g));
+}
+
+// eq. 5.8: signed linear velocity between poses k and k+1 (sign from the heading of pose k).
+template <typename T>
+T linear_velocity(const T& x1, const T& y1, const T& th1, const T& x2, const T& y2, const T& dt, double sign_gain) {
+  using std::cos;
+  using std::sin;
+  const T dx = x2 - x1;
+  const T dy = y2 - y1;
+  const T forward = cos(th1) * dx + sin(th1) * dy;  // <q_k, d_k,k+1>
+  return safe_norm(dx, dy) / dt * smooth_sign(forward, sign_gain);
+}
+
+// eq. 5.9: angular velocity between poses k and k+1.
+template <typename T>
+T angular_velocity(const T& th1, const T& th2, const T& dt) {
+  return wrap_angle(T(th2 - th1)) / dt;
+}
+
+// eq. 5.11-5.12: acceleration from two consecutive velocities and their intervals.
+template <typename T>
+T acceleration(const T& v1, const T& v2, const T& dt1, const T& dt2) {
+  return T(2.0) * (v2 - v1) / (dt1 + dt2);
+}
+
+// eq. 5.17-5.18 with an epsilon margin: how far `v` lies outside [lower + eps, upper - eps]
+// (0 inside). The quadratic penalty is weight * this^2.
+template <typename T>
+T penalty_interval(const T& v, double lower, double upper, double eps) {
+  if (v < T(lower + eps)) return T(lower + eps) - v;
+  if (v > T(upper - eps)) return v - T(upper - eps);
+  return T(0.0);
+}
+
+// Symmetric bound |v| <= bound (eq. 5.13, 5.14): max{0, |v| - (bound - eps)}.
+template <typename T>
+T penalty_symmetric(const T& v, double bound, double eps) {
+  return penalty_interval(v, -bound, bound, eps);
+}
+
+// eq. 5.19 with margin: max{0, (bound + eps) - v}, the violation of v >= bound.
+template <typename T>
+T penalty_below(const T& v, double bound, double eps) {
+  return v < T(bound + eps) ? T(bound + eps) - v : T(0.0);
+}
+
+// Backwards-walking penalty: positive when pose k+1 lies behind pose k's heading.
+template <typename T>
+T backwards_error(const T& x1, const T& y1, const T& th1, const T& x2, const T& y2) {
+  using std::cos;
+  using std::sin;
+  return penalty_below(T(cos(th1) * (x2 - x1) + sin(th1) * (y2 - y1)), 0.0, 0.0);
+}
+
+// Time optimality (eq. 5.4): the residual whose square is dT_k^2.
+template <typename T>
+T time_error(const T& dt) {
+  return dt;
+}
+
+// Via-point attraction: residual vector whose squared norm is the squared distance.
+template <typename T>
+Eigen::Matrix<T, 2, 1> via_point_error(const T& x, const T& y, const Eigen::Vector2d& via) {
+  return {x - T(via.x()), y - T(via.y())};
+}
+
+// Distance from (px, py) to a point obstacle.
+template <typename T>
+T distance_to_point(const T& px, const T& py, const Eigen::Vector2d& c) {
+  return safe_norm(T(px - T(c.x())), T(py - T(c.y())));
+}
+
+// Distance from (px, py) to the segment a-b.
+template <typename T>
+T distance_to_segment(const T& px, const T& py, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  const Eigen::Vector2d ab = b - a;
+  const double len2 = ab.squaredNorm();
+  if (len2 < 1e-18) return distance_to_point(px, py, a);
+  T t = ((px - T(a.x())) * T(ab.x()) + (py - T(a.y())) * T(ab.y())) / T(len2);
+  if (t < T(0.0)) t = T(0.0);
+  if (t > T(1.0)) t = T(1.0);
+  return safe_norm(T(px - (T(a.x()) + t * T(ab.x()))), T(py - (T(a.y()) + t * T(ab.y()))));
+}
+
+// Signed distance from (px, py) to a convex polygon (vertices counter-clockwise): negative inside
+// (minus the depth), so the gradient keeps pushing out of an obstacle.
+template <typename T>
+T distance_to_polygon(const T& px, const T& py, const std::vector<Eigen::Vector2d>& v) {
+  if (v.size() == 1) return distance_to_point(px, py, v[0]);
+  if (v.size() == 2) return distance_to_segment(px, py, v[0], v[1]);
+  bool inside = true;
+  T best = distance_to_segment(px, py, v.back(), v.front());
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const Eigen::Vector2d& a = v[i];
+    const Eigen::Vector2d& b = v[(i + 1) % v.size()];
+    const T cross = T(b.x() - a.x()) * (py - T(a.y())) - T(b.y() - a.y()) * (px - T(a.x()));
+    if (cross < T(0.0)) inside = false;
+    if (i + 1 < v.size()) {
+      const T d = distance_to_segment(px, py, a, b);
+      if (d < best) best = d;
+    }
+  }
+  return inside ? -best : best;
+}
+
+// Double-precision conveniences of the terms above, for diagnostics and tests.
+double nonholonomic_error(double x1, double y1, double th1, double x2, double y2, double th2);
+// Exact signed velocity of the first interval (sign of the forward projection, no smoothing).
+double exact_linear_velocity(double x1, double y1, double th1, double x2, double y2, double dt);
+
+}  // namespace bipednav::planning::local

@@ -1,0 +1,83 @@
+#include "bipednav/planning/local/tracker.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "bipednav/common/angles.hpp"
+#include "bipednav/common/error.hpp"
+
+namespace bipednav::planning::local {
+
+void TrackerParams::validate() const {
+  const auto pos = [](double v) { return std::isfinite(v) && v > 0.0; };
+  require(pos(lookahead_m), "lookahead_m", "> 0");
+  require(pos(max_vel_x_mps), "max_vel_x_mps", "> 0");
+  require(pos(max_vel_theta_radps), "max_vel_theta_radps", "> 0");
+  require(pos(acc_lim_x_mps2), "acc_lim_x_mps2", "> 0");
+  require(pos(acc_lim_theta_radps2), "acc_lim_theta_radps2", "> 0");
+  require(pos(rotate_in_place_angle_rad), "rotate_in_place_angle_rad", "> 0");
+  require(pos(xy_goal_tolerance_m), "xy_goal_tolerance_m", "> 0");
+  require(pos(yaw_goal_tolerance_rad), "yaw_goal_tolerance_rad", "> 0");
+  require(pos(rotate_gain), "rotate_gain", "> 0");
+  require(pos(control_period_s), "control_period_s", "> 0");
+  require(pos(collision_check_horizon_s), "collision_check_horizon_s", "> 0");
+}
+
+Twist pure_pursuit_command(const Eigen::Vector2d& target_in_base, double dist_to_goal_m, const TrackerParams& p) {
+  Twist t;
+  const double alpha = std::atan2(target_in_base.y(), target_in_base.x());
+  if (std::abs(alpha) > p.rotate_in_place_angle_rad) {
+    t.angular_z = std::clamp(p.rotate_gain * alpha, -p.max_vel_theta_radps, p.max_vel_theta_radps);
+    return t;
+  }
+  const double l2 = std::max(target_in_base.squaredNorm(), 1e-6);
+  const double kappa = 2.0 * target_in_base.y() / l2;
+  double v = std::min(p.max_vel_x_mps, std::max(0.05, dist_to_goal_m));  // slow down on the last metre
+  if (std::abs(kappa * v) > p.max_vel_theta_radps) v = p.max_vel_theta_radps / std::abs(kappa);
+  t.linear_x = v;
+  t.angular_z = kappa * v;
+  return t;
+}
+
+PathTracker::PathTracker(TrackerParams params) : params_(std::move(params)) { params_.validate(); }
+
+LocalPlanResult PathTracker::compute(const Pose2& T_map_base, const Twist& current_velocity, const Path& global_plan,
+                                     const mapping::Costmap2D& local_costmap, double /*now_s*/) {
+  LocalPlanResult r;
+  r.trajectory.frame_id = global_plan.frame_id;
+  if (auto bad = check_inputs(T_map_base, current_velocity, global_plan, local_costmap)) {
+    r.result = *bad;
+    return r;
+  }
+  const CommandLimits lim{params_.max_vel_x_mps, 0.0, params_.max_vel_theta_radps, params_.acc_lim_x_mps2,
+                          params_.acc_lim_theta_radps2};
+  const Pose2& goal = global_plan.poses.back();
+  const GoalApproach ga = approach_goal(T_map_base, goal, params_.xy_goal_tolerance_m, params_.yaw_goal_tolerance_rad,
+                                        params_.rotate_gain, params_.max_vel_theta_radps);
+  Twist desired = ga.cmd;
+  r.goal_reached = ga.reached;
+  if (!ga.near) {
+    // Lookahead point: the first plan pose after the nearest one that is lookahead_m away.
+    const LocalGoal lg = select_local_goal(global_plan, T_map_base, local_costmap, params_.lookahead_m, 0.0, 1e9);
+    const Eigen::Vector2d target = T_map_base.inverse().transform(lg.goal.position());
+    desired = pure_pursuit_command(target, distance(T_map_base, goal), params_);
+  }
+  r.cmd = clamp_command(desired, current_velocity, lim, params_.control_period_s);
+  // Forward-simulate the arc for display and the collision check.
+  Pose2 p = T_map_base;
+  const double dt = 0.05;
+  for (double t = 0.0; t <= params_.collision_check_horizon_s + 1e-9; t += dt) {
+    r.trajectory.poses.push_back(p);
+    r.trajectory.times_s.push_back(t);
+    p = p * Pose2{r.cmd.linear_x * dt, 0.0, r.cmd.angular_z * dt};
+  }
+  if (!poses_feasible(r.trajectory.poses, local_costmap)) {
+    r.result = {Outcome::COLLISION, "the tracked arc enters lethal or inscribed cells"};
+    r.cmd = Twist{};
+    return r;
+  }
+  r.result.message = ga.reached ? "goal reached" : "ok";
+  return r;
+}
+
+}  // namespace bipednav::planning::local

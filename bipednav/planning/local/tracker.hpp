@@ -1,0 +1,31 @@
+#pragma once
+
+#include <string_view>
+
+#include "bipednav/planning/local/local_planner.hpp"
+#include "bipednav/planning/local/plan_utils.hpp"
+#include "bipednav/planning/local/tracker_params.hpp"
+
+namespace bipednav::planning::local {
+
+// Pure-pursuit steering: curvature 2 y / L^2 towards a lookahead point given in the base frame.
+// Returns the desired (v, w) before acceleration limits; turns on the spot when the point lies
+// more than rotate_in_place_angle off the heading.
+Twist pure_pursuit_command(const Eigen::Vector2d& target_in_base, double dist_to_goal_m, const TrackerParams& p);
+
+// The simple alternative local planner: follows the global plan with pure pursuit and stops with
+// COLLISION when the forward-simulated arc hits lethal or inscribed cells.
+class PathTracker : public LocalPlanner {
+ public:
+  explicit PathTracker(TrackerParams params);
+
+  LocalPlanResult compute(const Pose2& T_map_base, const Twist& current_velocity, const Path& global_plan,
+                          const mapping::Costmap2D& local_costmap, double now_s) override;
+  void reset() override {}
+  std::string_view name() const override { return "tracker"; }
+
+ private:
+  TrackerParams params_;
+};
+
+}  // namespace bipednav::planning::local

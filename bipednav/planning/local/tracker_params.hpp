@@ -1,0 +1,22 @@
+#pragma once
+
+namespace bipednav::planning::local {
+
+// Pure-pursuit style path tracker (the simple alternative to TEB).
+struct TrackerParams {
+  double lookahead_m = 0.6;
+  double max_vel_x_mps = 0.5;
+  double max_vel_theta_radps = 0.8;
+  double acc_lim_x_mps2 = 0.5;
+  double acc_lim_theta_radps2 = 1.0;
+  double rotate_in_place_angle_rad = 0.8;  // turn on the spot when the lookahead point is further off
+  double xy_goal_tolerance_m = 0.2;
+  double yaw_goal_tolerance_rad = 0.2;
+  double rotate_gain = 1.5;
+  double control_period_s = 0.1;
+  double collision_check_horizon_s = 1.0;  // forward-simulated arc checked against the costmap
+
+  void validate() const;
+};
+
+}  // namespace bipednav::planning::local
