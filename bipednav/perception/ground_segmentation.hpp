@@ -1,0 +1,57 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <vector>
+
+#include "bipednav/common/point_cloud.hpp"
+#include "bipednav/common/rng.hpp"
+#include "bipednav/perception/plane.hpp"
+
+namespace bipednav::perception {
+
+struct RansacParams {
+  double distance_threshold_m = 0.03;  // D_threshold of eq. 4.3
+  double success_probability = 0.99;   // rho of eq. 4.4, usually in [0.90, 0.99]
+  int max_iterations = 1000;           // upper bound on N of eq. 4.4
+  bool use_normal_prior = false;       // accept only planes within max_normal_angle_rad of prior_normal
+  Eigen::Vector3d prior_normal{0.0, 0.0, 1.0};
+  double max_normal_angle_rad = 0.2618;  // 15 deg
+  bool refit = true;                     // least-squares refit on the inliers of the best model
+
+  void validate() const;
+};
+
+struct PlaneFit {
+  bool found = false;
+  Plane plane = ground_plane_z0();  // [a, b, c, d], unit normal, c >= 0
+  std::size_t inliers = 0;          // points with D_i < D_threshold under `plane` (eq. 4.3)
+  double inlier_std_m = 0.0;        // standard deviation of the inliers' distances D_i
+  int iterations = 0;               // models scored
+};
+
+// RANSAC plane fit (eq. 4.1-4.4). Each iteration samples 3 distinct points, solves the plane,
+// counts the points with D_i < D_threshold; the best model has the most inliers, ties broken by
+// the smaller standard deviation of the inlier distances. The iteration count is recomputed after
+// every new best from the current inlier ratio u: N = round(log(1 - rho) / log(1 - u^3)) (eq. 4.4,
+// with (1 - eps) = u), capped by max_iterations. Degenerate (collinear) samples are redrawn and not
+// counted. Non-finite points are ignored. `found` is false for fewer than 3 finite points or when
+// no sample gives a plane passing the normal prior; `plane` is then z = 0.
+PlaneFit fit_plane_ransac(const std::vector<Eigen::Vector3f>& points, const RansacParams& params, Rng& rng);
+
+// Total least squares plane through the given points (centroid + smallest principal axis),
+// normalised (unit normal, c >= 0). Needs at least 3 non-collinear points; otherwise returns z = 0.
+Plane fit_plane_least_squares(const std::vector<Eigen::Vector3f>& points, const std::vector<std::size_t>& indices);
+
+struct GroundSegmentation {
+  PlaneFit fit;
+  PointCloud ground;                                          // inliers of fit.plane
+  PointCloud obstacles;                                       // every other finite point
+  std::vector<std::size_t> ground_indices, obstacle_indices;  // into the input cloud
+};
+
+// Fits the ground plane and splits the cloud into ground (inliers) and obstacle (outliers) clouds
+// (section 4.3). When no plane is found, ground is empty and every finite point is an obstacle.
+GroundSegmentation segment_ground(const PointCloud& cloud, const RansacParams& params, Rng& rng);
+
+}  // namespace bipednav::perception

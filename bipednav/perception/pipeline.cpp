@@ -1,0 +1,119 @@
+#include "bipednav/perception/pipeline.hpp"
+
+#include <cmath>
+
+#include "bipednav/common/clock.hpp"
+#include "bipednav/common/error.hpp"
+
+namespace bipednav::perception {
+
+void PerceptionParams::validate() const {
+  depth_voxel.validate();
+  ransac.validate();
+  require(depth_max_range_m > 0.0, "depth_max_range_m", "> 0 m");
+  require(lidar_min_range_m >= 0.0 && lidar_min_range_m < lidar_max_range_m, "lidar_min_range_m",
+          ">= 0 and < lidar_max_range_m");
+  require(lidar_voxel_m >= 0.0 && std::isfinite(lidar_voxel_m), "lidar_voxel_m", ">= 0 m (0 disables)");
+  require(prior_ground.allFinite() && prior_ground.head<3>().norm() > 1e-9, "prior_ground",
+          "a finite plane [a, b, c, d] with a non-zero normal");
+  require(max_ground_offset_m >= 0.0, "max_ground_offset_m", ">= 0 m");
+  require(min_ground_inliers >= 3, "min_ground_inliers", ">= 3");
+  require(min_obstacle_height_m >= 0.0, "min_obstacle_height_m", ">= 0 m");
+  require(obstacle_height_margin_m >= 0.0, "obstacle_height_margin_m", ">= 0 m");
+}
+
+PerceptionPipeline::PerceptionPipeline(PerceptionParams params) : params_(std::move(params)), rng_(params_.seed) {
+  params_.validate();
+  params_.prior_ground = normalize_plane(params_.prior_ground);
+}
+
+void PerceptionPipeline::add_depth(FusedCloud& fused, const DepthCloud& depth, const RobotProfile& robot,
+                                   PerceptionOutput& out) const {
+  const SensorMount* mount = robot.sensor(depth.camera);
+  if (!mount)
+    throw Error("perception: depth cloud from camera '" + depth.camera + "', which robot profile '" + robot.name +
+                "' does not mount");
+  for (const auto& p : depth.cloud.points) out.depth_points_in += p.allFinite() ? 1u : 0u;
+  const PointCloud voxels = voxel_downsample(depth.cloud, params_.depth_voxel);  // section 4.2.1
+  out.depth_points_voxel += voxels.size();
+  PassThroughParams range;
+  range.max_range_m = params_.depth_max_range_m;  // section 4.2.2
+  append_sensor_cloud(fused, pass_through(voxels, range), mount->T_base_sensor(), mount->name,
+                      params_.depth_max_range_m);
+}
+
+void PerceptionPipeline::add_lidar(FusedCloud& fused, const PointCloud& sweep, const RobotProfile& robot) const {
+  const SensorMount* mount = robot.sensor("lidar");
+  for (const auto& s : robot.sensors)
+    if (!mount && s.type == "vlp16") mount = &s;
+  if (!mount) throw Error("perception: a LiDAR sweep arrived but robot profile '" + robot.name + "' mounts no vlp16");
+  PassThroughParams range;
+  range.min_range_m = params_.lidar_min_range_m;
+  range.max_range_m = params_.lidar_max_range_m;
+  PointCloud kept = pass_through(sweep, range);
+  if (params_.lidar_voxel_m > 0.0) {
+    VoxelGridParams v;
+    v.leaf_size_m.setConstant(params_.lidar_voxel_m);
+    kept = voxel_downsample(kept, v);
+  }
+  append_sensor_cloud(fused, kept, mount->T_base_sensor(), mount->name, params_.lidar_max_range_m);
+}
+
+void PerceptionPipeline::choose_plane(const PlaneFit& fit, PerceptionOutput& out) const {
+  const Plane& prior = params_.prior_ground;
+  // Height of each plane below/above the base origin along the prior's normal: d / (n . n_prior).
+  const double cos_angle = fit.plane.head<3>().dot(prior.head<3>());
+  const bool near_prior =
+      cos_angle > 1e-6 && std::fabs(fit.plane[3] / cos_angle - prior[3]) <= params_.max_ground_offset_m;
+  out.plane_from_ransac = fit.found && fit.inliers >= params_.min_ground_inliers && near_prior;
+  out.ground_plane = out.plane_from_ransac ? fit.plane : prior;
+}
+
+void PerceptionPipeline::classify(const FusedCloud& fused, double robot_height_m, PerceptionOutput& out) const {
+  const Eigen::Vector4f pl = out.ground_plane.cast<float>();
+  const auto t = static_cast<float>(params_.ransac.distance_threshold_m);
+  const auto h_min = static_cast<float>(params_.min_obstacle_height_m);
+  const auto h_max = static_cast<float>(robot_height_m + params_.obstacle_height_margin_m);
+  for (std::size_t i = 0; i < fused.size(); ++i) {
+    const Eigen::Vector3f& p = fused.cloud.points[i];
+    const float h = signed_distance(pl, p);
+    if (std::fabs(h) < t) {
+      out.ground.points.push_back(p);
+      out.ground_source.push_back(fused.source[i]);
+    } else if (h >= h_min && h <= h_max) {
+      out.obstacles.points.push_back(p);
+      out.obstacle_source.push_back(fused.source[i]);
+    }
+  }
+  out.ground_inliers = out.ground.size();
+}
+
+PerceptionOutput PerceptionPipeline::process(const SensorFrame& frame, const RobotProfile& robot) {
+  const Stopwatch total;
+  PerceptionOutput out;
+  FusedCloud fused;
+  Stopwatch sw;
+  for (const DepthCloud& d : frame.depth) add_depth(fused, d, robot, out);
+  out.timings.depth_ms = sw.elapsed_ms();
+  sw.restart();
+  if (frame.lidar) add_lidar(fused, *frame.lidar, robot);
+  out.timings.lidar_ms = sw.elapsed_ms();
+  sw.restart();
+  RansacParams ransac = params_.ransac;
+  ransac.prior_normal = params_.prior_ground.head<3>();
+  const PlaneFit fit = fit_plane_ransac(fused.cloud.points, ransac, rng_);  // section 4.3
+  choose_plane(fit, out);
+  out.timings.segmentation_ms = sw.elapsed_ms();
+  sw.restart();
+  for (PointCloud* c : {&out.obstacles, &out.ground}) {
+    c->frame_id = "base_link";
+    c->stamp_s = frame.stamp_s;
+  }
+  classify(fused, robot.height_m, out);
+  out.sources = fused.sources;
+  out.timings.classification_ms = sw.elapsed_ms();
+  out.timings.total_ms = total.elapsed_ms();
+  return out;
+}
+
+}  // namespace bipednav::perception

@@ -1,0 +1,92 @@
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "bipednav/common/point_cloud.hpp"
+#include "bipednav/common/rng.hpp"
+#include "bipednav/common/robot_profile.hpp"
+#include "bipednav/common/sensor_frame.hpp"
+#include "bipednav/perception/fusion.hpp"
+#include "bipednav/perception/ground_segmentation.hpp"
+#include "bipednav/perception/pass_through.hpp"
+#include "bipednav/perception/plane.hpp"
+#include "bipednav/perception/voxel_grid.hpp"
+
+namespace bipednav::perception {
+
+struct PerceptionParams {
+  VoxelGridParams depth_voxel;     // 0.02 m (section 4.2.1)
+  double depth_max_range_m = 2.9;  // from each depth camera (section 4.2.2)
+  double lidar_min_range_m = 0.0;  // e.g. to drop hits on the robot's own body
+  double lidar_max_range_m = 100.0;
+  double lidar_voxel_m = 0.0;  // 0 = the LiDAR sweep is not downsampled
+  RansacParams ransac = default_ransac();
+  Plane prior_ground = ground_plane_z0();  // fallback ground in the base frame (base_link on the floor)
+  double max_ground_offset_m = 0.3;        // a fitted plane this far from the prior at the base origin is rejected
+  std::size_t min_ground_inliers = 30;     // fewer inliers -> the prior is used
+  double min_obstacle_height_m = 0.05;     // above the ground; lower points are neither ground nor obstacle
+  double obstacle_height_margin_m = 0.0;   // obstacles up to robot height + this
+  std::uint64_t seed = 1;                  // RANSAC sampling
+
+  static RansacParams default_ransac() {
+    RansacParams r;
+    r.distance_threshold_m = 0.03;
+    r.success_probability = 0.99;
+    r.max_iterations = 200;
+    r.use_normal_prior = true;  // the ground is within 15 deg of the base frame's z axis
+    return r;
+  }
+  void validate() const;
+};
+
+struct PerceptionTimings {
+  double depth_ms = 0.0;           // voxel grid + range filter + transform of all depth clouds
+  double lidar_ms = 0.0;           // range filter (+ voxel) + transform of the sweep
+  double segmentation_ms = 0.0;    // RANSAC
+  double classification_ms = 0.0;  // ground / obstacle split
+  double total_ms = 0.0;
+};
+
+// All clouds are in the base frame (frame_id "base_link", stamp of the sensor frame).
+struct PerceptionOutput {
+  PointCloud obstacles;                       // min_obstacle_height_m <= height above ground <= robot height (+ margin)
+  std::vector<std::uint8_t> obstacle_source;  // index into `sources`, per obstacle point
+  PointCloud ground;                          // RANSAC inliers (eq. 4.3) of the ground plane
+  std::vector<std::uint8_t> ground_source;
+  Plane ground_plane = ground_plane_z0();  // [a, b, c, d], unit normal, c >= 0, base frame
+  bool plane_from_ransac = false;          // false: the prior plane was used (see PerceptionParams)
+  std::size_t ground_inliers = 0;
+  std::vector<SensorSource> sources;   // origins for ray-trace clearing
+  std::size_t depth_points_in = 0;     // finite depth points before the voxel grid
+  std::size_t depth_points_voxel = 0;  // after it
+  PerceptionTimings timings;
+};
+
+// Depth clouds: voxel grid -> range filter (<= depth_max_range_m from the camera) -> base frame.
+// LiDAR sweep: range filter (-> voxel grid) -> base frame. The fused cloud is segmented by RANSAC
+// with a normal prior; a plane that is missing, has too few inliers or lies more than
+// max_ground_offset_m from the prior (Digit's LiDAR sees the floor only beyond ~5.5 m, so a frame
+// without depth clouds may show no floor at all) is replaced by the prior plane z = 0 and
+// plane_from_ransac is false. Points below the ground (reflections) are dropped.
+class PerceptionPipeline {
+ public:
+  explicit PerceptionPipeline(PerceptionParams params);
+
+  // Throws Error when a depth cloud names a camera the robot profile does not mount, or a sweep
+  // arrives without a "vlp16" mount.
+  PerceptionOutput process(const SensorFrame& frame, const RobotProfile& robot);
+
+  const PerceptionParams& params() const { return params_; }
+
+ private:
+  void add_depth(FusedCloud& fused, const DepthCloud& depth, const RobotProfile& robot, PerceptionOutput& out) const;
+  void add_lidar(FusedCloud& fused, const PointCloud& sweep, const RobotProfile& robot) const;
+  void choose_plane(const PlaneFit& fit, PerceptionOutput& out) const;
+  void classify(const FusedCloud& fused, double robot_height_m, PerceptionOutput& out) const;
+
+  PerceptionParams params_;
+  Rng rng_;
+};
+
+}  // namespace bipednav::perception
