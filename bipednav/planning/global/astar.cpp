@@ -26,21 +26,21 @@ SearchOutcome AStar::search(const GridCostModel& model, std::size_t start, std::
     }
     const int x = model.x_of(u), y = model.y_of(u);
     for (int k = 0; k < kNumNeighbours; ++k) {
-      const double c = model.edge_cost(x, y, k);
-      if (c == kInfCost) continue;
+      const Cost c = model.edge_cost(x, y, k);
+      if (c >= kInfCost) continue;
       const std::size_t v = model.idx(x + kDx[k], y + kDy[k]);
       if (closed_[v]) continue;
-      const double gv = g_[u] + c;
+      const Cost gv = g_[u] + c;
       if (gv >= g_[v]) continue;
       g_[v] = gv;
       parent_[v] = static_cast<std::uint32_t>(u);
-      const double h = model.heuristic(v, goal);
+      const Cost h = model.heuristic(v, goal);
       open_.push(v, {gv + h, h});  // ties broken towards the goal
     }
   }
-  if (g_[goal] == kInfCost) return out;
+  if (g_[goal] >= kInfCost) return out;
   out.status = SearchStatus::kFound;
-  out.cost = g_[goal];
+  out.cost = model.to_metres(g_[goal]);
   for (std::size_t v = goal; v != start; v = parent_[v]) out.cells.push_back(v);
   out.cells.push_back(start);
   std::reverse(out.cells.begin(), out.cells.end());

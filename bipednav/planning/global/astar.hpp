@@ -17,7 +17,7 @@ class AStar {
   SearchOutcome search(const GridCostModel& model, std::size_t start, std::size_t goal, const Deadline& deadline);
 
  private:
-  std::vector<double> g_;
+  std::vector<Cost> g_;
   std::vector<std::uint32_t> parent_;
   std::vector<std::uint8_t> closed_;
   IndexedHeap open_;

@@ -5,20 +5,9 @@
 
 namespace bipednav::planning {
 
-namespace {
-
-// rhs(s) == c + g_old of Algorithm 3 line 28 / Algorithm 4 line 20, robust to rounding. A false
-// positive only triggers a harmless recomputation of rhs(s).
-bool same_value(double rhs, double v) {
-  if (rhs == v) return true;
-  return std::abs(rhs - v) <= 1e-9 * std::max(1.0, std::abs(v));
-}
-
-}  // namespace
-
 Key DStarLite::calculate_key(std::size_t s) const {
-  const double m = std::min(g_[s], rhs_[s]);
-  if (m == kInfCost) return {kInfCost, kInfCost};
+  const Cost m = std::min(g_[s], rhs_[s]);
+  if (m >= kInfCost) return {kInfCost, kInfCost};
   return {m + model_.heuristic(start_, s) + km_, m};
 }
 
@@ -30,13 +19,13 @@ void DStarLite::update_vertex(std::size_t u) {
     open_.remove(u);
 }
 
-double DStarLite::best_successor_value(std::size_t s) const {
+Cost DStarLite::best_successor_value(std::size_t s) const {
   const int x = model_.x_of(s), y = model_.y_of(s);
-  double best = kInfCost;
+  Cost best = kInfCost;
   for (int k = 0; k < kNumNeighbours; ++k) {
-    const double c = model_.edge_cost(x, y, k);
-    if (c == kInfCost) continue;
-    best = std::min(best, c + g_[model_.idx(x + kDx[k], y + kDy[k])]);
+    const Cost c = model_.edge_cost(x, y, k);
+    if (c >= kInfCost) continue;
+    best = std::min(best, add_cost(c, g_[model_.idx(x + kDx[k], y + kDy[k])]));
   }
   return best;
 }
@@ -49,11 +38,11 @@ void DStarLite::initialize(std::size_t start, std::size_t goal) {
   open_.clear();
   stamp_.assign(n, 0);
   stamp_gen_ = 0;
-  km_ = 0.0;
+  km_ = 0;
   start_ = last_ = start;
   goal_ = goal;
-  rhs_[goal] = 0.0;
-  open_.insert(goal, {model_.heuristic(start, goal), 0.0});
+  rhs_[goal] = 0;
+  open_.insert(goal, {model_.heuristic(start, goal), 0});
 }
 
 void DStarLite::move_start(std::size_t start) {
@@ -68,23 +57,23 @@ void DStarLite::expand_overconsistent(std::size_t u) {
   open_.remove(u);
   const int x = model_.x_of(u), y = model_.y_of(u);
   for (int k = 0; k < kNumNeighbours; ++k) {
-    const double c = model_.edge_cost(x, y, k);  // = c(s, u) by symmetry
-    if (c == kInfCost) continue;
+    const Cost c = model_.edge_cost(x, y, k);  // = c(s, u) by symmetry
+    if (c >= kInfCost) continue;
     const std::size_t s = model_.idx(x + kDx[k], y + kDy[k]);
-    if (s != goal_) rhs_[s] = std::min(rhs_[s], c + g_[u]);
+    if (s != goal_) rhs_[s] = std::min(rhs_[s], c + g_[u]);  // g(u) is finite here
     update_vertex(s);
   }
 }
 
 void DStarLite::expand_underconsistent(std::size_t u) {
-  const double g_old = g_[u];
+  const Cost g_old = g_[u];
   g_[u] = kInfCost;
   const int x = model_.x_of(u), y = model_.y_of(u);
   for (int k = 0; k < kNumNeighbours; ++k) {
-    const double c = model_.edge_cost(x, y, k);
-    if (c == kInfCost) continue;
+    const Cost c = model_.edge_cost(x, y, k);
+    if (c >= kInfCost) continue;
     const std::size_t s = model_.idx(x + kDx[k], y + kDy[k]);
-    if (s != goal_ && same_value(rhs_[s], c + g_old)) rhs_[s] = best_successor_value(s);
+    if (s != goal_ && rhs_[s] == add_cost(c, g_old)) rhs_[s] = best_successor_value(s);
     update_vertex(s);
   }
   // u itself (the "∪ {u}" of line 27): its rhs does not depend on g(u), only its key changes.
@@ -108,7 +97,7 @@ SearchStatus DStarLite::compute_shortest_path(const Deadline& deadline, std::siz
       ++expansions;
     }
   }
-  return rhs_[start_] == kInfCost ? SearchStatus::kNoPath : SearchStatus::kFound;
+  return rhs_[start_] >= kInfCost ? SearchStatus::kNoPath : SearchStatus::kFound;
 }
 
 void DStarLite::collect_affected(std::size_t cell) {
@@ -148,46 +137,57 @@ void DStarLite::update_cells(const std::vector<CellUpdate>& updates, std::int64_
     const std::size_t u = affected_[j];
     const int x = model_.x_of(u), y = model_.y_of(u);
     for (int k = 0; k < kNumNeighbours; ++k) {
-      const double c_old = old_costs_[j * kNumNeighbours + k];
-      const double c_new = model_.edge_cost(x, y, k);
+      const Cost c_old = old_costs_[j * kNumNeighbours + k];
+      const Cost c_new = model_.edge_cost(x, y, k);
       if (c_old == c_new || u == goal_) continue;
       const std::size_t v = model_.idx(x + kDx[k], y + kDy[k]);
       if (c_old > c_new)
-        rhs_[u] = std::min(rhs_[u], c_new + g_[v]);
-      else if (same_value(rhs_[u], c_old + g_[v]))
+        rhs_[u] = std::min(rhs_[u], add_cost(c_new, g_[v]));
+      else if (rhs_[u] == add_cost(c_old, g_[v]))
         rhs_[u] = best_successor_value(u);
     }
     update_vertex(u);
   }
 }
 
+std::size_t DStarLite::invariant_violations() const {
+  std::size_t bad = 0;
+  for (std::size_t s = 0; s < g_.size(); ++s) {
+    const Cost expect = s == goal_ ? 0 : best_successor_value(s);
+    if (rhs_[s] != expect || (g_[s] != rhs_[s]) != open_.contains(s)) ++bad;
+  }
+  return bad;
+}
+
 SearchOutcome DStarLite::extract_path() const {
   SearchOutcome out;
-  if (rhs_[start_] == kInfCost) return out;
+  if (rhs_[start_] >= kInfCost) return out;
+  Cost total = 0;
   std::size_t s = start_;
   out.cells.push_back(s);
   // A shortest path is at most one cell per vertex; anything longer means a cycle.
   for (std::size_t steps = 0; s != goal_; ++steps) {
     if (steps > model_.size()) return {};
     const int x = model_.x_of(s), y = model_.y_of(s);
-    double best = kInfCost, best_c = kInfCost;
+    Cost best = kInfCost, best_c = kInfCost;
     std::size_t next = s;
     for (int k = 0; k < kNumNeighbours; ++k) {
-      const double c = model_.edge_cost(x, y, k);
-      if (c == kInfCost) continue;
+      const Cost c = model_.edge_cost(x, y, k);
+      if (c >= kInfCost) continue;
       const std::size_t v = model_.idx(x + kDx[k], y + kDy[k]);
-      if (c + g_[v] < best) {
-        best = c + g_[v];
+      if (add_cost(c, g_[v]) < best) {
+        best = add_cost(c, g_[v]);
         best_c = c;
         next = v;
       }
     }
-    if (best == kInfCost) return {};
-    out.cost += best_c;
+    if (best >= kInfCost) return {};
+    total += best_c;
     s = next;
     out.cells.push_back(s);
   }
   out.status = SearchStatus::kFound;
+  out.cost = model_.to_metres(total);
   return out;
 }
 

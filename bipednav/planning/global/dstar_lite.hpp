@@ -42,24 +42,27 @@ class DStarLite {
   bool initialized() const { return !g_.empty(); }
   std::size_t start() const { return start_; }
   std::size_t goal() const { return goal_; }
-  double g(std::size_t s) const { return g_[s]; }
-  double rhs(std::size_t s) const { return rhs_[s]; }
-  double km() const { return km_; }
+  Cost g(std::size_t s) const { return g_[s]; }
+  Cost rhs(std::size_t s) const { return rhs_[s]; }
+  Cost km() const { return km_; }
   std::size_t queue_size() const { return open_.size(); }
+  // Vertices breaking the invariants (rhs(s) = min over s' of c(s, s') + g(s') for s != goal, and
+  // s is queued exactly when g(s) != rhs(s)); O(n), for tests.
+  std::size_t invariant_violations() const;
 
  private:
   Key calculate_key(std::size_t s) const;  // eqs. 5.2-5.3
   void update_vertex(std::size_t u);
-  double best_successor_value(std::size_t s) const;  // min over s' of c(s, s') + g(s')
+  Cost best_successor_value(std::size_t s) const;  // min over s' of c(s, s') + g(s')
   void expand_overconsistent(std::size_t u);
   void expand_underconsistent(std::size_t u);
   void collect_affected(std::size_t cell);
 
   GridCostModel model_;
-  std::vector<double> g_;
-  std::vector<double> rhs_;
+  std::vector<Cost> g_;
+  std::vector<Cost> rhs_;
   IndexedHeap open_;
-  double km_ = 0.0;
+  Cost km_ = 0;
   std::size_t start_ = 0;
   std::size_t last_ = 0;
   std::size_t goal_ = 0;
@@ -67,7 +70,7 @@ class DStarLite {
   std::vector<std::uint32_t> stamp_;
   std::uint32_t stamp_gen_ = 0;
   std::vector<std::size_t> affected_;
-  std::vector<double> old_costs_;
+  std::vector<Cost> old_costs_;
 };
 
 }  // namespace bipednav::planning

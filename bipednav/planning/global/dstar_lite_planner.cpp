@@ -76,7 +76,7 @@ PlanResult DStarLitePlanner::plan(const mapping::Costmap2D& map, const Pose2& st
     needs_reset_ = false;
   }
   SearchOutcome s = search_and_extract(deadline);
-  if (s.status == SearchStatus::kNoPath && dstar_.rhs(ends->start) != kInfCost) {
+  if (s.status == SearchStatus::kNoPath && dstar_.rhs(ends->start) < kInfCost) {
     // Path extraction found no descent although the start has a finite distance: recover by
     // searching from scratch rather than returning a wrong answer.
     dstar_.initialize(ends->start, ends->goal);

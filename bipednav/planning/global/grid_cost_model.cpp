@@ -1,32 +1,36 @@
 #include "bipednav/planning/global/grid_cost_model.hpp"
 
 #include <algorithm>
+#include <limits>
 
 #include "bipednav/common/error.hpp"
 
 namespace bipednav::planning {
 
 void GridCostParams::validate() const {
-  require(std::isfinite(cost_weight) && cost_weight >= 0.0, "cost_weight", "a finite value >= 0");
+  require(std::isfinite(cost_weight) && cost_weight >= 0.0 && cost_weight <= 50.0, "cost_weight", "a value in [0, 50]");
   require(unknown_cost >= 0 && unknown_cost <= 252, "unknown_cost", "a cost value in [0, 252]");
 }
 
 double cell_factor(std::uint8_t cost, const GridCostParams& p) {
   if (cost == mapping::kUnknown) {
-    if (p.unknown_is_obstacle) return kInfCost;
+    if (p.unknown_is_obstacle) return std::numeric_limits<double>::infinity();
     cost = static_cast<std::uint8_t>(p.unknown_cost);
   }
-  if (cost >= mapping::kInscribed) return kInfCost;
+  if (cost >= mapping::kInscribed) return std::numeric_limits<double>::infinity();
   return 1.0 + p.cost_weight * static_cast<double>(cost) / 252.0;
 }
 
 GridCostModel::GridCostModel(const GridCostParams& params) : params_(params) {
   params_.validate();
-  for (int c = 0; c < 256; ++c) lut_[c] = cell_factor(static_cast<std::uint8_t>(c), params_);
+  for (int c = 0; c < 256; ++c) {
+    const double f = cell_factor(static_cast<std::uint8_t>(c), params_);
+    lut_[c] = std::isfinite(f) ? std::llround(f * kFactorUnit) : kInfCost;
+  }
   // The cheapest factor any cell can have keeps the heuristic admissible.
   min_factor_ = *std::min_element(lut_.begin(), lut_.end());
   // An exempted start cell costs as much as the most expensive traversable cell.
-  exempt_factor_ = 1.0 + params_.cost_weight;
+  exempt_factor_ = std::llround((1.0 + params_.cost_weight) * kFactorUnit);
 }
 
 void GridCostModel::assign(const mapping::Costmap2D& map) {
@@ -35,9 +39,6 @@ void GridCostModel::assign(const mapping::Costmap2D& map) {
   resolution_m_ = map.resolution_m();
   cost_ = map.data();
   exempt_ = -1;
-  for (int k = 0; k < kNumNeighbours; ++k) step_len_[k] = (k < 4 ? 1.0 : std::sqrt(2.0)) * resolution_m_;
 }
-
-void GridCostModel::set_exempt(std::int64_t cell) { exempt_ = cell; }
 
 }  // namespace bipednav::planning

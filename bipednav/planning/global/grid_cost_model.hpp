@@ -3,18 +3,23 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <limits>
 #include <vector>
 
 #include "bipednav/mapping/costmap2d.hpp"
 
 namespace bipednav::planning {
 
-inline constexpr double kInfCost = std::numeric_limits<double>::infinity();
+// Path costs are exact fixed-point integers: D* Lite's equality tests (Algorithm 3 line 28,
+// Algorithm 4 line 20) and its key ties (eqs. 5.2-5.3) must not depend on rounding.
+using Cost = std::int64_t;
+inline constexpr Cost kInfCost = Cost{1} << 62;
+inline constexpr Cost kLengthUnit = Cost{1} << 24;  // one cell edge
+inline constexpr Cost kFactorUnit = 1024;           // factor 1.0
+inline Cost add_cost(Cost a, Cost b) { return (a >= kInfCost || b >= kInfCost) ? kInfCost : a + b; }
 
 // How costmap values become edge costs of the 8-connected planning graph (section 5.1).
 struct GridCostParams {
-  double cost_weight = 3.0;          // w in factor = 1 + w * cost / 252
+  double cost_weight = 3.0;          // w in factor = 1 + w * cost / 252, in [0, 50]
   bool unknown_is_obstacle = false;  // false: unknown cells are traversable (free-space assumption)
   int unknown_cost = 0;              // cost value used for a traversable unknown cell, in [0, 252]
 
@@ -30,17 +35,11 @@ inline constexpr std::array<int, 8> kDx = {1, 0, -1, 0, 1, -1, -1, 1};
 inline constexpr std::array<int, 8> kDy = {0, 1, 0, -1, 1, 1, -1, -1};
 inline constexpr int kNumNeighbours = 8;
 
-// Octile distance in cells (|dx|, |dy| moves with diagonals of length sqrt 2).
-inline double octile_cells(int dx, int dy) {
-  const int ax = dx < 0 ? -dx : dx, ay = dy < 0 ? -dy : dy;
-  const int mn = ax < ay ? ax : ay, mx = ax < ay ? ay : ax;
-  return (mx - mn) + std::sqrt(2.0) * mn;
-}
-
 // The planner's own snapshot of the costmap with the edge cost model. A move from a to a
-// neighbour b costs its length (m) times the mean of the two cells' factors, so costs are
-// symmetric (Pred = Succ). A diagonal move needs both side cells traversable (no corner cutting).
-// One cell (the robot's start) may be exempted from being impassable so the search can leave it.
+// neighbour b costs its length times the mean of the two cells' factors, so costs are symmetric
+// (Pred = Succ). A diagonal move needs both side cells traversable (no corner cutting). One cell
+// (the robot's start) may be exempted from being impassable so the search can leave it.
+// Internally a cost is length / kLengthUnit cells times factor sum / (2 kFactorUnit).
 class GridCostModel {
  public:
   explicit GridCostModel(const GridCostParams& params = {});
@@ -51,8 +50,8 @@ class GridCostModel {
   std::uint8_t cost(std::size_t i) const { return cost_[i]; }
   const std::vector<std::uint8_t>& costs() const { return cost_; }
 
-  // The cell treated as traversable even if inscribed/unknown (-1: none), with its factor.
-  void set_exempt(std::int64_t cell);
+  // The cell treated as traversable even if inscribed/unknown (-1: none).
+  void set_exempt(std::int64_t cell) { exempt_ = cell; }
   std::int64_t exempt() const { return exempt_; }
 
   int width() const { return width_; }
@@ -61,36 +60,44 @@ class GridCostModel {
   double resolution_m() const { return resolution_m_; }
   const GridCostParams& params() const { return params_; }
 
-  double factor(std::size_t i) const {
-    return static_cast<std::int64_t>(i) == exempt_ ? exempt_factor_ : lut_[cost_[i]];
-  }
-  bool passable(std::size_t i) const { return std::isfinite(factor(i)); }
+  // Fixed-point factor of a cell (kInfCost when impassable).
+  Cost factor(std::size_t i) const { return static_cast<std::int64_t>(i) == exempt_ ? exempt_factor_ : lut_[cost_[i]]; }
+  bool passable(std::size_t i) const { return factor(i) < kInfCost; }
 
-  // Cost of the move from cell (x, y) to its neighbour k; +inf if off the grid or blocked.
-  double edge_cost(int x, int y, int k) const {
+  // Cost of the move from cell (x, y) to its neighbour k; kInfCost if off the grid or blocked.
+  Cost edge_cost(int x, int y, int k) const {
     const int nx = x + kDx[k], ny = y + kDy[k];
     if (nx < 0 || ny < 0 || nx >= width_ || ny >= height_) return kInfCost;
-    const std::size_t a = idx(x, y), b = idx(nx, ny);
-    const double f = 0.5 * (factor(a) + factor(b));
+    const Cost fa = factor(idx(x, y)), fb = factor(idx(nx, ny));
+    if (fa >= kInfCost || fb >= kInfCost) return kInfCost;
     if (k >= 4 && (!passable(idx(nx, y)) || !passable(idx(x, ny)))) return kInfCost;
-    return f * step_len_[k];
+    return kStepLen[k] * (fa + fb);
   }
-  // Admissible, consistent heuristic: octile length times the smallest possible factor (1).
-  double heuristic(std::size_t a, std::size_t b) const {
-    const int ax = static_cast<int>(a % width_), ay = static_cast<int>(a / width_);
-    const int bx = static_cast<int>(b % width_), by = static_cast<int>(b / width_);
-    return octile_cells(ax - bx, ay - by) * resolution_m_ * min_factor_;
+  // Admissible, consistent heuristic: octile length times the smallest possible factor sum.
+  Cost heuristic(std::size_t a, std::size_t b) const {
+    int dx = static_cast<int>(a % width_) - static_cast<int>(b % width_);
+    int dy = static_cast<int>(a / width_) - static_cast<int>(b / width_);
+    dx = dx < 0 ? -dx : dx;
+    dy = dy < 0 ? -dy : dy;
+    const Cost mn = dx < dy ? dx : dy, mx = dx < dy ? dy : dx;
+    return ((mx - mn) * kStepLen[0] + mn * kStepLen[4]) * 2 * min_factor_;
   }
+  // A path cost in metres (times the factors): cells x resolution.
+  double to_metres(Cost c) const { return static_cast<double>(c) / (2.0 * kFactorUnit * kLengthUnit) * resolution_m_; }
+
   std::size_t idx(int x, int y) const { return static_cast<std::size_t>(y) * width_ + x; }
   int x_of(std::size_t i) const { return static_cast<int>(i % width_); }
   int y_of(std::size_t i) const { return static_cast<int>(i / width_); }
 
+  static constexpr Cost kDiagonalLen = 23726566;  // round(sqrt(2) * 2^24)
+  static constexpr std::array<Cost, 8> kStepLen = {kLengthUnit,  kLengthUnit,  kLengthUnit,  kLengthUnit,
+                                                   kDiagonalLen, kDiagonalLen, kDiagonalLen, kDiagonalLen};
+
  private:
   GridCostParams params_;
-  std::array<double, 256> lut_{};
-  std::array<double, 8> step_len_{};
-  double min_factor_ = 1.0;
-  double exempt_factor_ = 1.0;
+  std::array<Cost, 256> lut_{};
+  Cost min_factor_ = kFactorUnit;
+  Cost exempt_factor_ = kFactorUnit;
   std::int64_t exempt_ = -1;
   int width_ = 0;
   int height_ = 0;

@@ -7,8 +7,8 @@ namespace bipednav::planning {
 
 // A two-part priority compared lexicographically ([k1, k2] of D* Lite, eqs. 5.2-5.3).
 struct Key {
-  double k1 = 0.0;
-  double k2 = 0.0;
+  std::int64_t k1 = 0;
+  std::int64_t k2 = 0;
   bool operator<(const Key& o) const { return k1 < o.k1 || (k1 == o.k1 && k2 < o.k2); }
   bool operator==(const Key& o) const = default;
 };
