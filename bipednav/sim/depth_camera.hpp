@@ -1,0 +1,61 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "bipednav/common/angles.hpp"
+#include "bipednav/common/point_cloud.hpp"
+#include "bipednav/common/rng.hpp"
+#include "bipednav/common/se3.hpp"
+#include "bipednav/sim/raycaster.hpp"
+
+namespace bipednav::sim {
+
+// Intel RealSense D430 depth camera (thesis 2.1.2): 85 x 58 deg, 0.2-10 m.
+struct DepthCameraParams {
+  int width = 424;
+  int height = 240;
+  double hfov_rad = deg2rad(85.0);
+  double vfov_rad = deg2rad(58.0);
+  double min_range_m = 0.2;  // on depth (distance along the optical axis)
+  double max_range_m = 10.0;
+  double noise_coeff_per_m = 0.003;  // depth noise sigma = noise_coeff_per_m * z^2
+  double rate_hz = 15.0;
+
+  void validate() const;
+};
+
+// Pinhole depth camera. A capture is one instant (global shutter) from one pose. The cloud is
+// organised: width * height points, row-major from the top-left pixel, in the camera body
+// frame of REP-103 (x forward along the optical axis, y left, z up); pixels without a valid
+// return (nothing hit, or depth outside [min_range_m, max_range_m]) are NaN. Captures happen
+// at t = k / rate_hz; stamp_s is that time, no per-point times.
+class DepthCamera {
+ public:
+  DepthCamera(const DepthCameraParams& params, std::string frame_id, std::uint64_t seed);
+
+  // Time of the next capture.
+  double next_capture_s() const { return static_cast<double>(count_) / params_.rate_hz; }
+  // Captures the image due at next_capture_s() from T_world_camera and schedules the next one.
+  PointCloud capture(const SE3& T_world_camera, const RayCaster& caster);
+  // Captures at an arbitrary time without touching the schedule.
+  PointCloud capture_at(double stamp_s, const SE3& T_world_camera, const RayCaster& caster);
+
+  // Unit ray of pixel (u, v) in the camera body frame.
+  Eigen::Vector3f pixel_ray(int u, int v) const;
+  const DepthCameraParams& params() const { return params_; }
+
+ private:
+  DepthCameraParams params_;
+  std::string frame_id_;
+  Rng rng_;
+  std::uint64_t count_ = 0;
+  std::vector<int> order_;             // ray index -> pixel index, 4 x 4 tiles for packet coherence
+  std::vector<Eigen::Vector3f> rays_;  // unit rays in tile order, camera frame
+  std::vector<Eigen::Vector3f> world_dirs_;
+  std::vector<float> ranges_;
+};
+
+}  // namespace bipednav::sim

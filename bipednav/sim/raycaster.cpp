@@ -1,0 +1,203 @@
+#include "bipednav/sim/raycaster.hpp"
+
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "bipednav/common/error.hpp"
+
+namespace bipednav::sim {
+namespace {
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+void check_device(RTCDevice device, const char* what) {
+  const RTCError e = rtcGetDeviceError(device);
+  if (e != RTC_ERROR_NONE)
+    throw Error(std::string("Embree error ") + std::to_string(static_cast<int>(e)) + " in " + what);
+}
+
+// Adds the soup as one triangle geometry of `scene`.
+void attach_triangles(RTCDevice device, RTCScene scene, const TriangleSoup& soup) {
+  if (soup.triangles.empty()) return;
+  RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                        3 * sizeof(float), soup.vertices.size()));
+  auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                             3 * sizeof(unsigned), soup.triangles.size()));
+  check_device(device, "rtcSetNewGeometryBuffer");
+  for (std::size_t i = 0; i < soup.vertices.size(); ++i)
+    for (int k = 0; k < 3; ++k) v[3 * i + k] = soup.vertices[i][k];
+  for (std::size_t i = 0; i < soup.triangles.size(); ++i)
+    for (int k = 0; k < 3; ++k) idx[3 * i + k] = static_cast<unsigned>(soup.triangles[i][k]);
+  rtcCommitGeometry(geom);
+  rtcAttachGeometry(scene, geom);
+  rtcReleaseGeometry(geom);
+}
+
+RTCScene new_scene(RTCDevice device, RTCSceneFlags flags, RTCBuildQuality quality) {
+  RTCScene s = rtcNewScene(device);
+  check_device(device, "rtcNewScene");
+  rtcSetSceneFlags(s, flags);
+  rtcSetSceneBuildQuality(s, quality);
+  return s;
+}
+
+void set_instance_transform(RTCGeometry inst, const SE3& T) {
+  float m[12];  // 3x4 column major
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 3; ++r) m[3 * c + r] = static_cast<float>(T.matrix()(r, c));
+  rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, m);
+  rtcCommitGeometry(inst);
+}
+
+}  // namespace
+
+struct RayCaster::Impl {
+  RTCDevice device = nullptr;
+  RTCScene statics = nullptr;  // static triangles
+  RTCScene top = nullptr;      // rays go here: == statics without actors, else instances of all
+  std::vector<RTCScene> actor_scenes;
+  std::vector<RTCGeometry> actor_instances;
+  std::vector<Actor> actors;
+  std::size_t static_triangles = 0;
+  double time_s = std::numeric_limits<double>::quiet_NaN();
+
+  ~Impl() {
+    for (RTCGeometry g : actor_instances) rtcReleaseGeometry(g);
+    for (RTCScene s : actor_scenes) rtcReleaseScene(s);
+    if (top && top != statics) rtcReleaseScene(top);
+    if (statics) rtcReleaseScene(statics);
+    if (device) rtcReleaseDevice(device);
+  }
+};
+
+void RayCasterParams::validate() const {
+  require(threads >= 1 && threads <= 256, "threads", "in [1, 256]");
+  tessellation.validate();
+}
+
+RayCaster::RayCaster(const World& world, const RayCasterParams& params) : impl_(std::make_unique<Impl>()) {
+  params.validate();
+  Impl& d = *impl_;
+  const std::string config = "threads=" + std::to_string(params.threads);
+  d.device = rtcNewDevice(config.c_str());
+  if (!d.device) throw Error("Embree: rtcNewDevice failed (" + config + ")");
+
+  const RTCSceneFlags robust = RTC_SCENE_FLAG_ROBUST;  // watertight: no rays slip through shared edges
+  d.statics = new_scene(d.device, robust, RTC_BUILD_QUALITY_HIGH);
+  TriangleSoup soup;
+  for (const Geometry& g : world.statics) soup.append(tessellate(g, params.tessellation));
+  d.static_triangles = soup.size();
+  attach_triangles(d.device, d.statics, soup);
+  rtcCommitScene(d.statics);
+  check_device(d.device, "static scene");
+
+  if (world.actors.empty()) {
+    d.top = d.statics;
+    return;
+  }
+  d.actors = world.actors;
+  d.top = new_scene(d.device, static_cast<RTCSceneFlags>(RTC_SCENE_FLAG_DYNAMIC | RTC_SCENE_FLAG_ROBUST),
+                    RTC_BUILD_QUALITY_LOW);
+  auto add_instance = [&](RTCScene child) {
+    RTCGeometry inst = rtcNewGeometry(d.device, RTC_GEOMETRY_TYPE_INSTANCE);
+    rtcSetGeometryInstancedScene(inst, child);
+    set_instance_transform(inst, SE3::Identity());
+    rtcAttachGeometry(d.top, inst);
+    return inst;
+  };
+  rtcReleaseGeometry(add_instance(d.statics));  // the top scene keeps it alive
+  for (const Actor& a : world.actors) {
+    RTCScene s = new_scene(d.device, robust, RTC_BUILD_QUALITY_MEDIUM);
+    TriangleSoup parts;
+    for (const Geometry& g : a.parts) parts.append(tessellate(g, params.tessellation));
+    attach_triangles(d.device, s, parts);
+    rtcCommitScene(s);
+    d.actor_scenes.push_back(s);
+    d.actor_instances.push_back(add_instance(s));
+  }
+  check_device(d.device, "actor scenes");
+  set_time(0.0);
+}
+
+RayCaster::~RayCaster() = default;
+RayCaster::RayCaster(RayCaster&&) noexcept = default;
+RayCaster& RayCaster::operator=(RayCaster&&) noexcept = default;
+
+void RayCaster::set_time(double t_s) {
+  Impl& d = *impl_;
+  if (t_s == d.time_s) return;
+  d.time_s = t_s;
+  if (d.actors.empty()) return;
+  for (std::size_t i = 0; i < d.actors.size(); ++i)
+    set_instance_transform(d.actor_instances[i], d.actors[i].pose_at(t_s));
+  rtcCommitScene(d.top);
+  check_device(d.device, "set_time");
+}
+
+double RayCaster::time_s() const { return impl_->time_s; }
+std::size_t RayCaster::static_triangle_count() const { return impl_->static_triangles; }
+std::size_t RayCaster::actor_count() const { return impl_->actors.size(); }
+
+float RayCaster::cast(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir, float max_range_m) const {
+  const double n = dir.norm();
+  if (!(n > 0.0) || !origin.allFinite() || !std::isfinite(n)) throw Error("RayCaster::cast: non-finite or zero ray");
+  const Eigen::Vector3d u = dir / n;
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  RTCRayHit rh{};
+  rh.ray.org_x = static_cast<float>(origin.x());
+  rh.ray.org_y = static_cast<float>(origin.y());
+  rh.ray.org_z = static_cast<float>(origin.z());
+  rh.ray.dir_x = static_cast<float>(u.x());
+  rh.ray.dir_y = static_cast<float>(u.y());
+  rh.ray.dir_z = static_cast<float>(u.z());
+  rh.ray.tnear = 0.0f;
+  rh.ray.tfar = max_range_m;
+  rh.ray.mask = 0xFFFFFFFFu;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(impl_->top, &ctx, &rh);
+  return rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? kInf : rh.ray.tfar;
+}
+
+void RayCaster::cast_batch(const Eigen::Vector3f& origin, std::span<const Eigen::Vector3f> unit_dirs, float max_range_m,
+                           std::span<float> ranges, bool coherent) const {
+  if (ranges.size() != unit_dirs.size()) throw Error("RayCaster::cast_batch: ranges and dirs differ in size");
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  if (coherent) ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  alignas(64) RTCRayHit16 rh;
+  alignas(64) int valid[16];
+  for (std::size_t base = 0; base < unit_dirs.size(); base += 16) {
+    const std::size_t n = std::min<std::size_t>(16, unit_dirs.size() - base);
+    for (std::size_t i = 0; i < 16; ++i) {
+      const bool on = i < n;
+      const Eigen::Vector3f& u = unit_dirs[base + (on ? i : 0)];
+      valid[i] = on ? -1 : 0;
+      rh.ray.org_x[i] = origin.x();
+      rh.ray.org_y[i] = origin.y();
+      rh.ray.org_z[i] = origin.z();
+      rh.ray.dir_x[i] = u.x();
+      rh.ray.dir_y[i] = u.y();
+      rh.ray.dir_z[i] = u.z();
+      rh.ray.tnear[i] = 0.0f;
+      rh.ray.tfar[i] = max_range_m;
+      rh.ray.time[i] = 0.0f;
+      rh.ray.mask[i] = 0xFFFFFFFFu;
+      rh.ray.flags[i] = 0;
+      rh.ray.id[i] = static_cast<unsigned>(i);
+      rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+      rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+    }
+    rtcIntersect16(valid, impl_->top, &ctx, &rh);
+    for (std::size_t i = 0; i < n; ++i)
+      ranges[base + i] = rh.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID ? kInf : rh.ray.tfar[i];
+  }
+}
+
+}  // namespace bipednav::sim

@@ -1,0 +1,96 @@
+#include "bipednav/sim/vlp16.hpp"
+
+#include <cmath>
+#include <numbers>
+
+#include "bipednav/common/error.hpp"
+
+namespace bipednav::sim {
+
+void Vlp16Params::validate() const {
+  require(rings >= 1 && rings <= 512, "rings", "in [1, 512]");
+  require(std::isfinite(min_elevation_rad) && std::isfinite(max_elevation_rad) &&
+              min_elevation_rad <= max_elevation_rad && min_elevation_rad > -std::numbers::pi / 2 &&
+              max_elevation_rad < std::numbers::pi / 2,
+          "min_elevation_rad/max_elevation_rad", "min <= max within (-pi/2, pi/2)");
+  require(rings > 1 || min_elevation_rad == max_elevation_rad, "rings",
+          "> 1 when the elevation range is not a single angle");
+  require(columns >= 1 && columns <= 100000, "columns", "in [1, 100000]");
+  require(rate_hz > 0 && std::isfinite(rate_hz), "rate_hz", "> 0");
+  require(min_range_m >= 0 && std::isfinite(min_range_m), "min_range_m", ">= 0");
+  require(max_range_m > min_range_m && std::isfinite(max_range_m), "max_range_m", "> min_range_m and finite");
+  require(range_noise_stddev_m >= 0 && std::isfinite(range_noise_stddev_m), "range_noise_stddev_m", ">= 0");
+}
+
+Vlp16::Vlp16(const Vlp16Params& params, std::string frame_id, std::uint64_t seed)
+    : params_(params), frame_id_(std::move(frame_id)), rng_(seed) {
+  params_.validate();
+  beams_.reserve(static_cast<std::size_t>(params_.columns) * params_.rings);
+  for (int c = 0; c < params_.columns; ++c) {
+    const double az = column_azimuth_rad(c);
+    for (int r = 0; r < params_.rings; ++r) {
+      const double el = ring_elevation_rad(r);
+      beams_.emplace_back(static_cast<float>(std::cos(el) * std::cos(az)),
+                          static_cast<float>(std::cos(el) * std::sin(az)), static_cast<float>(std::sin(el)));
+    }
+  }
+  world_dirs_.resize(params_.rings);
+  ranges_.resize(params_.rings);
+}
+
+double Vlp16::ring_elevation_rad(int ring) const {
+  if (params_.rings == 1) return params_.min_elevation_rad;
+  return params_.min_elevation_rad +
+         (params_.max_elevation_rad - params_.min_elevation_rad) * ring / static_cast<double>(params_.rings - 1);
+}
+
+double Vlp16::column_azimuth_rad(int column) const {
+  return normalize_angle(-2.0 * std::numbers::pi * column / params_.columns);
+}
+
+double Vlp16::column_time_s(std::uint64_t sweep, int column) const {
+  const double ticks = static_cast<double>(sweep * static_cast<std::uint64_t>(params_.columns) + column);
+  return ticks / (params_.rate_hz * params_.columns);
+}
+
+void Vlp16::fire_column(int column, double t_s, const RayCaster& caster, const SE3& T_world_sensor) {
+  const Eigen::Matrix3f R = T_world_sensor.linear().cast<float>();
+  const Eigen::Vector3f origin = T_world_sensor.translation().cast<float>();
+  for (int r = 0; r < params_.rings; ++r) world_dirs_[r] = R * beam(column, r);
+  caster.cast_batch(origin, world_dirs_, static_cast<float>(params_.max_range_m), ranges_);
+  const float dt = static_cast<float>(t_s - current_.stamp_s);
+  for (int r = 0; r < params_.rings; ++r) {
+    const float range = ranges_[r];
+    if (!(range >= params_.min_range_m && range <= params_.max_range_m)) continue;
+    const double noisy = range + rng_.normal(0.0, params_.range_noise_stddev_m);
+    current_.points.push_back(beam(column, r) * static_cast<float>(noisy));
+    current_.time_offsets_s.push_back(dt);
+    current_.rings.push_back(static_cast<std::uint16_t>(r));
+  }
+}
+
+std::optional<PointCloud> Vlp16::fire_until(double t_end_s, const RayCaster& caster, const PoseAt& T_world_sensor_at) {
+  std::optional<PointCloud> done;
+  for (;;) {
+    const double t = column_time_s(sweep_, next_column_);
+    if (t >= t_end_s) break;
+    if (next_column_ == 0) {
+      current_ = PointCloud{};
+      current_.frame_id = frame_id_;
+      current_.stamp_s = t;
+      current_.reserve(beams_.size());
+      current_.time_offsets_s.reserve(beams_.size());
+      current_.rings.reserve(beams_.size());
+    }
+    fire_column(next_column_, t, caster, T_world_sensor_at(t));
+    if (++next_column_ == params_.columns) {
+      next_column_ = 0;
+      ++sweep_;
+      done = std::move(current_);
+      current_ = PointCloud{};
+    }
+  }
+  return done;
+}
+
+}  // namespace bipednav::sim

@@ -1,0 +1,73 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bipednav/common/angles.hpp"
+#include "bipednav/common/point_cloud.hpp"
+#include "bipednav/common/rng.hpp"
+#include "bipednav/common/se3.hpp"
+#include "bipednav/sim/raycaster.hpp"
+
+namespace bipednav::sim {
+
+// Velodyne VLP-16 (thesis 2.1.3): 16 rings evenly spread over [-15, +15] deg, 0.2 deg azimuth
+// steps (1800 columns), 10 Hz, up to 100 m.
+struct Vlp16Params {
+  int rings = 16;
+  double min_elevation_rad = deg2rad(-15.0);
+  double max_elevation_rad = deg2rad(15.0);
+  int columns = 1800;  // per revolution
+  double rate_hz = 10.0;
+  double min_range_m = 0.3;
+  double max_range_m = 100.0;
+  double range_noise_stddev_m = 0.02;  // Gaussian, along the beam
+
+  void validate() const;
+};
+
+// Scanning LiDAR simulated column by column. Column c of sweep k fires at
+// t = (k * columns + c) / (rate_hz * columns), from the sensor pose at that instant (motion
+// distortion is real). The head spins clockwise seen from above, as a Velodyne does: column c
+// points at azimuth -2 pi c / columns in the sensor frame (0 = +x).
+//
+// Output of a sweep: points in the sensor frame *at each point's firing time*, column-major
+// (firing order, rings bottom to top within a column), time_offsets_s since the sweep start,
+// rings (0 = lowest), stamp_s = sweep start, frame_id as given. Beams with no return (nothing
+// within [min_range_m, max_range_m]) produce no point, so size() <= rings * columns.
+class Vlp16 {
+ public:
+  // T_world_sensor at simulated time t_s.
+  using PoseAt = std::function<SE3(double t_s)>;
+
+  Vlp16(const Vlp16Params& params, std::string frame_id, std::uint64_t seed);
+
+  // Fires every column whose firing time is < t_end_s. Returns the sweep if this completed it.
+  std::optional<PointCloud> fire_until(double t_end_s, const RayCaster& caster, const PoseAt& T_world_sensor_at);
+
+  double column_time_s(std::uint64_t sweep, int column) const;
+  double ring_elevation_rad(int ring) const;
+  double column_azimuth_rad(int column) const;
+  // Unit beam direction in the sensor frame.
+  const Eigen::Vector3f& beam(int column, int ring) const { return beams_[column * params_.rings + ring]; }
+  const Vlp16Params& params() const { return params_; }
+
+ private:
+  void fire_column(int column, double t_s, const RayCaster& caster, const SE3& T_world_sensor);
+
+  Vlp16Params params_;
+  std::string frame_id_;
+  Rng rng_;
+  std::vector<Eigen::Vector3f> beams_;  // column-major, sensor frame
+  std::vector<Eigen::Vector3f> world_dirs_;
+  std::vector<float> ranges_;
+  std::uint64_t sweep_ = 0;
+  int next_column_ = 0;
+  PointCloud current_;
+};
+
+}  // namespace bipednav::sim
