@@ -1,0 +1,218 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "bipednav/common/error.hpp"
+#include "test_grids.hpp"
+
+using namespace bipednav;
+using namespace bipednav::planning;
+using planning::test::centre;
+using planning::test::expect_valid_path;
+using planning::test::make_map;
+
+namespace {
+
+class Outcomes : public ::testing::TestWithParam<std::string> {
+ protected:
+  std::unique_ptr<GlobalPlanner> planner(const GlobalPlannerParams& p = {}) {
+    return make_global_planner(GetParam(), p);
+  }
+};
+
+bool mentions(const Result& r, const std::string& text) { return r.message.find(text) != std::string::npos; }
+
+TEST_P(Outcomes, SuccessPathRunsFromStartPoseToGoalPose) {
+  auto map = make_map(10, 6, 0.5);
+  const Pose2 start{0.3, 0.4, 0.7}, goal{4.6, 2.6, -1.2};
+  const PlanResult r = planner()->plan(map, start, goal, {});
+  ASSERT_EQ(r.result.outcome, Outcome::SUCCESS) << r.result.message;
+  expect_valid_path(map, r, {}, {0, 0}, {9, 5});
+  // 5 diagonal and 4 straight moves of 0.5 m on free cells.
+  EXPECT_NEAR(r.cost, 0.5 * (5 * std::sqrt(2.0) + 4), 1e-6);
+  EXPECT_GT(r.expansions, 0u);
+  EXPECT_GE(r.time_ms, 0.0);
+  const auto& poses = r.path.poses;
+  ASSERT_EQ(poses.size(), r.cells.size());
+  EXPECT_DOUBLE_EQ(poses.front().x, start.x);
+  EXPECT_DOUBLE_EQ(poses.front().theta, start.theta);
+  EXPECT_DOUBLE_EQ(poses.back().x, goal.x);
+  EXPECT_DOUBLE_EQ(poses.back().theta, goal.theta);
+  for (std::size_t i = 1; i + 1 < poses.size(); ++i) {
+    EXPECT_NEAR(poses[i].theta, std::atan2(poses[i + 1].y - poses[i].y, poses[i + 1].x - poses[i].x), 1e-12);
+    const auto c = map.geometry().cell_center(r.cells[i]);
+    EXPECT_DOUBLE_EQ(poses[i].x, c.x());
+    EXPECT_DOUBLE_EQ(poses[i].y, c.y());
+  }
+}
+
+TEST_P(Outcomes, CellCostsWeighTheMoves) {
+  // One row: every move enters and leaves cells of cost 126, factor 1 + 2 * 126 / 252 = 2.
+  auto map = make_map(5, 1, 1.0, 126);
+  GlobalPlannerParams p;
+  p.cost.cost_weight = 2.0;
+  const PlanResult r = planner(p)->plan(map, centre(map, 0, 0), centre(map, 4, 0), {});
+  ASSERT_TRUE(r.result.ok());
+  EXPECT_DOUBLE_EQ(r.cost, 8.0);
+}
+
+TEST_P(Outcomes, AvoidsExpensiveCellsWhenCheaper) {
+  auto map = make_map(7, 3, 1.0);
+  for (int x = 1; x < 6; ++x) map.set_cost(x, 1, 252);  // a costly middle row, free rows around it
+  const PlanResult r = planner()->plan(map, centre(map, 0, 1), centre(map, 6, 1), {});
+  ASSERT_TRUE(r.result.ok());
+  for (std::size_t i = 1; i + 1 < r.cells.size(); ++i) EXPECT_NE(r.cells[i].y, 1);
+}
+
+TEST_P(Outcomes, NoCornerCutting) {
+  // Diagonal neighbours whose two side cells are lethal: no path.
+  auto map = make_map(2, 2, 1.0);
+  map.set_cost(1, 0, mapping::kLethal);
+  map.set_cost(0, 1, mapping::kLethal);
+  const PlanResult r = planner()->plan(map, centre(map, 0, 0), centre(map, 1, 1), {});
+  EXPECT_EQ(r.result.outcome, Outcome::NO_PATH_FOUND);
+  // With one side cell free the diagonal is still forbidden: the path goes around it (2 moves).
+  map.set_cost(0, 1, mapping::kFree);
+  const PlanResult r2 = planner()->plan(map, centre(map, 0, 0), centre(map, 1, 1), {});
+  ASSERT_TRUE(r2.result.ok());
+  EXPECT_DOUBLE_EQ(r2.cost, 2.0);
+}
+
+TEST_P(Outcomes, NoPathFound) {
+  auto map = make_map(9, 9, 1.0);
+  for (int y = 0; y < 9; ++y) map.set_cost(4, y, mapping::kInscribed);
+  const PlanResult r = planner()->plan(map, centre(map, 1, 1), centre(map, 7, 7), {});
+  EXPECT_EQ(r.result.outcome, Outcome::NO_PATH_FOUND);
+  EXPECT_TRUE(mentions(r.result, "no path from start cell (1, 1) to goal cell (7, 7)")) << r.result.message;
+  EXPECT_TRUE(r.path.empty());
+}
+
+TEST_P(Outcomes, BlockedStart) {
+  auto map = make_map(5, 5, 1.0);
+  map.set_cost(0, 0, mapping::kLethal);
+  const PlanResult r = planner()->plan(map, centre(map, 0, 0), centre(map, 4, 4), {});
+  EXPECT_EQ(r.result.outcome, Outcome::BLOCKED_START);
+  EXPECT_TRUE(mentions(r.result, "start cell (0, 0) has cost 254 (lethal)")) << r.result.message;
+
+  map.set_cost(0, 0, mapping::kInscribed);
+  GlobalPlannerParams strict;
+  strict.allow_start_in_inscribed = false;
+  const PlanResult r2 = planner(strict)->plan(map, centre(map, 0, 0), centre(map, 4, 4), {});
+  EXPECT_EQ(r2.result.outcome, Outcome::BLOCKED_START);
+  EXPECT_TRUE(mentions(r2.result, "inscribed")) << r2.result.message;
+  EXPECT_TRUE(mentions(r2.result, "allow_start_in_inscribed is false")) << r2.result.message;
+}
+
+TEST_P(Outcomes, InscribedStartMayBeLeftByDefault) {
+  auto map = make_map(6, 6, 1.0);
+  for (const auto& c : {mapping::Cell{0, 0}, {1, 0}, {2, 0}, {0, 1}, {0, 2}}) map.set_cost(c, mapping::kLethal);
+  map.set_cost(1, 1, mapping::kInscribed);  // the robot stands close to the obstacles
+  map.set_cost(1, 2, mapping::kInscribed);
+  // The start may be left, the other inscribed cell stays impassable: the only way out is east
+  // ((2, 2) would cut the corner of (1, 2)).
+  const PlanResult r = planner()->plan(map, centre(map, 1, 1), centre(map, 5, 5), {});
+  ASSERT_EQ(r.result.outcome, Outcome::SUCCESS) << r.result.message;
+  expect_valid_path(map, r, {}, {1, 1}, {5, 5});
+  ASSERT_GE(r.cells.size(), 2u);
+  EXPECT_EQ(r.cells[1], (mapping::Cell{2, 1}));
+  for (std::size_t i = 1; i < r.cells.size(); ++i) EXPECT_NE(r.cells[i], (mapping::Cell{1, 2}));
+}
+
+TEST_P(Outcomes, BlockedGoal) {
+  auto map = make_map(5, 5, 1.0);
+  map.set_cost(4, 4, mapping::kLethal);
+  auto p = planner();
+  PlanResult r = p->plan(map, centre(map, 0, 0), centre(map, 4, 4), {});
+  EXPECT_EQ(r.result.outcome, Outcome::BLOCKED_GOAL);
+  EXPECT_TRUE(mentions(r.result, "goal cell (4, 4) has cost 254 (lethal)")) << r.result.message;
+  map.set_cost(4, 4, mapping::kInscribed);
+  r = p->plan(map, centre(map, 0, 0), centre(map, 4, 4), {});
+  EXPECT_EQ(r.result.outcome, Outcome::BLOCKED_GOAL);
+  EXPECT_TRUE(mentions(r.result, "inscribed")) << r.result.message;
+  map.set_cost(4, 4, mapping::kUnknown);
+  r = p->plan(map, centre(map, 0, 0), centre(map, 4, 4), {});
+  EXPECT_EQ(r.result.outcome, Outcome::SUCCESS) << "unknown cells are traversable by default";
+  GlobalPlannerParams cautious;
+  cautious.cost.unknown_is_obstacle = true;
+  r = planner(cautious)->plan(map, centre(map, 0, 0), centre(map, 4, 4), {});
+  EXPECT_EQ(r.result.outcome, Outcome::BLOCKED_GOAL);
+  EXPECT_TRUE(mentions(r.result, "unknown")) << r.result.message;
+}
+
+TEST_P(Outcomes, OutOfMap) {
+  mapping::GridGeometry g;
+  g.width = 10;
+  g.height = 10;
+  g.resolution_m = 0.5;
+  g.origin_x_m = -2.0;
+  g.origin_y_m = 1.0;
+  const mapping::Costmap2D map(g);
+  auto p = planner();
+  PlanResult r = p->plan(map, {-2.5, 2.0, 0.0}, {1.0, 3.0, 0.0}, {});
+  EXPECT_EQ(r.result.outcome, Outcome::PLAN_OUT_OF_MAP);
+  EXPECT_TRUE(mentions(r.result,
+                       "start (-2.500, 2.000) m is outside the map (x in [-2.000, 3.000) m, y in "
+                       "[1.000, 6.000) m)"))
+      << r.result.message;
+  r = p->plan(map, {0.0, 2.0, 0.0}, {0.0, 6.0, 0.0}, {});
+  EXPECT_EQ(r.result.outcome, Outcome::PLAN_OUT_OF_MAP);
+  EXPECT_TRUE(mentions(r.result, "goal (0.000, 6.000) m is outside the map")) << r.result.message;
+  r = p->plan(map, {std::numeric_limits<double>::quiet_NaN(), 2.0, 0.0}, {1.0, 3.0, 0.0}, {});
+  EXPECT_EQ(r.result.outcome, Outcome::PLAN_OUT_OF_MAP);
+  EXPECT_TRUE(mentions(r.result, "start pose is not finite")) << r.result.message;
+  r = p->plan(mapping::Costmap2D{}, {0.0, 0.0, 0.0}, {1.0, 1.0, 0.0}, {});
+  EXPECT_EQ(r.result.outcome, Outcome::PLAN_OUT_OF_MAP);
+  EXPECT_TRUE(mentions(r.result, "the map is empty")) << r.result.message;
+  // A valid request afterwards still works (the planner recovers its state).
+  r = p->plan(map, {0.0, 2.0, 0.0}, {1.0, 3.0, 0.0}, {});
+  EXPECT_TRUE(r.result.ok()) << r.result.message;
+}
+
+TEST_P(Outcomes, TimeLimitExceeded) {
+  auto map = make_map(600, 600, 0.1);
+  for (int y = 0; y < 580; ++y) map.set_cost(300, y, mapping::kLethal);  // forces a long search
+  GlobalPlannerParams p;
+  p.max_planning_time_ms = 1e-6;
+  const PlanResult r = planner(p)->plan(map, centre(map, 10, 10), centre(map, 590, 10), {});
+  EXPECT_EQ(r.result.outcome, Outcome::PLAN_PAT_EXCEEDED);
+  EXPECT_TRUE(mentions(r.result, "planning time limit of 0.000 ms exceeded after")) << r.result.message;
+  EXPECT_TRUE(r.path.empty());
+}
+
+TEST_P(Outcomes, StartEqualsGoal) {
+  auto map = make_map(4, 4, 1.0);
+  const PlanResult r = planner()->plan(map, {1.2, 1.3, 0.1}, {1.7, 1.8, 2.0}, {});
+  ASSERT_TRUE(r.result.ok()) << r.result.message;
+  EXPECT_DOUBLE_EQ(r.cost, 0.0);
+  ASSERT_EQ(r.path.size(), 2u);
+  EXPECT_DOUBLE_EQ(r.path.poses.back().theta, 2.0);
+}
+
+INSTANTIATE_TEST_SUITE_P(BothPlanners, Outcomes, ::testing::Values("dstar_lite", "astar"));
+
+TEST(GlobalPlannerFactory, ExplicitTableAndUnknownName) {
+  EXPECT_EQ(make_global_planner("dstar_lite", {})->name(), "dstar_lite");
+  EXPECT_EQ(make_global_planner("astar", {})->name(), "astar");
+  EXPECT_EQ(global_planner_names(), (std::vector<std::string>{"dstar_lite", "astar"}));
+  try {
+    make_global_planner("navfn", {});
+    FAIL();
+  } catch (const ParamError& e) {
+    EXPECT_NE(std::string(e.what()).find("dstar_lite | astar (got 'navfn')"), std::string::npos) << e.what();
+  }
+}
+
+TEST(GlobalPlannerParams, ValidateRejectsNonsense) {
+  GlobalPlannerParams p;
+  p.max_planning_time_ms = -1.0;
+  EXPECT_THROW(p.validate(), ParamError);
+  p = {};
+  p.cost.cost_weight = std::nan("");
+  EXPECT_THROW(p.validate(), ParamError);
+  p = {};
+  p.cost.unknown_cost = 253;
+  EXPECT_THROW(make_global_planner("astar", p), ParamError);
+}
+
+}  // namespace
