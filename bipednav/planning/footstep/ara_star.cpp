@@ -1,0 +1,223 @@
+#include "bipednav/planning/footstep/ara_star.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "bipednav/common/clock.hpp"
+#include "bipednav/common/error.hpp"
+
+namespace bipednav::footstep {
+
+void AraStarParams::validate() const {
+  require(initial_epsilon >= 1.0, "initial_epsilon", ">= 1");
+  require(target_epsilon >= 1.0 && target_epsilon <= initial_epsilon, "target_epsilon", "in [1, initial_epsilon]");
+  require(epsilon_decrease > 0.0 && epsilon_decrease < 1.0, "epsilon_decrease", "in (0, 1)");
+  require(time_limit_s >= 0.0, "time_limit_s", ">= 0 (0 = no limit)");
+  require(max_expansions > 0, "max_expansions", "> 0");
+}
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+struct Record {
+  double g = kInf;
+  double h = 0.0;
+  std::int32_t parent = -1;
+  std::int32_t action = -1;
+  std::int32_t heap_pos = -1;
+  std::uint32_t closed_in = 0;  // search iteration that closed it (0 = open/never)
+  bool incons = false;
+};
+
+// Binary min-heap of state ids keyed by f = g + eps * h, with position tracking for updates.
+class OpenList {
+ public:
+  explicit OpenList(std::vector<Record>& rec) : rec_(rec) {}
+  bool empty() const { return heap_.empty(); }
+  double min_key() const { return heap_.empty() ? kInf : key_[0]; }
+  void push_or_update(std::int32_t s, double key) {
+    Record& r = rec_[s];
+    if (r.heap_pos < 0) {
+      r.heap_pos = static_cast<std::int32_t>(heap_.size());
+      heap_.push_back(s);
+      key_.push_back(key);
+    } else {
+      key_[r.heap_pos] = key;
+    }
+    sift_up(rec_[s].heap_pos);
+    sift_down(rec_[s].heap_pos);
+  }
+  std::int32_t pop() {
+    const std::int32_t top = heap_[0];
+    swap_at(0, heap_.size() - 1);
+    heap_.pop_back();
+    key_.pop_back();
+    rec_[top].heap_pos = -1;
+    if (!heap_.empty()) sift_down(0);
+    return top;
+  }
+  std::vector<std::int32_t> drain() {
+    std::vector<std::int32_t> all = heap_;
+    for (auto s : heap_) rec_[s].heap_pos = -1;
+    heap_.clear();
+    key_.clear();
+    return all;
+  }
+
+ private:
+  void swap_at(std::size_t a, std::size_t b) {
+    std::swap(heap_[a], heap_[b]);
+    std::swap(key_[a], key_[b]);
+    rec_[heap_[a]].heap_pos = static_cast<std::int32_t>(a);
+    rec_[heap_[b]].heap_pos = static_cast<std::int32_t>(b);
+  }
+  void sift_up(std::size_t i) {
+    while (i > 0 && key_[(i - 1) / 2] > key_[i]) {
+      swap_at(i, (i - 1) / 2);
+      i = (i - 1) / 2;
+    }
+  }
+  void sift_down(std::size_t i) {
+    for (;;) {
+      std::size_t m = i;
+      const std::size_t l = 2 * i + 1, r = l + 1;
+      if (l < heap_.size() && key_[l] < key_[m]) m = l;
+      if (r < heap_.size() && key_[r] < key_[m]) m = r;
+      if (m == i) return;
+      swap_at(i, m);
+      i = m;
+    }
+  }
+
+  std::vector<Record>& rec_;
+  std::vector<std::int32_t> heap_;
+  std::vector<double> key_;
+};
+
+class Search {
+ public:
+  Search(SearchGraph& graph, const AraStarParams& p) : graph_(graph), p_(p), open_(rec_) {}
+
+  AraStarResult run() {
+    AraStarResult out;
+    double eps = p_.initial_epsilon;
+    const std::int32_t start = graph_.start_state();
+    touch(start);
+    rec_[start].g = 0.0;
+    open_.push_or_update(start, eps * rec_[start].h);
+    double proven_bound = kInf;  // the epsilon of the last completed iteration
+    for (std::uint32_t iteration = 1;; ++iteration) {
+      const bool complete = improve_path(eps, iteration, out);
+      if (complete) proven_bound = eps;
+      // A solution improved by an interrupted iteration is still valid, with the last proven bound.
+      if (goal_ >= 0 && (complete || !out.found || goal_g() < out.cost - 1e-9)) publish(proven_bound, out);
+      if (!complete || eps <= p_.target_epsilon) break;
+      eps = 1.0 + (eps - 1.0) * p_.epsilon_decrease;
+      if (eps < 1.001) eps = 1.0;
+      eps = std::max(eps, p_.target_epsilon);
+      reopen(eps);
+    }
+    out.expansions = expansions_;
+    out.time_s = clock_.elapsed_ms() / 1000.0;
+    return out;
+  }
+
+ private:
+  void touch(std::int32_t s) {
+    if (s >= static_cast<std::int32_t>(rec_.size())) {
+      const std::size_t old = rec_.size();
+      rec_.resize(static_cast<std::size_t>(s) + 1);
+      for (std::size_t i = old; i < rec_.size(); ++i) rec_[i].h = -1.0;
+    }
+    if (rec_[s].h < 0.0) rec_[s].h = graph_.heuristic(s);
+  }
+  double key(std::int32_t s, double eps) const { return rec_[s].g + eps * rec_[s].h; }
+  double goal_g() const { return goal_ >= 0 ? rec_[goal_].g : kInf; }
+
+  // Expands states until no open state can improve the goal; false when out of time/budget.
+  bool improve_path(double eps, std::uint32_t iteration, AraStarResult& out) {
+    std::vector<SearchGraph::Edge> edges;
+    while (!open_.empty() && goal_g() > open_.min_key()) {
+      if ((expansions_ & 63u) == 0 && p_.time_limit_s > 0.0 && clock_.elapsed_ms() > 1000.0 * p_.time_limit_s) {
+        out.time_exceeded = true;
+        return false;
+      }
+      if (expansions_ >= p_.max_expansions) return false;
+      const std::int32_t s = open_.pop();
+      rec_[s].closed_in = iteration;
+      ++expansions_;
+      if (graph_.is_goal(s)) {
+        if (rec_[s].g < goal_g()) goal_ = s;
+        continue;
+      }
+      edges.clear();
+      graph_.successors(s, edges);
+      for (const auto& e : edges) relax(s, e, eps, iteration);
+    }
+    return true;
+  }
+
+  void relax(std::int32_t s, const SearchGraph::Edge& e, double eps, std::uint32_t iteration) {
+    touch(e.to);
+    Record& r = rec_[e.to];
+    const double g = rec_[s].g + e.cost;
+    if (g >= r.g || !std::isfinite(r.h)) return;
+    r.g = g;
+    r.parent = s;
+    r.action = e.action;
+    if (graph_.is_goal(e.to) && g < goal_g()) goal_ = e.to;
+    if (r.closed_in == iteration) {
+      r.incons = true;
+      incons_.push_back(e.to);
+    } else {
+      open_.push_or_update(e.to, key(e.to, eps));
+    }
+  }
+
+  void reopen(double eps) {
+    std::vector<std::int32_t> states = open_.drain();
+    for (auto s : incons_)
+      if (rec_[s].incons) states.push_back(s);
+    incons_.clear();
+    for (auto s : states) {
+      rec_[s].incons = false;
+      open_.push_or_update(s, key(s, eps));
+    }
+  }
+
+  void publish(double eps, AraStarResult& out) {
+    out.found = true;
+    out.cost = rec_[goal_].g;
+    out.final_epsilon = eps;
+    out.states.clear();
+    out.actions.clear();
+    for (std::int32_t s = goal_; s >= 0; s = rec_[s].parent) {
+      out.states.push_back(s);
+      if (rec_[s].parent >= 0) out.actions.push_back(rec_[s].action);
+    }
+    std::reverse(out.states.begin(), out.states.end());
+    std::reverse(out.actions.begin(), out.actions.end());
+    out.iterations.push_back({eps, out.cost, clock_.elapsed_ms() / 1000.0, expansions_});
+  }
+
+  SearchGraph& graph_;
+  const AraStarParams& p_;
+  std::vector<Record> rec_;
+  OpenList open_;
+  std::vector<std::int32_t> incons_;
+  std::int32_t goal_ = -1;
+  std::size_t expansions_ = 0;
+  Stopwatch clock_;
+};
+
+}  // namespace
+
+AraStarResult ara_star(SearchGraph& graph, const AraStarParams& params) {
+  params.validate();
+  Search search(graph, params);
+  return search.run();
+}
+
+}  // namespace bipednav::footstep

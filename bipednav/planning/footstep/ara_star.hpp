@@ -1,0 +1,57 @@
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace bipednav::footstep {
+
+// The implicit graph ARA* searches. States are dense ids handed out by the graph.
+class SearchGraph {
+ public:
+  struct Edge {
+    std::int32_t to;
+    std::int32_t action;
+    double cost;
+  };
+  virtual ~SearchGraph() = default;
+  virtual std::int32_t start_state() = 0;
+  virtual void successors(std::int32_t state, std::vector<Edge>& out) = 0;
+  virtual double heuristic(std::int32_t state) = 0;
+  virtual bool is_goal(std::int32_t state) = 0;
+};
+
+struct AraStarParams {
+  double initial_epsilon = 8.0;
+  double epsilon_decrease = 0.5;  // eps <- 1 + (eps - 1) * factor after each improved solution
+  double time_limit_s = 5.0;      // 0: no limit (search down to target_epsilon)
+  double target_epsilon = 1.0;    // stop once a solution with this bound is proven
+  std::size_t max_expansions = 20'000'000;
+
+  void validate() const;
+};
+
+struct AnytimeIteration {
+  double epsilon = 0.0;
+  double cost = 0.0;
+  double time_s = 0.0;
+  std::size_t expansions = 0;
+};
+
+struct AraStarResult {
+  bool found = false;
+  bool time_exceeded = false;
+  std::vector<std::int32_t> states;   // start .. goal
+  std::vector<std::int32_t> actions;  // actions[i] leads from states[i] to states[i + 1]
+  double cost = 0.0;
+  double final_epsilon = 0.0;
+  std::size_t expansions = 0;
+  double time_s = 0.0;
+  std::vector<AnytimeIteration> iterations;  // one per published solution
+};
+
+// Anytime Repairing A* (Likhachev et al.): a weighted A* with inflation epsilon that reuses
+// its search effort (INCONS list) while epsilon decreases to 1 within the time limit.
+AraStarResult ara_star(SearchGraph& graph, const AraStarParams& params);
+
+}  // namespace bipednav::footstep

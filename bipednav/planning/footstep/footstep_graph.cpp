@@ -1,0 +1,154 @@
+#include "bipednav/planning/footstep/footstep_graph.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace bipednav::footstep {
+
+ActionLattice::ActionLattice(const ActionSet& actions, double res, int theta_bins)
+    : actions_(actions), res_(res), bins_(theta_bins) {
+  actions_.validate();
+  require(res > 0.0, "lattice_resolution_m", "> 0");
+  require(theta_bins >= 4, "theta_bins", ">= 4");
+  const std::size_t n = 2 * actions_.actions.size() * static_cast<std::size_t>(bins_);
+  trans_.resize(n);
+  ihm_.resize(n);
+  for (Foot f : {Foot::kLeft, Foot::kRight}) {
+    const double m = f == Foot::kLeft ? 1.0 : -1.0;
+    for (std::size_t a = 0; a < actions_.actions.size(); ++a) {
+      const FootstepAction& act = actions_.actions[a];
+      for (int t = 0; t < bins_; ++t) {
+        const double th = theta_of(t), c = std::cos(th), s = std::sin(th);
+        const double dx = act.dx_m, dy = m * act.dy_m;
+        Transition& tr = trans_[slot(f, static_cast<int>(a), t)];
+        tr.dix = static_cast<int>(std::lround((c * dx - s * dy) / res));
+        tr.diy = static_cast<int>(std::lround((s * dx + c * dy) / res));
+        tr.ditheta = static_cast<int>(std::lround(m * act.dtheta_rad / (2.0 * std::numbers::pi / bins_)));
+        ihm_[slot(f, static_cast<int>(a), t)] = build_inverse_heightmap(act, actions_.body, f, th, res);
+      }
+    }
+  }
+  soles_.resize(bins_);
+  for (int t = 0; t < bins_; ++t) {
+    soles_[t] = footprint_cells(actions_.body, theta_of(t), res);
+    for (const auto& [dx, dy] : soles_[t]) sole_radius_ = std::max({sole_radius_, std::abs(dx), std::abs(dy)});
+  }
+}
+
+double ActionLattice::theta_of(int itheta) const { return normalize_angle(itheta * 2.0 * std::numbers::pi / bins_); }
+
+int ActionLattice::bin_of(double theta) const {
+  const int b = static_cast<int>(std::lround(theta / (2.0 * std::numbers::pi / bins_)));
+  return ((b % bins_) + bins_) % bins_;
+}
+
+FootstepGraph::FootstepGraph(const ActionLattice& lattice, const TerrainGrid& terrain, const Heuristic& heuristic,
+                             const FootstepGoal& goal, const Footstep& start)
+    : lattice_(lattice), terrain_(terrain), heuristic_(heuristic), goal_(goal) {
+  const auto cell = terrain.geometry().world_to_cell_unbounded(start.pose.x, start.pose.y);
+  const StateKey k{cell ? cell->x : 0, cell ? cell->y : 0, lattice.bin_of(start.pose.theta), start.foot};
+  start_ = intern(k, static_cast<float>(start.z_m));
+}
+
+std::int32_t FootstepGraph::intern(const StateKey& k, float z) {
+  auto [it, fresh] = index_.try_emplace(k.packed(), static_cast<std::int32_t>(states_.size()));
+  if (fresh) states_.push_back({k, z});
+  return it->second;
+}
+
+Pose2 FootstepGraph::pose_of(const StateKey& k) const {
+  const auto c = terrain_.geometry().cell_center(k.ix, k.iy);
+  return {c.x(), c.y(), lattice_.theta_of(k.itheta)};
+}
+
+Footstep FootstepGraph::footstep(std::int32_t s) const {
+  return {pose_of(states_[s].key), states_[s].z, states_[s].key.stance};
+}
+
+Pose2 FootstepGraph::body_centre(std::int32_t s) const {
+  const StateKey& k = states_[s].key;
+  const double half = lattice_.actions().body.nominal_separation_m / 2.0;
+  // The body centre lies half a separation towards the other (swing) foot.
+  return pose_of(k) * Pose2{0.0, k.stance == Foot::kLeft ? -half : half, 0.0};
+}
+
+bool FootstepGraph::footprint_height(int ix, int iy, int itheta, float stance_z, float* z) const {
+  const int r = lattice_.sole_radius_cells();
+  const auto quick = terrain_.range(ix - r, iy - r, ix + r, iy + r);
+  if (quick.all_known && quick.max_h == quick.min_h) {  // uniformly flat: the mean is that height
+    *z = quick.max_h;
+    return true;
+  }
+  float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+  double sum = 0.0;
+  int known = 0;
+  for (const auto& [dx, dy] : lattice_.sole(itheta)) {
+    const int x = ix + dx, y = iy + dy;
+    if (!terrain_.in_bounds(x, y) || !terrain_.known(x, y)) continue;
+    lo = std::min(lo, terrain_.min_h(x, y));
+    hi = std::max(hi, terrain_.max_h(x, y));
+    sum += terrain_.mean_h(x, y);
+    ++known;
+  }
+  if (known == 0) {  // unknown ground is free: assume it continues the stance height
+    *z = stance_z;
+    return true;
+  }
+  *z = static_cast<float>(sum / known);
+  return hi - lo <= lattice_.actions().flatness_threshold_m;
+}
+
+bool FootstepGraph::whole_body_free(const StateKey& s, float z, int action) const {
+  // Eq. 5: every IHM cell must stay above the terrain once aligned at the stance height.
+  const InverseHeightmap& ihm = lattice_.ihm(s.stance, action, s.itheta);
+  const auto quick = terrain_.range(s.ix + ihm.min_dx, s.iy + ihm.min_dy, s.ix + ihm.max_dx, s.iy + ihm.max_dy);
+  if (quick.max_h < ihm.min_height_m + z) return true;
+  for (const IhmCell& c : ihm.cells) {
+    const int x = s.ix + c.dx, y = s.iy + c.dy;
+    if (!terrain_.in_bounds(x, y) || !terrain_.known(x, y)) continue;
+    if (!(c.min_height_m + z > terrain_.max_h(x, y))) return false;
+  }
+  return true;
+}
+
+bool FootstepGraph::action_safe(std::int32_t s, int a, std::int32_t* to) {
+  const State st = states_[s];
+  const FootstepAction& act = lattice_.actions().actions[a];
+  const auto& tr = lattice_.transition(st.key.stance, a, st.key.itheta);
+  const int bins = lattice_.theta_bins();
+  const StateKey nk{st.key.ix + tr.dix, st.key.iy + tr.diy, ((st.key.itheta + tr.ditheta) % bins + bins) % bins,
+                    other(st.key.stance)};
+  if (!terrain_.in_bounds(nk.ix, nk.iy)) return false;
+  float z = 0.0f;
+  if (!footprint_height(nk.ix, nk.iy, nk.itheta, st.z, &z)) return false;
+  const double dz = z - st.z;  // eq. 4
+  if (dz < act.dz_min_m || dz > act.dz_max_m) return false;
+  ++ihm_checks_;
+  if (!whole_body_free(st.key, st.z, a)) return false;
+  if (to) *to = intern(nk, z);
+  return true;
+}
+
+void FootstepGraph::successors(std::int32_t s, std::vector<Edge>& out) {
+  const auto& actions = lattice_.actions().actions;
+  for (std::size_t a = 0; a < actions.size(); ++a) {
+    std::int32_t to = -1;
+    if (action_safe(s, static_cast<int>(a), &to))
+      out.push_back({to, static_cast<std::int32_t>(a), actions[a].duration_s});
+  }
+}
+
+double FootstepGraph::heuristic(std::int32_t s) {
+  const Pose2 c = body_centre(s);
+  return heuristic_.seconds_to_goal(c.x, c.y);
+}
+
+bool FootstepGraph::is_goal(std::int32_t s) {
+  const Pose2 c = body_centre(s);
+  return std::hypot(c.x - goal_.body.x, c.y - goal_.body.y) <= goal_.tolerance_m &&
+         std::abs(angle_diff(c.theta, goal_.body.theta)) <= goal_.tolerance_rad;
+}
+
+}  // namespace bipednav::footstep

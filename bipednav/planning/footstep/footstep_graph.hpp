@@ -1,0 +1,93 @@
+#pragma once
+
+#include <memory>
+#include <unordered_map>
+#include <vector>
+
+#include "bipednav/planning/footstep/ara_star.hpp"
+#include "bipednav/planning/footstep/footstep_types.hpp"
+#include "bipednav/planning/footstep/heuristics.hpp"
+#include "bipednav/planning/footstep/inverse_heightmap.hpp"
+
+namespace bipednav::footstep {
+
+// Precomputed, position-independent lattice data of an action set: for each stance foot,
+// action and stance heading bin, the lattice displacement of the landing foot and its aligned
+// inverse heightmap; for each heading bin the sole's cells. Built once per robot and lattice.
+class ActionLattice {
+ public:
+  ActionLattice(const ActionSet& actions, double res, int theta_bins);
+
+  struct Transition {
+    int dix = 0, diy = 0, ditheta = 0;
+  };
+  const ActionSet& actions() const { return actions_; }
+  double resolution_m() const { return res_; }
+  int theta_bins() const { return bins_; }
+  double theta_of(int itheta) const;
+  int bin_of(double theta) const;
+  const Transition& transition(Foot f, int action, int itheta) const { return trans_[slot(f, action, itheta)]; }
+  const InverseHeightmap& ihm(Foot f, int action, int itheta) const { return ihm_[slot(f, action, itheta)]; }
+  const std::vector<std::pair<std::int16_t, std::int16_t>>& sole(int itheta) const { return soles_[itheta]; }
+  int sole_radius_cells() const { return sole_radius_; }
+
+ private:
+  std::size_t slot(Foot f, int a, int t) const {
+    return (static_cast<std::size_t>(f) * actions_.actions.size() + a) * bins_ + t;
+  }
+  ActionSet actions_;
+  double res_;
+  int bins_;
+  std::vector<Transition> trans_;
+  std::vector<InverseHeightmap> ihm_;
+  std::vector<std::vector<std::pair<std::int16_t, std::int16_t>>> soles_;
+  int sole_radius_ = 0;
+};
+
+struct FootstepGoal {
+  Pose2 body;
+  double tolerance_m = 0.05;
+  double tolerance_rad = 0.3;
+};
+
+// The footstep search space on a terrain: states are lattice keys, edges are the safe actions
+// of section V-B (flat footprint, dz within the action's interval (eq. 4), whole-body check
+// against the inverse heightmap (eq. 5)), costs are action durations.
+class FootstepGraph : public SearchGraph {
+ public:
+  FootstepGraph(const ActionLattice& lattice, const TerrainGrid& terrain, const Heuristic& heuristic,
+                const FootstepGoal& goal, const Footstep& start);
+
+  std::int32_t start_state() override { return start_; }
+  void successors(std::int32_t s, std::vector<Edge>& out) override;
+  double heuristic(std::int32_t s) override;
+  bool is_goal(std::int32_t s) override;
+
+  const StateKey& key(std::int32_t s) const { return states_[s].key; }
+  Footstep footstep(std::int32_t s) const;
+  Pose2 body_centre(std::int32_t s) const;
+  std::size_t collision_checks() const { return ihm_checks_; }
+  // Whether action `a` from state `s` is safe (for validating a plan against a newer map).
+  bool action_safe(std::int32_t s, int a, std::int32_t* to = nullptr);
+
+ private:
+  struct State {
+    StateKey key;
+    float z = 0.0f;
+  };
+  std::int32_t intern(const StateKey& k, float z);
+  bool footprint_height(int ix, int iy, int itheta, float stance_z, float* z) const;
+  bool whole_body_free(const StateKey& s, float z, int action) const;
+  Pose2 pose_of(const StateKey& k) const;
+
+  const ActionLattice& lattice_;
+  const TerrainGrid& terrain_;
+  const Heuristic& heuristic_;
+  FootstepGoal goal_;
+  std::vector<State> states_;
+  std::unordered_map<std::uint64_t, std::int32_t> index_;
+  std::int32_t start_ = 0;
+  std::size_t ihm_checks_ = 0;
+};
+
+}  // namespace bipednav::footstep

@@ -1,0 +1,62 @@
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "bipednav/common/outcome.hpp"
+#include "bipednav/mapping/heightmap.hpp"
+#include "bipednav/planning/footstep/ara_star.hpp"
+#include "bipednav/planning/footstep/footstep_graph.hpp"
+
+namespace bipednav::footstep {
+
+struct FootstepPlannerParams {
+  std::string robot = "nao";           // action set: nao | digit
+  bool planar_only = false;            // the 2D baseline: planar footsteps only
+  double lattice_resolution_m = 0.01;  // x/y discretisation of states
+  int theta_bins = 32;                 // 11.25 deg, finer than the smallest turning step
+  std::string heuristic = "dijkstra";  // dijkstra | euclidean
+  double goal_tolerance_m = 0.05;
+  double goal_tolerance_rad = 0.3;
+  AraStarParams search;  // initial epsilon 8, decreasing to 1 within the time limit
+
+  void validate() const;
+};
+
+struct FootstepPlan {
+  Result result;
+  std::vector<Footstep> steps;       // the start stance foot first, then every landed foot
+  std::vector<std::string> actions;  // actions[i] moves from steps[i] to steps[i + 1]
+  double cost_s = 0.0;               // travel time
+  double first_solution_s = 0.0;     // wall time to the first solution
+  double first_solution_cost_s = 0.0;
+  double final_epsilon = 0.0;  // proven suboptimality bound of `cost_s`
+  std::size_t expansions = 0;
+  double time_s = 0.0;
+  std::vector<AnytimeIteration> iterations;
+};
+
+// ARA* footstep planning on a heightmap with whole-body checks (the second reference).
+// The action lattice (transitions, inverse heightmaps) is built once in the constructor.
+class FootstepPlanner {
+ public:
+  explicit FootstepPlanner(FootstepPlannerParams params);
+
+  // Plans from a start stance foot to a goal body pose. Outcomes: SUCCESS, PLAN_OUT_OF_MAP,
+  // BLOCKED_GOAL (no safe stance exists at the goal), NO_PATH_FOUND, PLAN_PAT_EXCEEDED.
+  FootstepPlan plan(const mapping::Heightmap& map, const Footstep& start, const Pose2& goal) const;
+  // Whether every step of `plan` is still safe on `map` (replan when it is not).
+  bool still_valid(const mapping::Heightmap& map, const FootstepPlan& plan) const;
+
+  // The stance foot pose for a body pose (feet half a separation to each side).
+  Footstep stance_for_body(const Pose2& body, Foot foot, double z_m = 0.0) const;
+  const FootstepPlannerParams& params() const { return params_; }
+  const ActionLattice& lattice() const { return *lattice_; }
+
+ private:
+  FootstepPlannerParams params_;
+  std::unique_ptr<ActionLattice> lattice_;
+};
+
+}  // namespace bipednav::footstep

@@ -1,0 +1,53 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "bipednav/common/pose2.hpp"
+#include "bipednav/planning/footstep/action_set.hpp"
+#include "bipednav/planning/footstep/terrain_grid.hpp"
+
+namespace bipednav::footstep {
+
+// Remaining travel time estimates h(s) = d(s) / v_max (eq. 6), evaluated at the body centre.
+class Heuristic {
+ public:
+  virtual ~Heuristic() = default;
+  virtual double seconds_to_goal(double body_x, double body_y) const = 0;
+};
+
+// Straight-line distance to the goal (section V-D1).
+class EuclideanHeuristic : public Heuristic {
+ public:
+  EuclideanHeuristic(const Pose2& goal, double tolerance_m, double v_max_mps);
+  double seconds_to_goal(double x, double y) const override;
+
+ private:
+  Pose2 goal_;
+  double tolerance_m_, v_max_;
+};
+
+// Dijkstra distances from the goal over an 8-connected graph of the lattice whose edges are
+// planar (free), elevating (a step up/down/over: longer) or impassable (steeper than the
+// robot's maximum step), section V-D2. Octile distances are scaled down by the worst-case
+// octile/Euclidean ratio and elevating edges only add what the fastest 3D action must cost
+// over a planar one, so the heuristic stays admissible.
+class DijkstraHeuristic : public Heuristic {
+ public:
+  DijkstraHeuristic(const TerrainGrid& terrain, const ActionSet& actions, const Pose2& goal, double tolerance_m);
+  double seconds_to_goal(double x, double y) const override;
+  double distance_m(int x, int y) const { return dist_[terrain_->geometry().index(x, y)]; }
+  double elevation_penalty_m() const { return elevation_penalty_m_; }
+
+ private:
+  const TerrainGrid* terrain_;
+  Pose2 goal_;
+  double tolerance_m_, v_max_, elevation_penalty_m_ = 0.0;
+  std::vector<float> dist_;
+};
+
+// Edge class between two neighbouring lattice cells (for the heuristic and its figure).
+enum class EdgeClass { kPlanar, kElevating, kImpassable };
+EdgeClass classify_edge(const TerrainGrid& t, int x0, int y0, int x1, int y1, const ActionSet& actions);
+
+}  // namespace bipednav::footstep

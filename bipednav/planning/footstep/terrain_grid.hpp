@@ -1,0 +1,47 @@
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "bipednav/mapping/heightmap.hpp"
+
+namespace bipednav::footstep {
+
+// The heightmap pooled onto the planner's lattice: per lattice cell the max, min and mean of
+// the known heightmap cells inside it. Cells with no known height are unknown, which the
+// planner treats as free (section VII: planning into unknown areas).
+class TerrainGrid {
+ public:
+  TerrainGrid() = default;
+  // `cell_m` is the lattice resolution; it is raised to the heightmap's if that is coarser.
+  TerrainGrid(const mapping::Heightmap& map, double cell_m);
+
+  const mapping::GridGeometry& geometry() const { return geometry_; }
+  bool in_bounds(int x, int y) const { return geometry_.in_bounds(x, y); }
+  bool known(int x, int y) const { return count_[idx(x, y)] > 0; }
+  float max_h(int x, int y) const { return max_[idx(x, y)]; }
+  float min_h(int x, int y) const { return min_[idx(x, y)]; }
+  float mean_h(int x, int y) const { return mean_[idx(x, y)]; }
+
+  // Conservative summary of the cells in [x0, x1] x [y0, y1] (clipped to the grid) from 8 x 8
+  // tiles: an upper bound of their max, a lower bound of their min, and whether every tile
+  // touched is fully known. Lets the planner accept flat, clear regions without a cell loop.
+  struct RangeSummary {
+    float max_h, min_h;
+    bool all_known;
+  };
+  RangeSummary range(int x0, int y0, int x1, int y1) const;
+
+ private:
+  std::size_t idx(int x, int y) const { return geometry_.index(x, y); }
+
+  mapping::GridGeometry geometry_;
+  std::vector<float> max_, min_, mean_;
+  std::vector<std::uint16_t> count_;
+  static constexpr int kTile = 8;
+  int tiles_x_ = 0, tiles_y_ = 0;
+  std::vector<float> tile_max_, tile_min_;
+  std::vector<std::uint8_t> tile_known_;
+};
+
+}  // namespace bipednav::footstep

@@ -1,0 +1,176 @@
+#include "bipednav/planning/footstep/footstep_planner.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "bipednav/planning/footstep/heuristics.hpp"
+
+using namespace bipednav;
+using namespace bipednav::footstep;
+
+namespace {
+
+mapping::Heightmap flat_map(double size_x, double size_y, double res) {
+  mapping::GridGeometry g{static_cast<int>(std::lround(size_x / res)), static_cast<int>(std::lround(size_y / res)), res,
+                          0.0, 0.0};
+  mapping::Heightmap m(g);
+  for (int y = 0; y < g.height; ++y)
+    for (int x = 0; x < g.width; ++x) m.set(x, y, 0.0f, 1e-4f);
+  return m;
+}
+
+void add_box(mapping::Heightmap& m, double x0, double y0, double x1, double y1, double h) {
+  const auto& g = m.geometry();
+  for (int y = 0; y < g.height; ++y)
+    for (int x = 0; x < g.width; ++x) {
+      const auto c = g.cell_center(x, y);
+      if (c.x() >= x0 && c.x() < x1 && c.y() >= y0 && c.y() < y1) m.set(x, y, static_cast<float>(h), 1e-4f);
+    }
+}
+
+// Searches without a wall-clock limit (tests must not depend on machine speed), stopping at
+// the first solution with a proven bound of `eps`.
+FootstepPlannerParams params_with_bound(double eps) {
+  FootstepPlannerParams p;
+  p.search.time_limit_s = 0.0;
+  p.search.initial_epsilon = std::max(eps, 3.0);
+  p.search.target_epsilon = eps;
+  return p;
+}
+FootstepPlannerParams fast_params() { return params_with_bound(3.0); }
+
+bool uses(const FootstepPlan& plan, const std::string& action) {
+  return std::find(plan.actions.begin(), plan.actions.end(), action) != plan.actions.end();
+}
+
+}  // namespace
+
+TEST(FootstepPlanner, FlatGroundUsesPlanarStepsAndReachesGoal) {
+  const auto map = flat_map(1.6, 0.8, 0.01);
+  FootstepPlanner planner(params_with_bound(1.0));
+  const Footstep start = planner.stance_for_body({0.3, 0.4, 0.0}, Foot::kLeft);
+  const FootstepPlan plan = planner.plan(map, start, {1.2, 0.4, 0.0});
+  ASSERT_TRUE(plan.result.ok()) << plan.result.message;
+  EXPECT_DOUBLE_EQ(plan.final_epsilon, 1.0);
+  for (const auto& a : plan.actions) EXPECT_TRUE(a != "step_over" && a != "step_onto" && a != "step_down") << a;
+  // Optimal: the body must cover 0.9 m less the 5 cm tolerance, and no 0.5 s step moves it
+  // further than the fastest action does, so the bound below is met exactly.
+  const ActionSet nao = nao_action_set();
+  const double max_step_m = nao.fastest_speed_mps() * 0.5;
+  EXPECT_DOUBLE_EQ(plan.cost_s, std::ceil(0.85 / max_step_m) * 0.5);
+  const Footstep& last = plan.steps.back();
+  const double half = 0.05 * (last.foot == Foot::kLeft ? -1 : 1);
+  const Pose2 body = last.pose * Pose2{0, half, 0};
+  EXPECT_NEAR(body.x, 1.2, 0.05 + 1e-9);
+  EXPECT_NEAR(body.y, 0.4, 0.05 + 1e-9);
+  // Feet alternate.
+  for (std::size_t i = 1; i < plan.steps.size(); ++i) EXPECT_NE(plan.steps[i].foot, plan.steps[i - 1].foot);
+}
+
+TEST(FootstepPlanner, StepsOverABarThatPlanarStepsCannotCross) {
+  auto map = flat_map(1.0, 0.5, 0.01);
+  add_box(map, 0.48, 0.0, 0.52, 0.5, 0.05);  // a 5 cm bar across the whole map
+  FootstepPlanner planner(fast_params());
+  const Footstep start = planner.stance_for_body({0.2, 0.25, 0.0}, Foot::kLeft);
+  const FootstepPlan plan = planner.plan(map, start, {0.8, 0.25, 0.0});
+  ASSERT_TRUE(plan.result.ok()) << plan.result.message;
+  EXPECT_TRUE(uses(plan, "step_over"));
+  for (const auto& s : plan.steps) EXPECT_NEAR(s.z_m, 0.0, 1e-6);
+
+  FootstepPlannerParams p2 = fast_params();
+  p2.planar_only = true;
+  FootstepPlanner planar(p2);
+  const FootstepPlan blocked = planar.plan(map, start, {0.8, 0.25, 0.0});
+  EXPECT_EQ(blocked.result.outcome, Outcome::NO_PATH_FOUND) << blocked.result.message;
+}
+
+TEST(FootstepPlanner, ClimbsTwoStairsUpAndDown) {
+  auto map = flat_map(2.2, 0.8, 0.01);
+  add_box(map, 0.6, 0.0, 1.6, 0.8, 0.05);
+  add_box(map, 0.9, 0.0, 1.3, 0.8, 0.10);
+  FootstepPlanner planner(fast_params());
+  const Footstep start = planner.stance_for_body({0.3, 0.4, 0.0}, Foot::kLeft);
+  const FootstepPlan plan = planner.plan(map, start, {1.9, 0.4, 0.0});
+  ASSERT_TRUE(plan.result.ok()) << plan.result.message;
+  EXPECT_TRUE(uses(plan, "step_onto"));
+  EXPECT_TRUE(uses(plan, "step_down"));
+  double top = 0.0;
+  for (const auto& s : plan.steps) top = std::max(top, s.z_m);
+  EXPECT_NEAR(top, 0.10, 1e-5);
+  EXPECT_NEAR(plan.steps.back().z_m, 0.0, 1e-6);
+}
+
+TEST(FootstepPlanner, TurnsSidewaysThroughAPassageNarrowerThanTheArms) {
+  // Walls 0.5 m high leave a 0.24 m gap: the legs fit, the arms (0.29 m span) do not.
+  auto map = flat_map(1.6, 1.2, 0.01);
+  add_box(map, 0.7, 0.0, 0.9, 0.48, 0.5);
+  add_box(map, 0.7, 0.72, 0.9, 1.2, 0.5);
+  FootstepPlanner planner(fast_params());
+  const Footstep start = planner.stance_for_body({0.3, 0.6, 0.0}, Foot::kLeft);
+  const FootstepPlan plan = planner.plan(map, start, {1.3, 0.6, 0.0});
+  ASSERT_TRUE(plan.result.ok()) << plan.result.message;
+  bool sideways_in_gap = false;
+  for (const auto& s : plan.steps) {
+    if (s.pose.x > 0.72 && s.pose.x < 0.88) sideways_in_gap |= std::abs(std::sin(s.pose.theta)) > 0.85;
+  }
+  EXPECT_TRUE(sideways_in_gap);
+}
+
+TEST(FootstepPlanner, ReportsBlockedAndOffMapGoals) {
+  auto map = flat_map(1.0, 1.0, 0.01);
+  add_box(map, 0.6, 0.3, 0.9, 0.7, 0.3);
+  FootstepPlanner planner(fast_params());
+  const Footstep start = planner.stance_for_body({0.2, 0.5, 0.0}, Foot::kLeft);
+  // A goal on top of a 30 cm block: the block top is flat, but no action climbs 30 cm.
+  EXPECT_EQ(planner.plan(map, start, {0.75, 0.5, 0.0}).result.outcome, Outcome::NO_PATH_FOUND);
+  add_box(map, 0.70, 0.45, 0.72, 0.55, 0.5);  // a spike under the goal stance
+  EXPECT_EQ(planner.plan(map, start, {0.71, 0.5, 0.0}).result.outcome, Outcome::BLOCKED_GOAL);
+  EXPECT_EQ(planner.plan(map, start, {3.0, 0.5, 0.0}).result.outcome, Outcome::PLAN_OUT_OF_MAP);
+  EXPECT_EQ(planner.plan(map, start, {std::nan(""), 0.5, 0.0}).result.outcome, Outcome::INVALID_GOAL);
+}
+
+TEST(FootstepPlanner, DijkstraHeuristicIsAdmissibleAndAnytimeBoundHolds) {
+  auto map = flat_map(1.0, 0.7, 0.01);
+  add_box(map, 0.45, 0.0, 0.55, 0.4, 0.4);  // a wall to walk around
+  FootstepPlannerParams p = params_with_bound(1.0);
+  FootstepPlanner optimal(p);
+  const Footstep start = optimal.stance_for_body({0.2, 0.25, 0.0}, Foot::kLeft);
+  const Pose2 goal{0.8, 0.25, 0.0};
+  const FootstepPlan best = optimal.plan(map, start, goal);
+  ASSERT_TRUE(best.result.ok());
+  const TerrainGrid terrain(map, 0.01);
+  const DijkstraHeuristic h(terrain, nao_action_set(), goal, p.goal_tolerance_m);
+  const Pose2 body{0.2, 0.25, 0.0};
+  EXPECT_LE(h.seconds_to_goal(body.x, body.y), best.cost_s);
+  EXPECT_GT(h.seconds_to_goal(body.x, body.y),
+            EuclideanHeuristic(goal, p.goal_tolerance_m, 1e9).seconds_to_goal(0.2, 0.25));
+  // Every published solution respects its epsilon bound against the optimum.
+  p.search.initial_epsilon = 8.0;
+  FootstepPlanner anytime(p);
+  const FootstepPlan any = anytime.plan(map, start, goal);
+  ASSERT_TRUE(any.result.ok());
+  for (const auto& it : any.iterations) EXPECT_LE(it.cost, it.epsilon * best.cost_s + 1e-9);
+  EXPECT_NEAR(any.cost_s, best.cost_s, 1e-9);
+}
+
+TEST(FootstepPlanner, PlanBecomesInvalidWhenAnObstacleAppears) {
+  auto map = flat_map(1.4, 0.8, 0.01);
+  FootstepPlanner planner(fast_params());
+  const Footstep start = planner.stance_for_body({0.3, 0.4, 0.0}, Foot::kLeft);
+  const FootstepPlan plan = planner.plan(map, start, {1.1, 0.4, 0.0});
+  ASSERT_TRUE(plan.result.ok());
+  EXPECT_TRUE(planner.still_valid(map, plan));
+  add_box(map, 0.6, 0.2, 0.75, 0.6, 0.3);
+  EXPECT_FALSE(planner.still_valid(map, plan));
+}
+
+TEST(FootstepPlanner, RejectsBadParameters) {
+  FootstepPlannerParams p;
+  p.robot = "robby";
+  EXPECT_THROW(FootstepPlanner{p}, ParamError);
+  p = {};
+  p.search.initial_epsilon = 0.5;
+  EXPECT_THROW(FootstepPlanner{p}, ParamError);
+}
