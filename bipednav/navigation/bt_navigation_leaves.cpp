@@ -1,0 +1,67 @@
+#include "bipednav/navigation/bt_navigation_leaves.hpp"
+
+namespace bipednav::navigation {
+namespace {
+
+std::vector<BtLeafSpec> make_specs() {
+  using P = BtPortSpec;
+  const auto C = BtNodeKind::Condition;
+  const auto A = BtNodeKind::Action;
+  const P goal = P::input("goal", BtType::Pose2, "{goal}");
+  const P error_code = P::output("error_code", BtType::Int);
+  return {
+      {"SensorsAlive", C, {}, "every sensor delivered a frame within its timeout"},
+      {"IsLocalizationHealthy", C, {}, "the localization reports good health"},
+      {"IsStartValid", C, {}, "the robot's footprint is not in collision on the costmaps"},
+      {"IsGoalValid",
+       C,
+       {goal, error_code},
+       "the goal is on the map and not in collision; else error_code = BLOCKED_GOAL (55) / OUT_OF_MAP (63)"},
+      {"GoalReached", C, {goal}, "the robot is within the goal checker's xy and yaw tolerance of goal"},
+      {"IsPathValid",
+       C,
+       {P::input("path", BtType::Path, "{path}")},
+       "path is non-empty and collision-free on the costmaps"},
+      {"CanRotateInPlace", C, {}, "the robot profile allows turning on the spot"},
+      {"ComputePathToPose",
+       A,
+       {goal, P::output("path", BtType::Path), error_code},
+       "get_path: plan from the robot to goal; SUCCESS writes path, FAILURE writes the MBF code (50-65)"},
+      {"FollowPath",
+       A,
+       {P::input("path", BtType::Path, "{path}"), error_code},
+       "exe_path: follow path, re-reading it every tick (replans); SUCCESS at the goal, FAILURE with the MBF code "
+       "(100-118); halted = stop"},
+      {"ClearCostmaps", A, {}, "recovery: clear the obstacle layers"},
+      {"BackUp",
+       A,
+       {P::input("distance_m", BtType::Double, "0.3"), P::input("speed_mps", BtType::Double, "0.1")},
+       "recovery: drive backwards distance_m at speed_mps"},
+      {"RotateInPlace", A, {P::input("angle_rad", BtType::Double, "1.5708")}, "recovery: turn by angle_rad"},
+      {"Wait", A, {P::input("duration_s", BtType::Double, "2.0")}, "recovery: stand still for duration_s of sim time"},
+      {"RelaxConstraints",
+       A,
+       {},
+       "recovery: relax the planner's constraints (e.g. smaller inflation) for the next plans"},
+      {"Stop", A, {}, "send a zero velocity command"},
+  };
+}
+
+}  // namespace
+
+std::vector<BtLeafSpec> navigation_leaf_specs() { return make_specs(); }
+
+BtPorts bt_leaf_ports(const std::string& id) {
+  for (const auto& s : navigation_leaf_specs())
+    if (s.id == id) return s.ports;
+  throw Error("bt_leaf_ports: '" + id + "' is not a leaf of the default navigation tree");
+}
+
+std::vector<std::string> unbound_navigation_leaves(const BtFactory& factory) {
+  std::vector<std::string> out;
+  for (const auto& s : navigation_leaf_specs())
+    if (!factory.has(s.id)) out.push_back(s.id);
+  return out;
+}
+
+}  // namespace bipednav::navigation

@@ -1,0 +1,277 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <deque>
+#include <map>
+
+#include "bipednav/common/outcome.hpp"
+#include "bipednav/navigation/bt_navigation_leaves.hpp"
+#include "bipednav/navigation/bt_xml.hpp"
+#include "test_data.hpp"
+
+// The default tree (config/behavior_trees/navigate.xml) with its leaves bound to a scripted
+// fake navigation server.
+namespace bipednav::navigation {
+namespace {
+
+struct FakeNav {
+  // Script.
+  bool sensors_ok = true, localization_ok = true, start_ok = true, goal_ok = true;
+  bool can_rotate = true, path_valid = true, goal_reached = false;
+  bool plan_ok = true;
+  int follow_ticks = 20;                 // FollowPath succeeds on its n-th tick
+  std::deque<int> follow_failure_codes;  // each run fails on its 3rd tick with the next code
+  // Record.
+  std::vector<std::string> log;
+  std::vector<Pose2> planned_goals;
+  std::map<std::string, double> started_s;
+  int follow_tick = 0;
+
+  int count(const std::string& e) const { return static_cast<int>(std::count(log.begin(), log.end(), e)); }
+  std::vector<std::string> recoveries() const {
+    std::vector<std::string> out;
+    for (const auto& e : log)
+      if (e == "ClearCostmaps" || e == "BackUp" || e == "RotateInPlace" || e == "Wait" || e == "RelaxConstraints")
+        out.push_back(e);
+    return out;
+  }
+};
+
+// An action that lasts `duration(self)` seconds of tree time.
+BtLambdaAction::StepFn timed(FakeNav& n, std::string label, std::function<double(BtNode&)> duration) {
+  return [&n, label, duration](BtNode& self, double now_s, bool first) {
+    if (first) {
+      n.log.push_back(label);
+      n.started_s[self.path()] = now_s;
+    }
+    return now_s - n.started_s[self.path()] + 1e-9 >= duration(self) ? BtStatus::SUCCESS : BtStatus::RUNNING;
+  };
+}
+
+void bind_conditions(BtFactory& f, FakeNav& n) {
+  auto flag = [&f](const std::string& id, const bool* value) {
+    f.register_simple_condition(
+        id, [value](BtNode&, double) { return *value; }, bt_leaf_ports(id));
+  };
+  flag("SensorsAlive", &n.sensors_ok);
+  flag("IsLocalizationHealthy", &n.localization_ok);
+  flag("IsStartValid", &n.start_ok);
+  flag("CanRotateInPlace", &n.can_rotate);
+  flag("IsPathValid", &n.path_valid);
+  flag("GoalReached", &n.goal_reached);
+  f.register_simple_condition(
+      "IsGoalValid",
+      [&n](BtNode& self, double) {
+        if (!n.goal_ok) self.set_output("error_code", static_cast<int>(code(Outcome::BLOCKED_GOAL)));
+        return n.goal_ok;
+      },
+      bt_leaf_ports("IsGoalValid"));
+}
+
+void bind_actions(BtFactory& f, FakeNav& n) {
+  f.register_simple_action(
+      "ComputePathToPose",
+      [&n](BtNode& self, double, bool) {
+        const Pose2 goal = self.input<Pose2>("goal");
+        n.planned_goals.push_back(goal);
+        n.log.push_back("plan");
+        if (!n.plan_ok) {
+          self.set_output("error_code", static_cast<int>(code(Outcome::NO_PATH_FOUND)));
+          return BtStatus::FAILURE;
+        }
+        Path p;
+        p.poses = {Pose2{}, goal};
+        self.set_output("path", p);
+        return BtStatus::SUCCESS;
+      },
+      {}, bt_leaf_ports("ComputePathToPose"));
+  f.register_simple_action(
+      "FollowPath",
+      [&n](BtNode& self, double, bool first) {
+        if (first) {
+          n.log.push_back("follow");
+          n.follow_tick = 0;
+        }
+        if (self.input<Path>("path").empty()) return BtStatus::FAILURE;
+        ++n.follow_tick;
+        if (!n.follow_failure_codes.empty() && n.follow_tick == 3) {
+          self.set_output("error_code", n.follow_failure_codes.front());
+          n.follow_failure_codes.pop_front();
+          return BtStatus::FAILURE;
+        }
+        return n.follow_tick >= n.follow_ticks ? BtStatus::SUCCESS : BtStatus::RUNNING;
+      },
+      [&n](BtNode&) { n.log.push_back("halt FollowPath"); }, bt_leaf_ports("FollowPath"));
+  auto instant = [&f, &n](const std::string& id) {
+    f.register_simple_action(id, timed(n, id, [](BtNode&) { return 0.0; }), {}, bt_leaf_ports(id));
+  };
+  instant("ClearCostmaps");
+  instant("RelaxConstraints");
+  instant("Stop");
+  f.register_simple_action(
+      "BackUp",
+      timed(n, "BackUp", [](BtNode& s) { return s.input<double>("distance_m") / s.input<double>("speed_mps"); }),
+      [&n](BtNode&) { n.log.push_back("halt BackUp"); }, bt_leaf_ports("BackUp"));
+  f.register_simple_action("RotateInPlace",
+                           timed(n, "RotateInPlace", [](BtNode& s) { return std::abs(s.input<double>("angle_rad")); }),
+                           {}, bt_leaf_ports("RotateInPlace"));
+  f.register_simple_action(
+      "Wait", timed(n, "Wait", [](BtNode& s) { return s.input<double>("duration_s"); }),
+      [&n](BtNode&) { n.log.push_back("halt Wait"); }, bt_leaf_ports("Wait"));
+}
+
+struct NavigateTreeTest : ::testing::Test {
+  FakeNav nav;
+  BtFactory factory;
+  std::shared_ptr<Blackboard> bb = Blackboard::create();
+  double t = 0.0;
+  int step = 0;
+
+  void SetUp() override {
+    bind_conditions(factory, nav);
+    bind_actions(factory, nav);
+    bb->set("goal", Pose2{3.0, 1.0, 0.0});
+  }
+  BehaviorTree load() {
+    return load_tree_xml((bipednav::test::source_dir() / "config/behavior_trees/navigate.xml").string(), factory, bb);
+  }
+  // Ticks at 10 Hz until the tree completes or `until_s`; `each` runs before every tick.
+  BtStatus run(BehaviorTree& tree, double until_s, const std::function<void(double)>& each = {}) {
+    BtStatus s = BtStatus::RUNNING;
+    while (s == BtStatus::RUNNING && t <= until_s + 1e-9) {
+      if (each) each(t);
+      s = tree.tick(t);
+      t = ++step * 0.1;
+    }
+    return s;
+  }
+  int error_code() const { return bb->get<int>("error_code").value_or(-1); }
+};
+
+TEST_F(NavigateTreeTest, AllLeavesAreDeclaredAndBound) {
+  EXPECT_TRUE(unbound_navigation_leaves(factory).empty());
+  auto tree = load();
+  EXPECT_EQ(tree.main_tree_id(), "Navigate");
+  EXPECT_NE(tree.find("Navigate/StopOnExit/NavigateThenStop/RestartOnNewGoal/StartNavigation/NavigateUntilPreempted/"
+                      "Navigation/NavigationSequence/Planning/PlanWithRecoveries/ComputePathToPose"),
+            nullptr);
+}
+
+TEST_F(NavigateTreeTest, NormalRunReplansAlongsideControlAndStops) {
+  auto tree = load();
+  std::vector<std::string> running;
+  const BtStatus s = run(tree, 30.0, [&](double now) {
+    if (std::abs(now - 1.0) < 1e-6)
+      for (const BtNode* n : tree.running_leaves()) running.push_back(n->name());
+  });
+  EXPECT_EQ(s, BtStatus::SUCCESS);
+  EXPECT_NEAR(t, 2.0, 1e-9);  // FollowPath's 20th tick at 1.9 s
+  EXPECT_EQ(nav.count("follow"), 1);
+  EXPECT_EQ(nav.count("plan"), 1 + 10);  // initial plan + replans at 0, 0.2, ..., 1.8 s
+  EXPECT_TRUE(nav.recoveries().empty());
+  EXPECT_EQ(nav.log.back(), "Stop");
+  EXPECT_EQ(nav.count("Stop"), 1);
+  EXPECT_EQ(running, std::vector<std::string>{"FollowPath"});
+  EXPECT_EQ(bb->get<Path>("path")->poses.back().x, 3.0);
+}
+
+TEST_F(NavigateTreeTest, PlanningFailureCyclesRecoveriesThenFailsWithNoPath) {
+  nav.plan_ok = false;
+  nav.can_rotate = false;
+  auto tree = load();
+  EXPECT_EQ(run(tree, 60.0), BtStatus::FAILURE);
+  EXPECT_EQ(nav.count("plan"), 5);  // 1 + number_of_retries
+  const std::vector<std::string> expected = {"ClearCostmaps", "RelaxConstraints", "BackUp", "Wait"};
+  EXPECT_EQ(nav.recoveries(), expected);  // no RotateInPlace: the robot may not turn in place
+  EXPECT_EQ(error_code(), code(Outcome::NO_PATH_FOUND));
+  EXPECT_EQ(nav.log.back(), "Stop");
+  EXPECT_EQ(nav.count("follow"), 0);
+}
+
+TEST_F(NavigateTreeTest, PlanningRecoveriesRotateWhereAllowed) {
+  nav.plan_ok = false;
+  auto tree = load();
+  EXPECT_EQ(run(tree, 60.0), BtStatus::FAILURE);
+  const std::vector<std::string> expected = {"ClearCostmaps", "RelaxConstraints", "RotateInPlace", "BackUp"};
+  EXPECT_EQ(nav.recoveries(), expected);
+}
+
+TEST_F(NavigateTreeTest, ControlFailureRecoversAndSucceeds) {
+  nav.follow_failure_codes = {code(Outcome::BLOCKED_PATH)};
+  auto tree = load();
+  EXPECT_EQ(run(tree, 30.0), BtStatus::SUCCESS);
+  EXPECT_EQ(nav.count("follow"), 2);
+  EXPECT_EQ(nav.recoveries(), std::vector<std::string>{"ClearCostmaps"});
+  EXPECT_EQ(error_code(), code(Outcome::BLOCKED_PATH));  // the last controller failure, for the log
+  EXPECT_EQ(nav.log.back(), "Stop");
+}
+
+TEST_F(NavigateTreeTest, ExhaustedControlRecoveriesRerunPlanning) {
+  nav.follow_failure_codes = std::deque<int>(5, code(Outcome::ROBOT_STUCK));
+  auto tree = load();
+  EXPECT_EQ(run(tree, 120.0), BtStatus::SUCCESS);
+  EXPECT_EQ(nav.count("follow"), 6);
+  const std::vector<std::string> expected = {"ClearCostmaps", "Wait", "BackUp", "RotateInPlace"};
+  EXPECT_EQ(nav.recoveries(), expected);
+  // The Planning sub-tree ran again between the 5th and the 6th control attempt.
+  const auto fifth = std::find(nav.log.rbegin(), nav.log.rend(), "follow");
+  EXPECT_EQ(*std::next(fifth), "plan");
+}
+
+TEST_F(NavigateTreeTest, NewGoalPreemptsAndIsReached) {
+  nav.follow_ticks = 30;
+  auto tree = load();
+  const Pose2 new_goal{5.0, 5.0, 1.0};
+  const BtStatus s = run(tree, 30.0, [&](double now) {
+    if (std::abs(now - 1.0) < 1e-6) bb->set("goal", new_goal);
+  });
+  EXPECT_EQ(s, BtStatus::SUCCESS);
+  EXPECT_EQ(nav.count("halt FollowPath"), 1);
+  EXPECT_EQ(nav.count("follow"), 2);
+  EXPECT_EQ(bb->get<Pose2>("active_goal")->x, 5.0);
+  EXPECT_EQ(nav.planned_goals.back().y, 5.0);
+  EXPECT_EQ(bb->get<Path>("path")->poses.back().theta, 1.0);
+  EXPECT_NEAR(t, 1.0 + 3.0, 1e-9);  // the second run needs its own 30 ticks
+}
+
+TEST_F(NavigateTreeTest, GoalReachedEndsControlEarly) {
+  nav.follow_ticks = 1000;
+  auto tree = load();
+  EXPECT_EQ(run(tree, 30.0, [&](double now) { nav.goal_reached = now > 1.45; }), BtStatus::SUCCESS);
+  EXPECT_EQ(nav.count("halt FollowPath"), 1);
+  EXPECT_EQ(nav.log.back(), "Stop");
+}
+
+TEST_F(NavigateTreeTest, BlockedGoalFailsAfterValidationRecoveries) {
+  nav.goal_ok = false;
+  auto tree = load();
+  EXPECT_EQ(run(tree, 30.0), BtStatus::FAILURE);
+  EXPECT_EQ(error_code(), code(Outcome::BLOCKED_GOAL));
+  EXPECT_EQ(nav.recoveries(), (std::vector<std::string>{"ClearCostmaps", "BackUp"}));
+  EXPECT_EQ(nav.count("plan"), 0);
+  EXPECT_EQ(nav.log.back(), "Stop");
+}
+
+TEST_F(NavigateTreeTest, SilentSensorsStopTheRobotAndNavigationResumes) {
+  auto tree = load();
+  const BtStatus s = run(tree, 30.0, [&](double now) { nav.sensors_ok = !(now > 0.95 && now < 1.55); });
+  EXPECT_EQ(s, BtStatus::SUCCESS);
+  EXPECT_EQ(nav.count("halt FollowPath"), 1);
+  EXPECT_EQ(nav.count("halt Wait"), 1);  // health returned while waiting
+  EXPECT_EQ(nav.count("follow"), 2);     // restarted with a fresh plan
+  const auto stop = std::find(nav.log.begin(), nav.log.end(), "Stop");
+  // In the tick the sensors went silent: the gate stops the robot, waits, and halts control.
+  ASSERT_GE(nav.log.end() - stop, 3);
+  EXPECT_EQ(*std::next(stop), "Wait");
+  EXPECT_EQ(*std::next(stop, 2), "halt FollowPath");
+}
+
+TEST_F(NavigateTreeTest, BadLocalizationForTooLongFails) {
+  auto tree = load();
+  EXPECT_EQ(run(tree, 30.0, [&](double now) { nav.localization_ok = now < 0.5; }), BtStatus::FAILURE);
+  EXPECT_NEAR(t, 0.5 + 2.0 + 0.1, 1e-9);
+  EXPECT_EQ(nav.log.back(), "Stop");
+}
+
+}  // namespace
+}  // namespace bipednav::navigation
