@@ -21,6 +21,7 @@ SE3 to_se3(const ignition::math::Pose3d& p) {
 // pose graph; falls back to the raw pose when the graph cannot resolve it).
 template <typename T>
 SE3 pose_in_parent(const T& elem) {
+  if (elem.PoseRelativeTo().empty()) return to_se3(elem.RawPose());  // the common case, and fast
   ignition::math::Pose3d p;
   if (!elem.SemanticPose().Resolve(p).empty()) p = elem.RawPose();
   return to_se3(p);

