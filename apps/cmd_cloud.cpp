@@ -1,8 +1,280 @@
+// `bipednav cloud filter|segment` and `bipednav bench perception`.
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <functional>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
 #include "apps/commands.hpp"
+#include "bipednav/common/clock.hpp"
+#include "bipednav/common/error.hpp"
+#include "bipednav/io/pcd.hpp"
+#include "bipednav/io/ply.hpp"
+#include "bipednav/perception/ground_segmentation.hpp"
+#include "bipednav/perception/pass_through.hpp"
+#include "bipednav/perception/pipeline.hpp"
+#include "bipednav/perception/synthetic_scene.hpp"
+#include "bipednav/perception/voxel_grid.hpp"
 
 namespace bipednav::app {
+namespace {
 
-// Filled in by the module's issue.
-void add_cloud_commands(CLI::App& /*app*/, CLI::App& /*bench*/) {}
+namespace fs = std::filesystem;
+using perception::PassThroughParams;
+
+PointCloud read_cloud(const fs::path& file) {
+  std::string ext = file.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (ext == ".ply") return io::read_ply(file);
+  if (ext == ".pcd") return io::read_pcd(file);
+  throw Error(file.string() + ": unknown point cloud format (expected .pcd or .ply)");
+}
+
+struct BandOptions {
+  double range_m = std::numeric_limits<double>::infinity();
+  double zmin = -std::numeric_limits<double>::infinity();
+  double zmax = std::numeric_limits<double>::infinity();
+
+  void add_to(CLI::App* c) {
+    c->add_option("--range", range_m, "keep points within this distance of the origin [m]");
+    c->add_option("--zmin", zmin, "keep points with z >= this [m]");
+    c->add_option("--zmax", zmax, "keep points with z <= this [m]");
+  }
+  PassThroughParams params() const {
+    PassThroughParams p;
+    p.max_range_m = range_m;
+    p.min_height_m = zmin;
+    p.max_height_m = zmax;
+    return p;
+  }
+};
+
+struct FilterOptions {
+  std::string in, out, encoding = "binary_compressed";
+  double voxel_m = 0.0;
+  BandOptions band;
+};
+
+void run_filter(const FilterOptions& o) {
+  const io::PcdEncoding encoding = io::pcd_encoding_from_string(o.encoding);
+  const PointCloud in = read_cloud(o.in);
+  const Stopwatch sw;
+  PointCloud out = perception::pass_through(in, o.band.params());
+  const std::size_t after_band = out.size();
+  if (o.voxel_m > 0.0) {
+    perception::VoxelGridParams v;
+    v.leaf_size_m.setConstant(o.voxel_m);
+    out = perception::voxel_downsample(out, v);
+  }
+  const double ms = sw.elapsed_ms();
+  io::write_pcd(o.out, out, encoding);
+  std::printf("%s: %zu points, %zu after the pass-through, %zu after the voxel grid (%.2f ms) -> %s\n", o.in.c_str(),
+              in.size(), after_band, out.size(), ms, o.out.c_str());
+}
+
+struct SegmentOptions {
+  std::string in;
+  perception::RansacParams ransac;
+  std::uint64_t seed = 1;
+  bool json = false;
+  BandOptions band;
+};
+
+void run_segment(SegmentOptions o) {
+  o.ransac.validate();
+  const PointCloud in = perception::pass_through(read_cloud(o.in), o.band.params());
+  Rng rng(o.seed);
+  const Stopwatch sw;
+  const perception::PlaneFit fit = perception::fit_plane_ransac(in.points, o.ransac, rng);
+  const double ms = sw.elapsed_ms();
+  if (!fit.found) throw Error(o.in + ": no plane found (" + std::to_string(in.size()) + " points after the filter)");
+  if (!o.json) {
+    std::printf("plane %.6f %.6f %.6f %.6f, %zu of %zu points within %.3f m, %.2f ms\n", fit.plane[0], fit.plane[1],
+                fit.plane[2], fit.plane[3], fit.inliers, in.size(), o.ransac.distance_threshold_m, ms);
+    return;
+  }
+  nlohmann::json j;
+  j["file"] = o.in;
+  j["plane"] = {fit.plane[0], fit.plane[1], fit.plane[2], fit.plane[3]};
+  j["inliers"] = fit.inliers;
+  j["points"] = in.size();
+  j["distance_threshold_m"] = o.ransac.distance_threshold_m;
+  j["inlier_std_m"] = fit.inlier_std_m;
+  j["iterations"] = fit.iterations;
+  j["time_ms"] = ms;
+  std::printf("%s\n", j.dump(2).c_str());
+}
+
+void add_filter(CLI::App& cloud) {
+  auto o = std::make_shared<FilterOptions>();
+  CLI::App* c = cloud.add_subcommand("filter", "Pass-through / range filter and voxel grid; writes a PCD");
+  c->add_option("IN", o->in, "input cloud (.pcd or .ply)")->required();
+  c->add_option("OUT", o->out, "output .pcd")->required();
+  c->add_option("--voxel", o->voxel_m, "voxel leaf size [m] (0: no voxel grid)");
+  o->band.add_to(c);
+  c->add_option("--encoding", o->encoding, "ascii, binary or binary_compressed");
+  c->callback([o] { run_filter(*o); });
+}
+
+void add_segment(CLI::App& cloud) {
+  auto o = std::make_shared<SegmentOptions>();
+  CLI::App* c = cloud.add_subcommand("segment", "RANSAC plane fit (eq. 4.1-4.4)");
+  c->add_option("IN", o->in, "input cloud (.pcd or .ply)")->required();
+  c->add_option("--threshold", o->ransac.distance_threshold_m, "inlier distance [m]");
+  c->add_option("--probability", o->ransac.success_probability, "desired success probability (eq. 4.4)");
+  c->add_option("--max-iterations", o->ransac.max_iterations, "cap on the iteration count");
+  c->add_flag("--normal-prior", o->ransac.use_normal_prior, "only accept planes within 15 deg of horizontal");
+  c->add_option("--seed", o->seed, "RANSAC seed");
+  o->band.add_to(c);
+  c->add_flag("--json", o->json, "print one JSON object");
+  c->callback([o] { run_segment(*o); });
+}
+
+// ---- bench perception -------------------------------------------------------------------------
+
+// Looks for tests/data/<rel> or shared/data/<rel> above the working directory and the executable.
+fs::path find_data(const std::string& rel) {
+  std::error_code ec;
+  for (fs::path dir : {fs::current_path(), fs::read_symlink("/proc/self/exe", ec).parent_path()}) {
+    for (int up = 0; up < 6 && !dir.empty(); ++up, dir = dir.parent_path()) {
+      for (const fs::path& c : {dir / "tests" / "data" / rel, dir / "shared" / "data" / rel})
+        if (fs::exists(c)) return c;
+      if (dir == dir.parent_path()) break;
+    }
+  }
+  return {};
+}
+
+double median_ms(int reps, const std::function<void(int)>& f) {
+  std::vector<double> t;
+  for (int r = 0; r < reps; ++r) {
+    const Stopwatch sw;
+    f(r);
+    t.push_back(sw.elapsed_ms());
+  }
+  std::sort(t.begin(), t.end());
+  return t[t.size() / 2];
+}
+
+nlohmann::json voxel_figures(const PointCloud& c, double leaf_m, int reps) {
+  perception::VoxelGridParams v;
+  v.leaf_size_m.setConstant(leaf_m);
+  std::size_t out = 0, finite = 0;
+  for (const auto& p : c.points) finite += p.allFinite() ? 1u : 0u;
+  const double ms = median_ms(reps, [&](int) { out = perception::voxel_downsample(c, v).size(); });
+  return {{"points", c.size()}, {"finite_points", finite},
+          {"leaf_m", leaf_m},   {"voxels", out},
+          {"median_ms", ms},    {"reduction_percent", finite ? 100.0 * (1.0 - double(out) / double(finite)) : 0.0}};
+}
+
+nlohmann::json ransac_figures(const PointCloud& c, double threshold_m, int reps) {
+  perception::RansacParams p;
+  p.distance_threshold_m = threshold_m;
+  perception::PlaneFit fit;
+  std::vector<std::size_t> inliers;
+  const double ms = median_ms(reps, [&](int r) {
+    Rng rng(static_cast<std::uint64_t>(r) + 1);
+    fit = perception::fit_plane_ransac(c.points, p, rng);
+    inliers.push_back(fit.inliers);
+  });
+  std::sort(inliers.begin(), inliers.end());
+  return {{"points", c.size()},
+          {"distance_threshold_m", threshold_m},
+          {"median_ms", ms},
+          {"median_inliers", inliers[inliers.size() / 2]},
+          {"min_inliers", inliers.front()},
+          {"plane", {fit.plane[0], fit.plane[1], fit.plane[2], fit.plane[3]}},
+          {"iterations", fit.iterations}};
+}
+
+nlohmann::json pcl_figures(int reps) {
+  nlohmann::json j;
+  const fs::path table = find_data("pcl/table_scene_mug_stereo_textured.pcd");
+  const fs::path plane = find_data("pcl/sac_plane_test.pcd");
+  if (table.empty() || plane.empty()) return {{"skipped", "PCL test clouds not found (tests/data/pcl)"}};
+  const PointCloud raw = io::read_pcd(table);
+  PassThroughParams band;
+  band.min_height_m = 0.0;
+  band.max_height_m = 1.5;
+  j["table_scene_voxel_0.01"] = voxel_figures(raw, 0.01, reps);
+  j["table_scene_ransac_0.03"] = ransac_figures(perception::pass_through(raw, band), 0.03, reps);
+  j["sac_plane_test_ransac_0.03"] = ransac_figures(io::read_pcd(plane), 0.03, reps);
+  return j;
+}
+
+nlohmann::json frame_figures(const SensorFrame& frame, const RobotProfile& robot, const std::string& origin, int reps) {
+  perception::PerceptionPipeline pipe{perception::PerceptionParams{}};
+  perception::PerceptionOutput out;
+  std::vector<double> depth, lidar, seg, cls;
+  const double ms = median_ms(reps, [&](int) {
+    out = pipe.process(frame, robot);
+    depth.push_back(out.timings.depth_ms);
+    lidar.push_back(out.timings.lidar_ms);
+    seg.push_back(out.timings.segmentation_ms);
+    cls.push_back(out.timings.classification_ms);
+  });
+  const auto med = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+  };
+  const double reduction =
+      100.0 * (1.0 - double(out.depth_points_voxel) / double(std::max<std::size_t>(1, out.depth_points_in)));
+  std::size_t lidar_points = frame.lidar ? frame.lidar->size() : 0;
+  return {{"source", origin},
+          {"depth_clouds", frame.depth.size()},
+          {"lidar_points", lidar_points},
+          {"depth_points_finite", out.depth_points_in},
+          {"depth_voxels_0.02", out.depth_points_voxel},
+          {"voxel_reduction_percent", reduction},
+          {"thesis_voxel_reduction_percent", 91.07},
+          {"median_ms", ms},
+          {"depth_median_ms", med(depth)},
+          {"lidar_median_ms", med(lidar)},
+          {"segmentation_median_ms", med(seg)},
+          {"classification_median_ms", med(cls)},
+          {"plane_from_ransac", out.plane_from_ransac},
+          {"ground_plane", {out.ground_plane[0], out.ground_plane[1], out.ground_plane[2], out.ground_plane[3]}},
+          {"ground_points", out.ground.size()},
+          {"obstacle_points", out.obstacles.size()},
+          {"goal_median_ms", 5.0},
+          {"meets_goal_median", ms < 5.0}};
+}
+
+void run_perception_bench(int reps) {
+  nlohmann::json j;
+  j["reps"] = reps;
+  j["pcl_clouds"] = pcl_figures(reps);
+  const RobotProfile digit = perception::synthetic_digit_profile();
+  const SensorFrame frame = perception::synthetic_digit_frame(digit);
+  j["digit_frame"] = frame_figures(frame, digit, "synthetic (perception/synthetic_scene)", reps);
+  j["digit_depth_voxel_0.02"] = voxel_figures(frame.depth.front().cloud, 0.02, reps);
+  j["pcl_comparison"] =
+      "not in this binary: build the opt-in target bipednav_bench_pcl (-DBIPEDNAV_BENCH_PCL=ON, "
+      "needs libpcl-dev) for the ratios against pcl::VoxelGrid and pcl::SACSegmentation";
+  std::printf("%s\n", j.dump(2).c_str());
+}
+
+void add_perception_bench(CLI::App& bench) {
+  auto reps = std::make_shared<int>(15);
+  auto json = std::make_shared<bool>(false);
+  CLI::App* c = bench.add_subcommand("perception", "Voxel grid, RANSAC and the Digit frame pipeline timings");
+  c->add_option("--reps", *reps, "repetitions per figure (median reported)")->check(CLI::Range(1, 1000));
+  c->add_flag("--json", *json, "print one JSON object (the only output format)");
+  c->callback([reps] { run_perception_bench(*reps); });
+}
+
+}  // namespace
+
+void add_cloud_commands(CLI::App& app, CLI::App& bench) {
+  CLI::App* cloud = app.add_subcommand("cloud", "Point cloud tools (filter, segment)");
+  cloud->require_subcommand(1);
+  add_filter(*cloud);
+  add_segment(*cloud);
+  add_perception_bench(bench);
+}
 
 }  // namespace bipednav::app

@@ -43,16 +43,24 @@ SoaPoints finite_points(const std::vector<Eigen::Vector3f>& pts) {
   return s;
 }
 
-// Number of points with D_i < t (eq. 4.2, 4.3).
-std::size_t count_inliers(const SoaPoints& s, const Plane& pl, float t) {
+// Number of points with D_i < t (eq. 4.2, 4.3). Counted in blocks; once even all remaining points
+// could not reach `must_reach` the model cannot win and counting stops early (returns a lower bound).
+std::size_t count_inliers(const SoaPoints& s, const Plane& pl, float t, std::size_t must_reach = 0) {
   const float a = static_cast<float>(pl[0]), b = static_cast<float>(pl[1]), c = static_cast<float>(pl[2]),
               d = static_cast<float>(pl[3]);
   const float* x = s.x.data();
   const float* y = s.y.data();
   const float* z = s.z.data();
   const std::size_t n = s.size();
+  constexpr std::size_t kBlock = 4096;
   std::size_t count = 0;
-  for (std::size_t i = 0; i < n; ++i) count += std::fabs(a * x[i] + b * y[i] + c * z[i] + d) < t ? 1u : 0u;
+  for (std::size_t start = 0; start < n; start += kBlock) {
+    const std::size_t end = std::min(n, start + kBlock);
+    std::uint32_t block = 0;
+    for (std::size_t i = start; i < end; ++i) block += std::fabs(a * x[i] + b * y[i] + c * z[i] + d) < t ? 1u : 0u;
+    count += block;
+    if (count + (n - end) < must_reach) return count;
+  }
   return count;
 }
 
@@ -135,7 +143,7 @@ PlaneFit fit_plane_ransac(const std::vector<Eigen::Vector3f>& points, const Rans
     }
     ++best.iterations;
     if (!passes_prior(pl, params, cos_max)) continue;
-    const std::size_t count = count_inliers(s, pl, t);
+    const std::size_t count = count_inliers(s, pl, t, best.inliers);
     bool better = !best.found || count > best.inliers;
     if (!better && count == best.inliers) {
       if (best_std < 0.0) best_std = inlier_std(s, best.plane, t);
