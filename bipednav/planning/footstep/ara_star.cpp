@@ -115,7 +115,7 @@ class Search {
       if (goal_ >= 0 && (complete || !out.found || goal_g() < out.cost - 1e-9)) publish(proven_bound, out);
       if (!complete || eps <= p_.target_epsilon) break;
       eps = 1.0 + (eps - 1.0) * p_.epsilon_decrease;
-      if (eps < 1.001) eps = 1.0;
+      if (eps < 1.02) eps = 1.0;  // the last steps above 1 buy little
       eps = std::max(eps, p_.target_epsilon);
       reopen(eps);
     }

@@ -102,13 +102,15 @@ bool FootstepGraph::footprint_height(int ix, int iy, int itheta, float stance_z,
 
 bool FootstepGraph::whole_body_free(const StateKey& s, float z, int action) const {
   // Eq. 5: every IHM cell must stay above the terrain once aligned at the stance height.
-  const InverseHeightmap& ihm = lattice_.ihm(s.stance, action, s.itheta);
-  const auto quick = terrain_.range(s.ix + ihm.min_dx, s.iy + ihm.min_dy, s.ix + ihm.max_dx, s.iy + ihm.max_dy);
-  if (quick.max_h < ihm.min_height_m + z) return true;
-  for (const IhmCell& c : ihm.cells) {
-    const int x = s.ix + c.dx, y = s.iy + c.dy;
-    if (!terrain_.in_bounds(x, y) || !terrain_.known(x, y)) continue;
-    if (!(c.min_height_m + z > terrain_.max_h(x, y))) return false;
+  for (const IhmLayer& layer : lattice_.ihm(s.stance, action, s.itheta).layers) {
+    const auto quick =
+        terrain_.range(s.ix + layer.min_dx, s.iy + layer.min_dy, s.ix + layer.max_dx, s.iy + layer.max_dy);
+    if (quick.max_h < layer.min_height_m + z) continue;
+    for (const IhmCell& c : layer.cells) {
+      const int x = s.ix + c.dx, y = s.iy + c.dy;
+      if (!terrain_.in_bounds(x, y) || !terrain_.known(x, y)) continue;
+      if (!(c.min_height_m + z > terrain_.max_h(x, y))) return false;
+    }
   }
   return true;
 }

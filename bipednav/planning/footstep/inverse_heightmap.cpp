@@ -44,23 +44,30 @@ class SweptVolume {
       h = b;
     });
   }
-  InverseHeightmap result() const {
+  // Bands: below 0.1 m (soles in the air), below the torso (legs), the rest (body).
+  InverseHeightmap result(double torso_bottom_m) const {
+    const float bounds[3] = {0.1f, static_cast<float>(torso_bottom_m) - 1e-4f, std::numeric_limits<float>::infinity()};
     InverseHeightmap out;
-    out.min_height_m = std::numeric_limits<float>::infinity();
-    out.min_dx = out.min_dy = half_;
-    out.max_dx = out.max_dy = -half_;
+    out.layers.resize(3);
+    for (auto& l : out.layers) {
+      l.min_height_m = std::numeric_limits<float>::infinity();
+      l.min_dx = l.min_dy = half_;
+      l.max_dx = l.max_dy = -half_;
+    }
     for (int y = -half_; y <= half_; ++y) {
       for (int x = -half_; x <= half_; ++x) {
         const float h = height_[static_cast<std::size_t>(y + half_) * side_ + (x + half_)];
         if (!std::isfinite(h)) continue;
-        out.cells.push_back({static_cast<std::int16_t>(x), static_cast<std::int16_t>(y), h});
-        out.min_dx = std::min(out.min_dx, x);
-        out.max_dx = std::max(out.max_dx, x);
-        out.min_dy = std::min(out.min_dy, y);
-        out.max_dy = std::max(out.max_dy, y);
-        out.min_height_m = std::min(out.min_height_m, h);
+        IhmLayer& l = out.layers[h < bounds[0] ? 0 : (h < bounds[1] ? 1 : 2)];
+        l.cells.push_back({static_cast<std::int16_t>(x), static_cast<std::int16_t>(y), h});
+        l.min_dx = std::min(l.min_dx, x);
+        l.max_dx = std::max(l.max_dx, x);
+        l.min_dy = std::min(l.min_dy, y);
+        l.max_dy = std::max(l.max_dy, y);
+        l.min_height_m = std::min(l.min_height_m, h);
       }
     }
+    std::erase_if(out.layers, [](const IhmLayer& l) { return l.cells.empty(); });
     return out;
   }
 
@@ -122,7 +129,7 @@ InverseHeightmap build_inverse_heightmap(const FootstepAction& a, const BodyMode
     add_swing(vol, b, trail, a.peak_m);
     add_body(vol, b, trail, land);
   }
-  return vol.result();
+  return vol.result(b.torso_bottom_m);
 }
 
 std::vector<std::pair<std::int16_t, std::int16_t>> footprint_cells(const BodyModel& b, double theta, double res) {

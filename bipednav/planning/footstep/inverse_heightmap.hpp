@@ -9,11 +9,23 @@
 
 namespace bipednav::footstep {
 
-// An inverse heightmap with its bounding box and lowest height, for a quick conservative test.
-struct InverseHeightmap {
+// A band of an inverse heightmap's cells with its bounding box and lowest height, so a whole
+// band can be cleared at once when the terrain under its box stays below that height.
+struct IhmLayer {
   std::vector<struct IhmCell> cells;
   int min_dx = 0, max_dx = 0, min_dy = 0, max_dy = 0;
   float min_height_m = 0.0f;
+};
+
+// An inverse heightmap split into height bands (feet, legs, body): most terrain never reaches
+// the body, so its many cells are rarely compared one by one.
+struct InverseHeightmap {
+  std::vector<IhmLayer> layers;
+  std::size_t size() const {
+    std::size_t n = 0;
+    for (const auto& l : layers) n += l.cells.size();
+    return n;
+  }
 };
 
 // One cell of an inverse heightmap (section V-C): a lattice offset from the stance foot and

@@ -36,23 +36,38 @@ TerrainGrid::TerrainGrid(const mapping::Heightmap& map, double cell_m) {
   }
   for (std::size_t i = 0; i < n; ++i)
     if (count_[i] > 0) mean_[i] = static_cast<float>(sum[i] / count_[i]);
-  tiles_x_ = (geometry_.width + kTile - 1) / kTile;
-  tiles_y_ = (geometry_.height + kTile - 1) / kTile;
-  const std::size_t nt = static_cast<std::size_t>(tiles_x_) * tiles_y_;
-  tile_max_.assign(nt, -std::numeric_limits<float>::infinity());
-  tile_min_.assign(nt, std::numeric_limits<float>::infinity());
-  tile_known_.assign(nt, 1);
-  for (int y = 0; y < geometry_.height; ++y) {
-    for (int x = 0; x < geometry_.width; ++x) {
-      const std::size_t t = static_cast<std::size_t>(y / kTile) * tiles_x_ + x / kTile;
-      const std::size_t i = idx(x, y);
-      if (count_[i] == 0) {
-        tile_known_[t] = 0;
-        continue;
+  build_sparse_table();
+}
+
+void TerrainGrid::build_sparse_table() {
+  const int w = geometry_.width, h = geometry_.height;
+  Level base;
+  base.max_h.resize(geometry_.size());
+  base.min_h.resize(geometry_.size());
+  base.all_known.resize(geometry_.size());
+  for (std::size_t i = 0; i < geometry_.size(); ++i) {
+    const bool k = count_[i] > 0;
+    base.max_h[i] = k ? max_[i] : -std::numeric_limits<float>::infinity();
+    base.min_h[i] = k ? min_[i] : std::numeric_limits<float>::infinity();
+    base.all_known[i] = k;
+  }
+  levels_.push_back(std::move(base));
+  for (int s = 1; 2 * s <= std::max(w, h); s *= 2) {
+    const Level& prev = levels_.back();
+    Level next = prev;
+    for (int y = 0; y < h; ++y) {
+      for (int x = 0; x < w; ++x) {
+        const std::size_t i = idx(x, y);
+        for (const auto& [dx, dy] : {std::pair{s, 0}, {0, s}, {s, s}}) {
+          if (x + dx >= w || y + dy >= h) continue;
+          const std::size_t j = idx(x + dx, y + dy);
+          next.max_h[i] = std::max(next.max_h[i], prev.max_h[j]);
+          next.min_h[i] = std::min(next.min_h[i], prev.min_h[j]);
+          next.all_known[i] = next.all_known[i] && prev.all_known[j];
+        }
       }
-      tile_max_[t] = std::max(tile_max_[t], max_[i]);
-      tile_min_[t] = std::min(tile_min_[t], min_[i]);
     }
+    levels_.push_back(std::move(next));
   }
 }
 
@@ -66,13 +81,22 @@ TerrainGrid::RangeSummary TerrainGrid::range(int x0, int y0, int x1, int y1) con
     r.all_known = false;
     return r;
   }
-  for (int ty = y0 / kTile; ty <= y1 / kTile; ++ty) {
-    for (int tx = x0 / kTile; tx <= x1 / kTile; ++tx) {
-      const std::size_t t = static_cast<std::size_t>(ty) * tiles_x_ + tx;
-      r.max_h = std::max(r.max_h, tile_max_[t]);
-      r.min_h = std::min(r.min_h, tile_min_[t]);
-      r.all_known = r.all_known && tile_known_[t];
+  int level = 0;
+  while ((2 << level) <= std::min(x1 - x0 + 1, y1 - y0 + 1) && level + 1 < static_cast<int>(levels_.size())) ++level;
+  const int side = 1 << level;
+  const Level& L = levels_[level];
+  // Cover the rectangle with (overlapping) squares of the level's side.
+  for (int yy = y0;; yy += side) {
+    const int sy = std::min(yy, y1 - side + 1);
+    for (int xx = x0;; xx += side) {
+      const int sx = std::min(xx, x1 - side + 1);
+      const std::size_t i = idx(sx, sy);
+      r.max_h = std::max(r.max_h, L.max_h[i]);
+      r.min_h = std::min(r.min_h, L.min_h[i]);
+      r.all_known = r.all_known && L.all_known[i];
+      if (sx + side > x1) break;
     }
+    if (sy + side > y1) break;
   }
   return r;
 }

@@ -23,9 +23,9 @@ class TerrainGrid {
   float min_h(int x, int y) const { return min_[idx(x, y)]; }
   float mean_h(int x, int y) const { return mean_[idx(x, y)]; }
 
-  // Conservative summary of the cells in [x0, x1] x [y0, y1] (clipped to the grid) from 8 x 8
-  // tiles: an upper bound of their max, a lower bound of their min, and whether every tile
-  // touched is fully known. Lets the planner accept flat, clear regions without a cell loop.
+  // Exact summary of the cells in [x0, x1] x [y0, y1] (clipped to the grid): their max and min
+  // height and whether all are known, from a 2D sparse table of power-of-two squares (a few
+  // lookups per query). Lets the planner accept flat, clear regions without a cell loop.
   struct RangeSummary {
     float max_h, min_h;
     bool all_known;
@@ -38,10 +38,13 @@ class TerrainGrid {
   mapping::GridGeometry geometry_;
   std::vector<float> max_, min_, mean_;
   std::vector<std::uint16_t> count_;
-  static constexpr int kTile = 8;
-  int tiles_x_ = 0, tiles_y_ = 0;
-  std::vector<float> tile_max_, tile_min_;
-  std::vector<std::uint8_t> tile_known_;
+  void build_sparse_table();
+  // Level l holds, per cell, the summary of the 2^l x 2^l square starting there (clipped).
+  struct Level {
+    std::vector<float> max_h, min_h;
+    std::vector<std::uint8_t> all_known;
+  };
+  std::vector<Level> levels_;
 };
 
 }  // namespace bipednav::footstep

@@ -1,0 +1,27 @@
+#pragma once
+
+#include <filesystem>
+
+#include "bipednav/mapping/heightmap.hpp"
+
+namespace bipednav::io {
+
+// How grey values of a heightmap image become heights (grid_map's image_to_gridmap convention):
+// height = min + v / 255 * (max - min); fully transparent pixels are unknown. Image row 0 is the
+// map's top (largest y); the map's origin is its lower-left corner.
+struct HeightmapImageParams {
+  double resolution_m = 0.02;
+  double min_height_m = -0.5;
+  double max_height_m = 1.0;
+  double origin_x_m = 0.0;
+  double origin_y_m = 0.0;
+
+  void validate() const;
+};
+
+// Reads a PNG heightmap. `file` is the PNG itself (using `params`), or a YAML file with keys
+// image (relative to the YAML), resolution_m, min_height_m, max_height_m, origin_x_m, origin_y_m.
+// Throws FileError naming the file and the field for unreadable or malformed input.
+mapping::Heightmap read_heightmap_image(const std::filesystem::path& file, const HeightmapImageParams& params = {});
+
+}  // namespace bipednav::io
