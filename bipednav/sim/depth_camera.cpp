@@ -20,7 +20,7 @@ void DepthCameraParams::validate() const {
 }
 
 DepthCamera::DepthCamera(const DepthCameraParams& params, std::string frame_id, std::uint64_t seed)
-    : params_(params), frame_id_(std::move(frame_id)), rng_(seed) {
+    : params_(params), frame_id_(std::move(frame_id)), noise_(seed) {
   params_.validate();
   const int w = params_.width, h = params_.height;
   for (int tv = 0; tv < h; tv += 4)
@@ -60,14 +60,14 @@ PointCloud DepthCamera::capture_at(double stamp_s, const SE3& T_world_camera, co
   cloud.stamp_s = stamp_s;
   const float nan = std::numeric_limits<float>::quiet_NaN();
   cloud.points.assign(rays_.size(), Eigen::Vector3f(nan, nan, nan));
+  const auto z_min = static_cast<float>(params_.min_range_m), z_max = static_cast<float>(params_.max_range_m);
+  const auto k = static_cast<float>(params_.noise_coeff_per_m);
   for (std::size_t i = 0; i < rays_.size(); ++i) {
-    const float range = ranges_[i];
-    if (!std::isfinite(range)) continue;
-    const double z = static_cast<double>(range) * rays_[i].x();
-    if (z < params_.min_range_m || z > params_.max_range_m) continue;
-    const double z_noisy = z + rng_.normal(0.0, params_.noise_coeff_per_m * z * z);
-    if (!(z_noisy > 0.0)) continue;
-    cloud.points[order_[i]] = rays_[i] * static_cast<float>(range * z_noisy / z);
+    const float z = ranges_[i] * rays_[i].x();  // depth; +inf (no hit) fails the test below
+    if (!(z >= z_min && z <= z_max)) continue;
+    const float z_noisy = z + k * z * z * noise_();
+    if (!(z_noisy > 0.0f)) continue;
+    cloud.points[order_[i]] = rays_[i] * (ranges_[i] * z_noisy / z);
   }
   return cloud;
 }

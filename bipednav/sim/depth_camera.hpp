@@ -7,8 +7,8 @@
 
 #include "bipednav/common/angles.hpp"
 #include "bipednav/common/point_cloud.hpp"
-#include "bipednav/common/rng.hpp"
 #include "bipednav/common/se3.hpp"
+#include "bipednav/sim/gaussian_noise.hpp"
 #include "bipednav/sim/raycaster.hpp"
 
 namespace bipednav::sim {
@@ -50,7 +50,7 @@ class DepthCamera {
  private:
   DepthCameraParams params_;
   std::string frame_id_;
-  Rng rng_;
+  GaussianNoise noise_;
   std::uint64_t count_ = 0;
   std::vector<int> order_;             // ray index -> pixel index, 4 x 4 tiles for packet coherence
   std::vector<Eigen::Vector3f> rays_;  // unit rays in tile order, camera frame

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include "bipednav/common/error.hpp"
@@ -54,6 +55,16 @@ void set_instance_transform(RTCGeometry inst, const SE3& T) {
   rtcCommitGeometry(inst);
 }
 
+// Height of an unbounded horizontal plane (ground, ceiling), which is intersected analytically:
+// kept out of the BVH, it would make every node's bounds huge.
+std::optional<double> horizontal_plane_z(const Geometry& g) {
+  const auto* p = std::get_if<Plane>(&g.shape);
+  if (!p || p->size_m.x() > 0 || p->size_m.y() > 0 || !(p->normal.norm() > 0)) return std::nullopt;
+  const Eigen::Vector3d n = g.T_parent_shape.linear() * p->normal.normalized();
+  if (std::abs(n.z()) < 1.0 - 1e-9) return std::nullopt;
+  return g.T_parent_shape.translation().z();
+}
+
 }  // namespace
 
 struct RayCaster::Impl {
@@ -63,7 +74,18 @@ struct RayCaster::Impl {
   std::vector<RTCScene> actor_scenes;
   std::vector<RTCGeometry> actor_instances;
   std::vector<Actor> actors;
+  std::vector<float> plane_z;  // unbounded horizontal planes
   std::size_t static_triangles = 0;
+
+  // Distance to the nearest horizontal plane along the ray, +inf if none is ahead.
+  float plane_hit(float oz, float dz) const {
+    float best = kInf;
+    for (float z : plane_z) {
+      const float t = (z - oz) / dz;
+      if (t >= 0.0f && t < best) best = t;
+    }
+    return best;
+  }
   double time_s = std::numeric_limits<double>::quiet_NaN();
 
   ~Impl() {
@@ -90,7 +112,12 @@ RayCaster::RayCaster(const World& world, const RayCasterParams& params) : impl_(
   const RTCSceneFlags robust = RTC_SCENE_FLAG_ROBUST;  // watertight: no rays slip through shared edges
   d.statics = new_scene(d.device, robust, RTC_BUILD_QUALITY_HIGH);
   TriangleSoup soup;
-  for (const Geometry& g : world.statics) soup.append(tessellate(g, params.tessellation));
+  for (const Geometry& g : world.statics) {
+    if (const auto z = horizontal_plane_z(g))
+      d.plane_z.push_back(static_cast<float>(*z));
+    else
+      soup.append(tessellate(g, params.tessellation));
+  }
   d.static_triangles = soup.size();
   attach_triangles(d.device, d.statics, soup);
   rtcCommitScene(d.statics);
@@ -157,12 +184,14 @@ float RayCaster::cast(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir,
   rh.ray.dir_y = static_cast<float>(u.y());
   rh.ray.dir_z = static_cast<float>(u.z());
   rh.ray.tnear = 0.0f;
-  rh.ray.tfar = max_range_m;
+  const float plane = impl_->plane_hit(rh.ray.org_z, rh.ray.dir_z);
+  rh.ray.tfar = std::min(max_range_m, plane);
   rh.ray.mask = 0xFFFFFFFFu;
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(impl_->top, &ctx, &rh);
-  return rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? kInf : rh.ray.tfar;
+  if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) return rh.ray.tfar;
+  return plane <= max_range_m ? plane : kInf;
 }
 
 void RayCaster::cast_batch(const Eigen::Vector3f& origin, std::span<const Eigen::Vector3f> unit_dirs, float max_range_m,
@@ -173,30 +202,39 @@ void RayCaster::cast_batch(const Eigen::Vector3f& origin, std::span<const Eigen:
   if (coherent) ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   alignas(64) RTCRayHit16 rh;
   alignas(64) int valid[16];
+  float plane[16];
+  // Embree only writes tfar and the hit, so the fields common to all rays are set once.
+  for (int i = 0; i < 16; ++i) {
+    rh.ray.org_x[i] = origin.x();
+    rh.ray.org_y[i] = origin.y();
+    rh.ray.org_z[i] = origin.z();
+    rh.ray.tnear[i] = 0.0f;
+    rh.ray.time[i] = 0.0f;
+    rh.ray.mask[i] = 0xFFFFFFFFu;
+    rh.ray.flags[i] = 0;
+    rh.ray.id[i] = static_cast<unsigned>(i);
+  }
   for (std::size_t base = 0; base < unit_dirs.size(); base += 16) {
     const std::size_t n = std::min<std::size_t>(16, unit_dirs.size() - base);
     for (std::size_t i = 0; i < 16; ++i) {
       const bool on = i < n;
       const Eigen::Vector3f& u = unit_dirs[base + (on ? i : 0)];
       valid[i] = on ? -1 : 0;
-      rh.ray.org_x[i] = origin.x();
-      rh.ray.org_y[i] = origin.y();
-      rh.ray.org_z[i] = origin.z();
       rh.ray.dir_x[i] = u.x();
       rh.ray.dir_y[i] = u.y();
       rh.ray.dir_z[i] = u.z();
-      rh.ray.tnear[i] = 0.0f;
-      rh.ray.tfar[i] = max_range_m;
-      rh.ray.time[i] = 0.0f;
-      rh.ray.mask[i] = 0xFFFFFFFFu;
-      rh.ray.flags[i] = 0;
-      rh.ray.id[i] = static_cast<unsigned>(i);
+      plane[i] = impl_->plane_hit(origin.z(), u.z());
+      rh.ray.tfar[i] = std::min(max_range_m, plane[i]);
       rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
       rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
     }
     rtcIntersect16(valid, impl_->top, &ctx, &rh);
-    for (std::size_t i = 0; i < n; ++i)
-      ranges[base + i] = rh.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID ? kInf : rh.ray.tfar[i];
+    for (std::size_t i = 0; i < n; ++i) {
+      if (rh.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID)
+        ranges[base + i] = rh.ray.tfar[i];
+      else
+        ranges[base + i] = plane[i] <= max_range_m ? plane[i] : kInf;
+    }
   }
 }
 

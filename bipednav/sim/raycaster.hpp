@@ -19,7 +19,8 @@ struct RayCasterParams {
 
 // Ray casting against a World on Embree 3. The static geometry is one triangle scene built
 // once; each actor is its own scene placed by an instance whose transform set_time() updates
-// (only the small top-level scene is rebuilt). Curved shapes are tessellated with facets that
+// (only the small top-level scene is rebuilt). Unbounded horizontal planes (the ground) are
+// intersected analytically, outside the BVH. Curved shapes are tessellated with facets that
 // straddle the true surface (radial error <= params.tessellation.max_chord_error_m, 0.5 mm by
 // default). Casting is const and thread-safe; set_time() is not. Move-only (owns the device).
 class RayCaster {

@@ -23,7 +23,7 @@ void Vlp16Params::validate() const {
 }
 
 Vlp16::Vlp16(const Vlp16Params& params, std::string frame_id, std::uint64_t seed)
-    : params_(params), frame_id_(std::move(frame_id)), rng_(seed) {
+    : params_(params), frame_id_(std::move(frame_id)), noise_(seed) {
   params_.validate();
   beams_.reserve(static_cast<std::size_t>(params_.columns) * params_.rings);
   for (int c = 0; c < params_.columns; ++c) {
@@ -62,8 +62,8 @@ void Vlp16::fire_column(int column, double t_s, const RayCaster& caster, const S
   for (int r = 0; r < params_.rings; ++r) {
     const float range = ranges_[r];
     if (!(range >= params_.min_range_m && range <= params_.max_range_m)) continue;
-    const double noisy = range + rng_.normal(0.0, params_.range_noise_stddev_m);
-    current_.points.push_back(beam(column, r) * static_cast<float>(noisy));
+    const float noisy = range + static_cast<float>(params_.range_noise_stddev_m) * noise_();
+    current_.points.push_back(beam(column, r) * noisy);
     current_.time_offsets_s.push_back(dt);
     current_.rings.push_back(static_cast<std::uint16_t>(r));
   }

@@ -9,8 +9,8 @@
 
 #include "bipednav/common/angles.hpp"
 #include "bipednav/common/point_cloud.hpp"
-#include "bipednav/common/rng.hpp"
 #include "bipednav/common/se3.hpp"
+#include "bipednav/sim/gaussian_noise.hpp"
 #include "bipednav/sim/raycaster.hpp"
 
 namespace bipednav::sim {
@@ -61,7 +61,7 @@ class Vlp16 {
 
   Vlp16Params params_;
   std::string frame_id_;
-  Rng rng_;
+  GaussianNoise noise_;
   std::vector<Eigen::Vector3f> beams_;  // column-major, sensor frame
   std::vector<Eigen::Vector3f> world_dirs_;
   std::vector<float> ranges_;
