@@ -20,23 +20,41 @@ void HeightmapFusionParams::validate() const {
   require(pos(max_range_m), "max_range_m", "> 0 m");
 }
 
-FuseResult fuse_height(float& h, float& var, float z, float var_z, const HeightmapFusionParams& p) {
+namespace {
+
+// The parameters of fuse_height() in the float arithmetic of the map.
+struct FuseConstants {
+  float min_var, max_var, gate_sq, growth;
+  explicit FuseConstants(const HeightmapFusionParams& p)
+      : min_var(static_cast<float>(p.min_cell_variance_m2)),
+        max_var(static_cast<float>(p.max_cell_variance_m2)),
+        gate_sq(static_cast<float>(p.gate_sigma * p.gate_sigma)),
+        growth(static_cast<float>(p.variance_growth_factor)) {}
+};
+
+inline FuseResult fuse(float& h, float& var, float z, float var_z, const FuseConstants& k) {
   if (!std::isfinite(h) || !std::isfinite(var)) {
     h = z;
-    var = std::max(var_z, static_cast<float>(p.min_cell_variance_m2));
+    var = std::max(var_z, k.min_var);
     return FuseResult::kInitialised;
   }
   const float innovation = z - h;
   const float s = var + var_z;
-  const float gate = static_cast<float>(p.gate_sigma);
-  if (innovation * innovation > gate * gate * s) {
-    var = std::min(var * static_cast<float>(p.variance_growth_factor), static_cast<float>(p.max_cell_variance_m2));
+  if (innovation * innovation > k.gate_sq * s) {
+    var = std::min(var * k.growth, k.max_var);
     return FuseResult::kRejected;
   }
   // eq. 2: h <- (var_z h + var z) / (var + var_z);  eq. 3: var <- var_z var / (var + var_z)
-  h = (var_z * h + var * z) / s;
-  var = std::max(var_z * var / s, static_cast<float>(p.min_cell_variance_m2));
+  const float inv_s = 1.0f / s;
+  h = (var_z * h + var * z) * inv_s;
+  var = std::max(var_z * var * inv_s, k.min_var);
   return FuseResult::kFused;
+}
+
+}  // namespace
+
+FuseResult fuse_height(float& h, float& var, float z, float var_z, const HeightmapFusionParams& p) {
+  return fuse(h, var, z, var_z, FuseConstants(p));
 }
 
 HeightmapFusion::HeightmapFusion(const GridGeometry& geometry, const HeightmapFusionParams& params)
@@ -44,26 +62,24 @@ HeightmapFusion::HeightmapFusion(const GridGeometry& geometry, const HeightmapFu
   params.validate();
   require(geometry.width > 0 && geometry.height > 0, "geometry.width/height", "> 0 cells");
   require(std::isfinite(geometry.resolution_m) && geometry.resolution_m > 0.0, "geometry.resolution_m", "> 0 m");
-  best_z_.resize(geometry.size());
-  best_d2_.resize(geometry.size());
-  stamp_.assign(geometry.size(), 0);
+  best_z_.assign(geometry.size(), -std::numeric_limits<float>::infinity());
+  best_d2_.assign(geometry.size(), 0.0f);
 }
 
 HeightmapUpdateStats HeightmapFusion::update(const std::vector<Eigen::Vector3f>& points_world,
                                              const Eigen::Vector3d& sensor_world) {
   HeightmapUpdateStats stats;
   if (!sensor_world.allFinite()) throw Error("heightmap update: sensor origin is not finite");
-  if (++update_count_ == 0) {
-    std::fill(stamp_.begin(), stamp_.end(), 0);
-    update_count_ = 1;
-  }
   const GridGeometry& g = map_.geometry();
   const float ox = static_cast<float>(g.origin_x_m), oy = static_cast<float>(g.origin_y_m);
   const float inv_res = static_cast<float>(1.0 / g.resolution_m);
   const Eigen::Vector3f s = sensor_world.cast<float>();
   const float max_d2 = static_cast<float>(params_.max_range_m * params_.max_range_m);
-  touched_.clear();
-  // Binning: the highest point per cell is the cell's observation z_c.
+  // Binning: the highest point per cell is the cell's observation z_c. best_z_ is -inf between
+  // updates, so no per-update reset is needed; touched cells are reset while fusing below.
+  int x0 = g.width, y0 = g.height, x1 = -1, y1 = -1;
+  float* best_z = best_z_.data();
+  float* best_d2 = best_d2_.data();
   for (const auto& p : points_world) {
     const float fx = (p.x() - ox) * inv_res, fy = (p.y() - oy) * inv_res;
     // Also false for NaN, so non-finite points drop out here.
@@ -71,28 +87,35 @@ HeightmapUpdateStats HeightmapFusion::update(const std::vector<Eigen::Vector3f>&
     const float d2 = (p - s).squaredNorm();
     if (d2 > max_d2) continue;
     ++stats.points_used;
-    const std::size_t i = g.index(static_cast<int>(fx), static_cast<int>(fy));
-    if (stamp_[i] != update_count_) {
-      stamp_[i] = update_count_;
-      best_z_[i] = p.z();
-      best_d2_[i] = d2;
-      touched_.push_back(static_cast<std::uint32_t>(i));
-    } else if (p.z() > best_z_[i]) {
-      best_z_[i] = p.z();
-      best_d2_[i] = d2;
-    }
+    const int cx = static_cast<int>(fx), cy = static_cast<int>(fy);
+    x0 = std::min(x0, cx);
+    x1 = std::max(x1, cx);
+    y0 = std::min(y0, cy);
+    y1 = std::max(y1, cy);
+    const std::size_t i = g.index(cx, cy);
+    const bool higher = p.z() > best_z[i];  // branch-free: the comparison is unpredictable
+    best_z[i] = higher ? p.z() : best_z[i];
+    best_d2[i] = higher ? d2 : best_d2[i];
   }
   auto& h = map_.heights();
   auto& v = map_.variances();
   const float k = static_cast<float>(params_.variance_per_m2);
   const float vmin = static_cast<float>(params_.min_observation_variance_m2);
-  for (const std::uint32_t i : touched_) {
-    const float var_z = std::max(k * best_d2_[i], vmin);
-    if (fuse_height(h[i], v[i], best_z_[i], var_z, params_) == FuseResult::kRejected)
-      ++stats.cells_rejected;
-    else
-      ++stats.cells_fused;
+  constexpr float kNone = -std::numeric_limits<float>::infinity();
+  const FuseConstants fk(params_);
+  std::size_t rejected = 0, fused = 0;
+  for (int y = y0; y <= y1; ++y) {
+    for (std::size_t i = g.index(x0, y), end = g.index(x1, y); i <= end; ++i) {
+      if (best_z[i] == kNone) continue;
+      const float var_z = std::max(k * best_d2[i], vmin);
+      const FuseResult r = fuse(h[i], v[i], best_z[i], var_z, fk);
+      rejected += r == FuseResult::kRejected;
+      fused += r != FuseResult::kRejected;
+      best_z[i] = kNone;
+    }
   }
+  stats.cells_rejected = rejected;
+  stats.cells_fused = fused;
   return stats;
 }
 

@@ -57,11 +57,8 @@ class HeightmapFusion {
  private:
   HeightmapFusionParams params_;
   Heightmap map_;
-  std::vector<float> best_z_;         // scratch per cell: highest z this update
-  std::vector<float> best_d2_;        // scratch per cell: its squared distance to the sensor
-  std::vector<std::uint32_t> stamp_;  // scratch per cell: update counter when last touched
-  std::vector<std::uint32_t> touched_;
-  std::uint32_t update_count_ = 0;
+  std::vector<float> best_z_;   // scratch per cell: highest z this update (-inf between updates)
+  std::vector<float> best_d2_;  // scratch per cell: its squared distance to the sensor
 };
 
 // Height / variance at a world point (nullopt outside the map or when the cell is unobserved).
