@@ -72,7 +72,7 @@ class Simulation {
   Pose2 true_pose() const { return robot_.state().pose; }
   Twist true_velocity() const { return robot_.state().velocity; }
   const RobotState& true_state() const { return robot_.state(); }
-  std::optional<CollisionEvent> first_collision() const { return first_collision_; }
+  const std::optional<CollisionEvent>& first_collision() const { return first_collision_; }
   bool in_collision() const { return proximity_.clearance_m < 0.0; }
   double clearance_m() const { return proximity_.clearance_m; }  // now
   double min_clearance_m() const { return min_clearance_m_; }    // over the run so far
