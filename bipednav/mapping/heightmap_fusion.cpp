@@ -62,8 +62,7 @@ HeightmapFusion::HeightmapFusion(const GridGeometry& geometry, const HeightmapFu
   params.validate();
   require(geometry.width > 0 && geometry.height > 0, "geometry.width/height", "> 0 cells");
   require(std::isfinite(geometry.resolution_m) && geometry.resolution_m > 0.0, "geometry.resolution_m", "> 0 m");
-  best_z_.assign(geometry.size(), -std::numeric_limits<float>::infinity());
-  best_d2_.assign(geometry.size(), 0.0f);
+  bins_.assign(geometry.size(), Bin{-std::numeric_limits<float>::infinity(), 0.0f});
 }
 
 HeightmapUpdateStats HeightmapFusion::update(const std::vector<Eigen::Vector3f>& points_world,
@@ -75,27 +74,25 @@ HeightmapUpdateStats HeightmapFusion::update(const std::vector<Eigen::Vector3f>&
   const float inv_res = static_cast<float>(1.0 / g.resolution_m);
   const Eigen::Vector3f s = sensor_world.cast<float>();
   const float max_d2 = static_cast<float>(params_.max_range_m * params_.max_range_m);
-  // Binning: the highest point per cell is the cell's observation z_c. best_z_ is -inf between
+  // Binning: the highest point per cell is the cell's observation z_c. bins_[].z is -inf between
   // updates, so no per-update reset is needed; touched cells are reset while fusing below.
   int x0 = g.width, y0 = g.height, x1 = -1, y1 = -1;
-  float* best_z = best_z_.data();
-  float* best_d2 = best_d2_.data();
+  std::size_t used = 0;
+  Bin* bins = bins_.data();
   for (const auto& p : points_world) {
     const float fx = (p.x() - ox) * inv_res, fy = (p.y() - oy) * inv_res;
     // Also false for NaN, so non-finite points drop out here.
     if (!(fx >= 0.0f && fy >= 0.0f && fx < float(g.width) && fy < float(g.height) && std::isfinite(p.z()))) continue;
     const float d2 = (p - s).squaredNorm();
     if (d2 > max_d2) continue;
-    ++stats.points_used;
+    ++used;
     const int cx = static_cast<int>(fx), cy = static_cast<int>(fy);
     x0 = std::min(x0, cx);
     x1 = std::max(x1, cx);
     y0 = std::min(y0, cy);
     y1 = std::max(y1, cy);
     const std::size_t i = g.index(cx, cy);
-    const bool higher = p.z() > best_z[i];  // branch-free: the comparison is unpredictable
-    best_z[i] = higher ? p.z() : best_z[i];
-    best_d2[i] = higher ? d2 : best_d2[i];
+    if (p.z() > bins[i].z) bins[i] = {p.z(), d2};
   }
   auto& h = map_.heights();
   auto& v = map_.variances();
@@ -104,14 +101,15 @@ HeightmapUpdateStats HeightmapFusion::update(const std::vector<Eigen::Vector3f>&
   constexpr float kNone = -std::numeric_limits<float>::infinity();
   const FuseConstants fk(params_);
   std::size_t rejected = 0, fused = 0;
+  stats.points_used = used;
   for (int y = y0; y <= y1; ++y) {
     for (std::size_t i = g.index(x0, y), end = g.index(x1, y); i <= end; ++i) {
-      if (best_z[i] == kNone) continue;
-      const float var_z = std::max(k * best_d2[i], vmin);
-      const FuseResult r = fuse(h[i], v[i], best_z[i], var_z, fk);
+      if (bins[i].z == kNone) continue;
+      const float var_z = std::max(k * bins[i].d2, vmin);
+      const FuseResult r = fuse(h[i], v[i], bins[i].z, var_z, fk);
       rejected += r == FuseResult::kRejected;
       fused += r != FuseResult::kRejected;
-      best_z[i] = kNone;
+      bins[i].z = kNone;
     }
   }
   stats.cells_rejected = rejected;

@@ -57,8 +57,13 @@ class HeightmapFusion {
  private:
   HeightmapFusionParams params_;
   Heightmap map_;
-  std::vector<float> best_z_;   // scratch per cell: highest z this update (-inf between updates)
-  std::vector<float> best_d2_;  // scratch per cell: its squared distance to the sensor
+  // Scratch per cell: highest z this update (-inf between updates) and its squared distance to the
+  // sensor, interleaved (separate arrays 4 KiB apart stall store forwarding: 4x slower).
+  struct Bin {
+    float z;
+    float d2;
+  };
+  std::vector<Bin> bins_;
 };
 
 // Height / variance at a world point (nullopt outside the map or when the cell is unobserved).
