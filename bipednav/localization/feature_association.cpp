@@ -1,0 +1,79 @@
+#include "bipednav/localization/feature_association.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <array>
+#include <cmath>
+
+#include "bipednav/common/error.hpp"
+
+namespace bipednav::localization {
+
+namespace {
+
+constexpr std::size_t kMaxNeighbours = 16;
+
+// Mean and principal axes of the neighbours of q (all within the correspondence distance).
+struct LocalFit {
+  std::array<std::uint32_t, kMaxNeighbours> idx{};
+  std::size_t n = 0;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  Eigen::Vector3d eigenvalues = Eigen::Vector3d::Zero();  // ascending
+  Eigen::Matrix3d eigenvectors = Eigen::Matrix3d::Identity();
+};
+
+bool fit_neighbours(const KdTree3f& tree, const Eigen::Vector3d& q, const AssociationParams& p, LocalFit& f) {
+  std::array<float, kMaxNeighbours> d2{};
+  const std::size_t k = std::min<std::size_t>(static_cast<std::size_t>(p.neighbours), kMaxNeighbours);
+  f.n = tree.knn(q.cast<float>(), k, f.idx.data(), d2.data());
+  if (f.n < k || d2[f.n - 1] > static_cast<float>(p.max_correspondence_m * p.max_correspondence_m)) return false;
+  for (std::size_t i = 0; i < f.n; ++i) f.mean += tree.point(f.idx[i]).cast<double>();
+  f.mean /= static_cast<double>(f.n);
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (std::size_t i = 0; i < f.n; ++i) {
+    const Eigen::Vector3d d = tree.point(f.idx[i]).cast<double>() - f.mean;
+    cov += d * d.transpose();
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(cov / static_cast<double>(f.n));
+  f.eigenvalues = es.eigenvalues();
+  f.eigenvectors = es.eigenvectors();
+  return true;
+}
+
+}  // namespace
+
+void AssociationParams::validate() const {
+  require(neighbours >= 3 && neighbours <= static_cast<int>(kMaxNeighbours), "neighbours", "in [3, 16]");
+  require(max_correspondence_m > 0.0, "max_correspondence_m", "> 0");
+  require(max_plane_deviation_m > 0.0, "max_plane_deviation_m", "> 0");
+  require(min_line_ratio > 1.0, "min_line_ratio", "> 1");
+  require(edge_weight >= 0.0 && edge_weight <= 1.0, "edge_weight", "in [0, 1]");
+}
+
+bool edge_correspondence(const KdTree3f& edges, const Eigen::Vector3d& point, double s, const Eigen::Vector3d& q,
+                         const AssociationParams& p, Constraint& out) {
+  LocalFit f;
+  if (edges.empty() || !fit_neighbours(edges, q, p, f)) return false;
+  if (f.eigenvalues(2) < p.min_line_ratio * f.eigenvalues(1)) return false;
+  const Eigen::Vector3d u = f.eigenvectors.col(2);
+  out = line_constraint(point, s, f.mean - 0.1 * u, f.mean + 0.1 * u);  // two points of the line (eq. 4.6)
+  out.weight = p.edge_weight;
+  return true;
+}
+
+bool planar_correspondence(const KdTree3f& planars, const Eigen::Vector3d& point, double s, const Eigen::Vector3d& q,
+                           const AssociationParams& p, Constraint& out) {
+  LocalFit f;
+  if (planars.empty() || !fit_neighbours(planars, q, p, f)) return false;
+  const Eigen::Vector3d normal = f.eigenvectors.col(0);
+  for (std::size_t t = 0; t < f.n; ++t)
+    if (std::abs(normal.dot(planars.point(f.idx[t]).cast<double>() - f.mean)) > p.max_plane_deviation_m) return false;
+  out.point = point;  // the patch's plane (eq. 4.7) through its centroid
+  out.s = s;
+  out.anchor = f.mean;
+  out.axis = normal;
+  out.is_line = false;
+  out.weight = 1.0;
+  return true;
+}
+
+}  // namespace bipednav::localization

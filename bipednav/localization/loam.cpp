@@ -1,0 +1,151 @@
+#include "bipednav/localization/loam.hpp"
+
+#include <cmath>
+
+#include "bipednav/common/clock.hpp"
+#include "bipednav/common/error.hpp"
+
+namespace bipednav::localization {
+
+namespace {
+
+bool finite(const SE3& T) { return T.matrix().allFinite(); }
+
+void append_reason(LoamOutput& out, const std::string& r) { out.reason += (out.reason.empty() ? "" : "; ") + r; }
+
+}  // namespace
+
+void LoamParams::validate() const {
+  features.validate();
+  odometry.validate();
+  mapping.validate();
+  require(min_features >= 6, "min_features", ">= 6");
+  require(finite(T_world_lidar_initial), "T_world_lidar_initial", "a finite transform");
+}
+
+Loam::Loam(LoamParams p) : p_(std::move(p)), odometry_(p_.odometry), mapping_(p_.mapping) {
+  p_.validate();
+  reset();
+}
+
+void Loam::reset() {
+  odometry_.reset();
+  mapping_.reset();
+  sweeps_ = 0;
+  const double per_sweep = p_.mapping.rate_hz * p_.odometry.scan_period_s;
+  mapping_every_ = per_sweep <= 0.0 ? 1 : static_cast<std::size_t>(std::max(1.0, std::round(1.0 / per_sweep)));
+  last_motion_ = SE3::Identity();
+  T_odom_lidar_ = SE3::Identity();
+  T_world_odom_ = p_.T_world_lidar_initial;
+  last_good_ = p_.T_world_lidar_initial;
+}
+
+void Loam::set_pose(const SE3& T_world_lidar) {
+  if (!finite(T_world_lidar)) throw Error("Loam::set_pose: the pose is not finite");
+  mapping_.reset();
+  T_world_odom_ = T_world_lidar * T_odom_lidar_.inverse();
+  last_good_ = T_world_lidar;
+}
+
+SE3 Loam::odometry_step(const LoamFeatures& f, const SE3& guess, bool prior_given, LoamOutput& out) {
+  if (!odometry_.has_reference()) {
+    if (sweeps_ > 0) {
+      out.healthy = false;
+      append_reason(out, "no usable previous sweep, motion from " +
+                             std::string(prior_given ? "the motion prior" : "constant velocity"));
+    }
+    return guess;
+  }
+  const OdometryResult r = odometry_.estimate(f, guess);
+  if (!r.matched) {
+    out.healthy = false;
+    append_reason(out, "odometry: too few correspondences (" + std::to_string(r.constraints) + ")");
+    return guess;
+  }
+  if (r.degenerate_dims > 0) {
+    out.degenerate = true;
+    append_reason(out, "odometry degenerate in " + std::to_string(r.degenerate_dims) + " direction(s), kept from " +
+                           (prior_given ? "the motion prior" : "constant velocity"));
+  }
+  return r.T_start_end;
+}
+
+void Loam::mapping_step(LoamOutput& out) {
+  Stopwatch sw;
+  const MappingResult m =
+      mapping_.process(odometry_.reference_edges(), odometry_.reference_planars(), T_world_odom_ * T_odom_lidar_);
+  out.mapped = true;
+  if (m.matched && finite(m.T_world_lidar)) {
+    T_world_odom_ = m.T_world_lidar * T_odom_lidar_.inverse();
+    if (m.degenerate_dims > 0) {
+      out.degenerate = true;
+      append_reason(out, "mapping degenerate in " + std::to_string(m.degenerate_dims) + " direction(s)");
+    }
+  } else if (sweeps_ > 0) {
+    append_reason(out, "mapping: too few correspondences (" + std::to_string(m.constraints) + "), odometry kept");
+  }
+  out.mapping_ms = sw.elapsed_ms();
+}
+
+SE3 Loam::constant_velocity_guess() const {
+  if (sweeps_ == 0) return SE3::Identity();
+  if (!p_.planar_constant_velocity) return last_motion_;
+  Vector6d x = se3_to_motion(last_motion_);
+  x(2) = x(3) = x(4) = 0.0;
+  return motion_to_se3(x);
+}
+
+LoamOutput Loam::process(const PointCloud& sweep, const std::optional<SE3>& motion_prior) {
+  Stopwatch sw;
+  LoamOutput out;
+  const PointCloud clean = sanitize_sweep(sweep, p_.features);
+  const bool prior_given = motion_prior.has_value() && finite(*motion_prior);
+  if (motion_prior && !prior_given) append_reason(out, "motion prior is not finite, ignored");
+  const SE3 guess = prior_given ? *motion_prior : constant_velocity_guess();
+  const LoamFeatures f = extract_features(clean, p_.features);
+  out.edge_features = f.edges.size();
+  out.planar_features = f.planars.size();
+  SE3 motion = guess;
+  bool odometry_matched = false;
+  const bool usable = f.total_features() >= p_.min_features;
+  if (sweep.empty()) {
+    out.healthy = false;
+    append_reason(out, "empty sweep");
+  } else if (clean.empty()) {
+    out.healthy = false;
+    append_reason(out, "no valid points (all " + std::to_string(sweep.size()) + " non-finite or out of range)");
+  } else if (!usable) {
+    out.healthy = false;
+    append_reason(
+        out, "too few features (" + std::to_string(f.total_features()) + " < " + std::to_string(p_.min_features) + ")");
+  }
+  if (usable) {
+    motion = odometry_step(f, guess, prior_given, out);
+    odometry_matched = sweeps_ > 0 && out.healthy;
+    odometry_.set_reference(f, motion);
+  } else {
+    odometry_.reset();  // the next sweep has nothing to match: it starts over from the prior
+  }
+  if (sweeps_ > 0) T_odom_lidar_ = T_odom_lidar_ * motion;
+  last_motion_ = motion;
+  out.T_prev_lidar = motion;
+  out.deskewed = deskew_to_end(clean, motion, p_.odometry.scan_period_s);
+  out.odometry_ms = sw.elapsed_ms();
+  // The first sweep's own motion is unknown (it has nothing to match), so mapping starts with the
+  // second sweep rather than putting a distorted sweep into the map.
+  if (usable && odometry_matched && (sweeps_ - 1) % mapping_every_ == 0) mapping_step(out);
+  out.T_world_lidar = T_world_odom_ * T_odom_lidar_;
+  if (!finite(out.T_world_lidar)) {  // never hand out NaN: fall back to the last good pose
+    out.healthy = false;
+    append_reason(out, "non-finite pose, previous pose kept");
+    const SE3 keep = last_good_;
+    reset();
+    set_pose(keep);
+    out.T_world_lidar = keep;
+  }
+  last_good_ = out.T_world_lidar;
+  ++sweeps_;
+  return out;
+}
+
+}  // namespace bipednav::localization

@@ -1,0 +1,73 @@
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "bipednav/common/point_cloud.hpp"
+#include "bipednav/common/se3.hpp"
+#include "bipednav/localization/loam_features.hpp"
+#include "bipednav/localization/loam_mapping.hpp"
+#include "bipednav/localization/loam_odometry.hpp"
+
+namespace bipednav::localization {
+
+struct LoamParams {
+  FeatureParams features{};
+  OdometryParams odometry{};
+  MappingParams mapping{};
+  std::size_t min_features = 20;  // fewer edge + planar points: the sweep is featureless
+  // Without a motion prior the guess is the previous sweep's motion minus its height, roll and pitch
+  // rates: those are weakly observed (a torso VLP-16 barely sees the floor) and a rate kept from
+  // one noisy sweep would otherwise make the height drift at a constant speed.
+  bool planar_constant_velocity = true;
+  SE3 T_world_lidar_initial = SE3::Identity();  // anchors the first sweep in the world (map) frame
+  void validate() const;
+};
+
+struct LoamOutput {
+  SE3 T_world_lidar = SE3::Identity();  // at the sweep end; world = the first sweep's LiDAR frame
+                                        // (moved by T_world_lidar_initial)
+  bool healthy = true;                  // false: the pose is a prediction only (see reason)
+  std::string reason;                   // empty when healthy and well constrained
+  bool degenerate = false;              // some directions came from the motion prior, not the scan
+  double odometry_ms = 0.0;             // features + odometry + de-skew
+  double mapping_ms = 0.0;              // 0 on sweeps without a mapping step
+  PointCloud deskewed;                  // the valid points in the LiDAR frame at the sweep end
+  SE3 T_prev_lidar = SE3::Identity();   // estimated LiDAR motion since the previous sweep
+  bool mapped = false;                  // a mapping step ran on this sweep
+  std::size_t edge_features = 0, planar_features = 0;
+};
+
+// LiDAR odometry and mapping (section 4.4): odometry at the sweep rate, mapping at
+// mapping.rate_hz, their transforms combined into a pose at the sweep rate.
+class Loam {
+ public:
+  explicit Loam(LoamParams p = {});
+
+  // One sweep in the LiDAR frame with per-point time offsets (since the sweep start) and rings.
+  // `motion_prior` is the LiDAR motion since the previous sweep from another odometry source
+  // (T_prevlidar_lidar); without it a constant-velocity guess is used.
+  LoamOutput process(const PointCloud& sweep, const std::optional<SE3>& motion_prior = std::nullopt);
+  void reset();
+  // Re-anchors the current pose (e.g. after a relocalization); the map is cleared.
+  void set_pose(const SE3& T_world_lidar);
+  const LoamParams& params() const { return p_; }
+  std::size_t map_size() const { return mapping_.map_size(); }
+
+ private:
+  SE3 odometry_step(const LoamFeatures& f, const SE3& guess, bool prior_given, LoamOutput& out);
+  void mapping_step(LoamOutput& out);
+  SE3 constant_velocity_guess() const;
+
+  LoamParams p_;
+  LoamOdometry odometry_;
+  LoamMapping mapping_;
+  std::size_t sweeps_ = 0;
+  std::size_t mapping_every_ = 10;
+  SE3 last_motion_ = SE3::Identity();
+  SE3 T_odom_lidar_ = SE3::Identity();  // accumulated odometry
+  SE3 T_world_odom_ = SE3::Identity();  // correction from the last mapping step
+  SE3 last_good_ = SE3::Identity();
+};
+
+}  // namespace bipednav::localization

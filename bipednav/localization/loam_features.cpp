@@ -1,0 +1,186 @@
+#include "bipednav/localization/loam_features.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "bipednav/common/error.hpp"
+
+namespace bipednav::localization {
+
+namespace {
+
+// Marks points whose smoothness is unreliable (section 4.4.1): the occluded side of a depth
+// discontinuity, both sides of a gap without returns, and surfaces nearly parallel to the beam.
+void mark_unreliable(const std::vector<Eigen::Vector3f>& pts, const FeatureParams& p, std::vector<char>& picked) {
+  const int n = static_cast<int>(pts.size());
+  const int k = p.neighbours_per_side;
+  const auto mark = [&](int from, int to) {
+    for (int i = std::max(0, from); i <= std::min(n - 1, to); ++i) picked[static_cast<std::size_t>(i)] = 1;
+  };
+  for (int i = 0; i + 1 < n; ++i) {
+    const float di = pts[static_cast<std::size_t>(i)].norm(), dj = pts[static_cast<std::size_t>(i) + 1].norm();
+    const float gap = (pts[static_cast<std::size_t>(i) + 1] - pts[static_cast<std::size_t>(i)]).norm();
+    const float near = std::min(di, dj);
+    if (std::abs(di - dj) > p.occlusion_ratio * near) {
+      if (di > dj)
+        mark(i - k, i);  // the farther side is occluded by the nearer object
+      else
+        mark(i + 1, i + 1 + k);
+    } else if (gap > p.max_neighbour_gap_ratio * near) {
+      mark(i - k + 1, i + k);
+    }
+  }
+  for (int i = 1; i + 1 < n; ++i) {
+    const auto u = static_cast<std::size_t>(i);
+    const float r = pts[u].norm();
+    if ((pts[u] - pts[u - 1]).norm() > p.parallel_beam_ratio * r &&
+        (pts[u + 1] - pts[u]).norm() > p.parallel_beam_ratio * r)
+      picked[u] = 1;
+  }
+}
+
+// Marks the neighbours of a selected point so features spread out, stopping at gaps.
+void mark_neighbours(const std::vector<Eigen::Vector3f>& pts, int i, const FeatureParams& p,
+                     std::vector<char>& picked) {
+  const int n = static_cast<int>(pts.size());
+  const float limit = static_cast<float>(p.max_neighbour_gap_ratio) * pts[static_cast<std::size_t>(i)].norm();
+  for (int dir : {-1, 1}) {
+    for (int l = 1; l <= p.neighbours_per_side; ++l) {
+      const int j = i + dir * l, prev = j - dir;
+      if (j < 0 || j >= n) break;
+      if ((pts[static_cast<std::size_t>(j)] - pts[static_cast<std::size_t>(prev)]).norm() > limit) break;
+      picked[static_cast<std::size_t>(j)] = 1;
+    }
+  }
+}
+
+struct RegionSelection {
+  std::vector<int> sharp, map;
+};
+
+// Picks up to max and max * factor points of one sub-region, in the order of `order`.
+RegionSelection select(const std::vector<int>& order, const std::vector<double>& c, bool edges,
+                       const std::vector<Eigen::Vector3f>& pts, const FeatureParams& p, std::vector<char>& picked) {
+  RegionSelection sel;
+  const int max_sharp = edges ? p.max_edges_per_region : p.max_planars_per_region;
+  const int max_map = max_sharp * p.map_feature_factor;
+  for (int i : order) {
+    if (static_cast<int>(sel.map.size()) >= max_map) break;
+    const double ci = c[static_cast<std::size_t>(i)];
+    if (picked[static_cast<std::size_t>(i)] || ci < 0.0) continue;
+    if (edges ? ci <= p.edge_threshold : ci >= p.planar_threshold) break;
+    if (static_cast<int>(sel.sharp.size()) < max_sharp) sel.sharp.push_back(i);
+    sel.map.push_back(i);
+    picked[static_cast<std::size_t>(i)] = 1;
+    mark_neighbours(pts, i, p, picked);
+  }
+  return sel;
+}
+
+void process_ring(const PointCloud& sweep, const std::vector<std::uint32_t>& idx, const FeatureParams& p,
+                  LoamFeatures& out) {
+  const int k = p.neighbours_per_side;
+  const int n = static_cast<int>(idx.size());
+  if (n < 2 * k + 1) return;
+  std::vector<Eigen::Vector3f> pts(idx.size());
+  for (std::size_t i = 0; i < idx.size(); ++i) pts[i] = sweep.points[idx[i]];
+  const std::vector<double> c = ring_smoothness(pts, k);
+  std::vector<char> picked(idx.size(), 0);
+  mark_unreliable(pts, p, picked);
+  for (int r = 0; r < p.sub_regions; ++r) {
+    const int begin = k + (n - 2 * k) * r / p.sub_regions;
+    const int end = k + (n - 2 * k) * (r + 1) / p.sub_regions;
+    std::vector<int> order(static_cast<std::size_t>(std::max(0, end - begin)));
+    std::iota(order.begin(), order.end(), begin);
+    std::sort(order.begin(), order.end(),
+              [&](int a, int b) { return c[static_cast<std::size_t>(a)] > c[static_cast<std::size_t>(b)]; });
+    const RegionSelection e = select(order, c, true, pts, p, picked);
+    std::reverse(order.begin(), order.end());
+    const RegionSelection f = select(order, c, false, pts, p, picked);
+    for (int i : e.sharp) out.edges.push_back_from(sweep, idx[static_cast<std::size_t>(i)]);
+    for (int i : e.map) out.map_edges.push_back_from(sweep, idx[static_cast<std::size_t>(i)]);
+    for (int i : f.sharp) out.planars.push_back_from(sweep, idx[static_cast<std::size_t>(i)]);
+    for (int i : f.map) out.map_planars.push_back_from(sweep, idx[static_cast<std::size_t>(i)]);
+  }
+}
+
+}  // namespace
+
+void FeatureParams::validate() const {
+  require(neighbours_per_side >= 1 && neighbours_per_side <= 20, "neighbours_per_side", "in [1, 20]");
+  require(sub_regions >= 1, "sub_regions", ">= 1");
+  require(max_edges_per_region >= 0, "max_edges_per_region", ">= 0");
+  require(max_planars_per_region >= 1, "max_planars_per_region", ">= 1");
+  require(map_feature_factor >= 1, "map_feature_factor", ">= 1");
+  require(edge_threshold > planar_threshold && planar_threshold > 0.0, "edge_threshold", "> planar_threshold > 0");
+  require(min_range_m >= 0.0 && max_range_m > min_range_m, "max_range_m", "> min_range_m >= 0");
+  require(occlusion_ratio > 0.0, "occlusion_ratio", "> 0");
+  require(parallel_beam_ratio > 0.0, "parallel_beam_ratio", "> 0");
+  require(max_neighbour_gap_ratio > 0.0, "max_neighbour_gap_ratio", "> 0");
+  require(rings >= 1 && rings <= 1024, "rings", "in [1, 1024]");
+  require(max_elevation_rad > min_elevation_rad, "max_elevation_rad", "> min_elevation_rad");
+}
+
+std::vector<double> ring_smoothness(const std::vector<Eigen::Vector3f>& ring, int k) {
+  const int n = static_cast<int>(ring.size());
+  std::vector<double> c(ring.size(), -1.0);
+  for (int i = k; i + k < n; ++i) {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    const Eigen::Vector3d xi = ring[static_cast<std::size_t>(i)].cast<double>();
+    for (int j = i - k; j <= i + k; ++j)
+      if (j != i) sum += xi - ring[static_cast<std::size_t>(j)].cast<double>();
+    const double r = xi.norm();
+    if (r > 0.0) c[static_cast<std::size_t>(i)] = sum.norm() / (2.0 * k * r);  // eq. 4.5
+  }
+  return c;
+}
+
+PointCloud sanitize_sweep(const PointCloud& sweep, const FeatureParams& p) {
+  if (!sweep.is_consistent()) throw Error("LOAM: sweep fields (time, ring, intensity) do not match its point count");
+  PointCloud out = sweep.empty_copy();
+  out.reserve(sweep.size());
+  for (std::size_t i = 0; i < sweep.size(); ++i) {
+    const Eigen::Vector3f& q = sweep.points[i];
+    if (!q.allFinite() || (sweep.has_time() && !std::isfinite(sweep.time_offsets_s[i]))) continue;
+    const double r = q.norm();
+    if (r < p.min_range_m || r > p.max_range_m) continue;
+    out.push_back_from(sweep, i);
+  }
+  return out;
+}
+
+std::vector<std::uint16_t> ring_indices(const PointCloud& sweep, const FeatureParams& p) {
+  if (sweep.has_ring()) return sweep.rings;
+  std::vector<std::uint16_t> rings(sweep.size());
+  const double span = p.max_elevation_rad - p.min_elevation_rad;
+  for (std::size_t i = 0; i < sweep.size(); ++i) {
+    const Eigen::Vector3f& q = sweep.points[i];
+    const double elevation = std::atan2(q.z(), std::hypot(q.x(), q.y()));
+    const double f = std::clamp((elevation - p.min_elevation_rad) / span, 0.0, 1.0);
+    rings[i] = static_cast<std::uint16_t>(std::lround(f * (p.rings - 1)));
+  }
+  return rings;
+}
+
+LoamFeatures extract_features(const PointCloud& sweep, const FeatureParams& p) {
+  LoamFeatures out;
+  for (PointCloud* c : {&out.edges, &out.planars, &out.map_edges, &out.map_planars}) *c = sweep.empty_copy();
+  if (sweep.empty()) return out;
+  const std::vector<std::uint16_t> rings = ring_indices(sweep, p);
+  const std::size_t n_rings = static_cast<std::size_t>(*std::max_element(rings.begin(), rings.end())) + 1;
+  std::vector<std::vector<std::uint32_t>> per_ring(n_rings);
+  for (std::size_t i = 0; i < sweep.size(); ++i) per_ring[rings[i]].push_back(static_cast<std::uint32_t>(i));
+  std::vector<float> key(sweep.size());
+  for (std::size_t i = 0; i < sweep.size(); ++i)
+    key[i] = sweep.has_time() ? sweep.time_offsets_s[i] : std::atan2(sweep.points[i].y(), sweep.points[i].x());
+  PointCloud with_rings = sweep;
+  with_rings.rings = rings;
+  for (auto& idx : per_ring) {
+    std::stable_sort(idx.begin(), idx.end(), [&](std::uint32_t a, std::uint32_t b) { return key[a] < key[b]; });
+    process_ring(with_rings, idx, p, out);
+  }
+  return out;
+}
+
+}  // namespace bipednav::localization

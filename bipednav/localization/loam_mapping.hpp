@@ -1,0 +1,80 @@
+#pragma once
+
+#include <cstdint>
+#include <unordered_set>
+#include <vector>
+
+#include "bipednav/common/point_cloud.hpp"
+#include "bipednav/common/se3.hpp"
+#include "bipednav/localization/feature_association.hpp"
+#include "bipednav/localization/kdtree.hpp"
+#include "bipednav/localization/registration_lm.hpp"
+
+namespace bipednav::localization {
+
+// LiDAR mapping of LOAM (section 4.4.4).
+struct MappingParams {
+  double rate_hz = 1.0;      // mapping rate; <= 0 maps every sweep
+  double edge_leaf_m = 0.2;  // map down-sampling (one point per voxel)
+  double planar_leaf_m = 0.4;
+  double map_radius_m = 60.0;  // map points farther than this from the LiDAR are dropped
+  AssociationParams association{.neighbours = 5,
+                                .max_correspondence_m = 1.0,
+                                .max_plane_deviation_m = 0.2,
+                                .min_line_ratio = 3.0,
+                                .edge_weight = 0.3};
+  int correspondence_rounds = 5;
+  std::size_t min_constraints = 30;
+  LmParams lm{};
+  void validate() const;
+};
+
+struct MappingResult {
+  SE3 T_world_lidar = SE3::Identity();
+  bool matched = false;  // false: the map was empty or too few correspondences (guess kept)
+  int degenerate_dims = 0;
+  std::size_t constraints = 0;
+  std::size_t inliers = 0;
+  double rms_m = 0.0;
+};
+
+// A point set down-sampled incrementally: a point is added only when its voxel is still empty.
+class VoxelPointMap {
+ public:
+  explicit VoxelPointMap(double leaf_m = 0.2) : leaf_m_(leaf_m) {}
+  void insert(const Eigen::Vector3f& p);
+  // Drops points farther than radius_m from centre.
+  void crop(const Eigen::Vector3f& centre, double radius_m);
+  const std::vector<Eigen::Vector3f>& points() const { return points_; }
+  std::size_t size() const { return points_.size(); }
+  void clear();
+
+ private:
+  std::int64_t key(const Eigen::Vector3f& p) const;
+  double leaf_m_;
+  std::vector<Eigen::Vector3f> points_;
+  std::unordered_set<std::int64_t> occupied_;
+};
+
+class LoamMapping {
+ public:
+  explicit LoamMapping(MappingParams p);
+
+  // Registers the de-skewed features of one sweep (LiDAR frame at the sweep end) onto the map,
+  // starting from `T_world_lidar_guess`, then inserts them at the registered pose. The first call
+  // only inserts.
+  MappingResult process(const PointCloud& edges, const PointCloud& planars, const SE3& T_world_lidar_guess);
+  std::size_t map_size() const { return edge_map_.size() + planar_map_.size(); }
+  void reset();
+  const MappingParams& params() const { return p_; }
+
+ private:
+  std::vector<Constraint> associate(const PointCloud& edges, const PointCloud& planars, const SE3& T) const;
+  void insert(const PointCloud& edges, const PointCloud& planars, const SE3& T);
+
+  MappingParams p_;
+  VoxelPointMap edge_map_, planar_map_;
+  KdTree3f edge_tree_, planar_tree_;
+};
+
+}  // namespace bipednav::localization

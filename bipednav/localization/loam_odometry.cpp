@@ -1,0 +1,95 @@
+#include "bipednav/localization/loam_odometry.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "bipednav/common/error.hpp"
+
+namespace bipednav::localization {
+
+void OdometryParams::validate() const {
+  require(scan_period_s > 0.0, "scan_period_s", "> 0");
+  association.validate();
+  require(correspondence_rounds >= 1, "correspondence_rounds", ">= 1");
+  require(relaxation > 0.0 && relaxation <= 1.0, "relaxation", "in (0, 1]");
+  require(min_constraints >= 6, "min_constraints", ">= 6");
+  lm.validate();
+}
+
+double time_fraction(const PointCloud& c, std::size_t i, double scan_period_s) {
+  if (!c.has_time()) return 1.0;
+  return std::clamp(static_cast<double>(c.time_offsets_s[i]) / scan_period_s, 0.0, 1.0);
+}
+
+PointCloud deskew_to_end(const PointCloud& cloud, const SE3& T_start_end, double scan_period_s) {
+  const Vector6d x = se3_to_motion(T_start_end);
+  const SE3 T_end_start = T_start_end.inverse();
+  PointCloud out = cloud;
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    const double s = time_fraction(cloud, i, scan_period_s);
+    out.points[i] = (T_end_start * apply_motion(x, s, cloud.points[i].cast<double>())).cast<float>();
+  }
+  return out;
+}
+
+LoamOdometry::LoamOdometry(OdometryParams p) : p_(std::move(p)) { p_.validate(); }
+
+void LoamOdometry::reset() {
+  for (PointCloud* c : {&raw_edges_, &raw_planars_, &ref_edges_, &ref_planars_}) c->clear();
+}
+
+void LoamOdometry::set_reference(const LoamFeatures& f, const SE3& T_start_end) {
+  raw_edges_ = f.map_edges;
+  raw_planars_ = f.map_planars;
+  ref_edges_ = deskew_to_end(f.map_edges, T_start_end, p_.scan_period_s);
+  ref_planars_ = deskew_to_end(f.map_planars, T_start_end, p_.scan_period_s);
+}
+
+std::vector<Constraint> LoamOdometry::associate(const LoamFeatures& f, const Vector6d& x) const {
+  const SE3 T = motion_to_se3(x);
+  const KdTree3f edge_tree(deskew_to_end(raw_edges_, T, p_.scan_period_s).points);
+  const KdTree3f planar_tree(deskew_to_end(raw_planars_, T, p_.scan_period_s).points);
+  std::vector<Constraint> cs;
+  cs.reserve(f.edges.size() + f.planars.size());
+  Constraint c;
+  for (std::size_t i = 0; i < f.edges.size(); ++i) {
+    const Eigen::Vector3d p = f.edges.points[i].cast<double>();
+    const double s = time_fraction(f.edges, i, p_.scan_period_s);
+    if (edge_correspondence(edge_tree, p, s, apply_motion(x, s, p), p_.association, c)) cs.push_back(c);
+  }
+  for (std::size_t i = 0; i < f.planars.size(); ++i) {
+    const Eigen::Vector3d p = f.planars.points[i].cast<double>();
+    const double s = time_fraction(f.planars, i, p_.scan_period_s);
+    if (planar_correspondence(planar_tree, p, s, apply_motion(x, s, p), p_.association, c)) cs.push_back(c);
+  }
+  return cs;
+}
+
+OdometryResult LoamOdometry::estimate(const LoamFeatures& f, const SE3& guess) const {
+  OdometryResult res;
+  res.T_start_end = guess;
+  if (!has_reference()) return res;
+  Vector6d x = se3_to_motion(guess);
+  for (int round = 0; round < p_.correspondence_rounds; ++round) {
+    const std::vector<Constraint> cs = associate(f, x);
+    res.constraints = cs.size();
+    if (cs.size() < p_.min_constraints) {
+      res.matched = false;
+      res.T_start_end = guess;
+      return res;
+    }
+    const LmSolution sol = solve_lm(cs, x, p_.lm);
+    const Vector6d change = p_.relaxation * (sol.x - x);
+    x += change;
+    res.degenerate_dims = sol.degenerate_dims;
+    res.inliers = sol.inliers;
+    res.rms_m = sol.rms_m;
+    res.iterations += sol.iterations;
+    if (change.head<3>().norm() < 1e-4 && change.tail<3>().norm() < 1e-5) break;
+  }
+  res.matched = x.allFinite() && res.inliers >= p_.min_constraints;
+  res.T_start_end = res.matched ? motion_to_se3(x) : guess;
+  return res;
+}
+
+}  // namespace bipednav::localization

@@ -1,0 +1,72 @@
+#pragma once
+
+#include "bipednav/common/point_cloud.hpp"
+#include "bipednav/common/se3.hpp"
+#include "bipednav/localization/feature_association.hpp"
+#include "bipednav/localization/kdtree.hpp"
+#include "bipednav/localization/loam_features.hpp"
+#include "bipednav/localization/registration_lm.hpp"
+
+namespace bipednav::localization {
+
+// LiDAR odometry of LOAM (section 4.4.2-4.4.3, Algorithm 1).
+struct OdometryParams {
+  double scan_period_s = 0.1;  // t - t_{k+1}: the duration of one sweep
+  AssociationParams association{};
+  int correspondence_rounds = 6;     // re-associations (Algorithm 1, line 5)
+  double relaxation = 0.5;           // fraction of each round's update applied (damps the reference loop)
+  std::size_t min_constraints = 20;  // fewer rows than this: the sweep is not matched
+  LmParams lm{};
+  void validate() const;
+};
+
+struct OdometryResult {
+  SE3 T_start_end = SE3::Identity();  // LiDAR pose at the sweep end in the frame at its start
+  bool matched = false;               // false: no reference or too few correspondences (guess kept)
+  int degenerate_dims = 0;            // directions left at the guess (eigenvalue test)
+  std::size_t constraints = 0;
+  std::size_t inliers = 0;
+  double rms_m = 0.0;
+  int iterations = 0;
+};
+
+// Fraction of the sweep elapsed when point i was measured, (t_i - t_{k+1}) / (t - t_{k+1}) of eq. 4.8,
+// clamped to [0, 1] (1 when the cloud carries no times: it is taken as already de-skewed).
+double time_fraction(const PointCloud& c, std::size_t i, double scan_period_s);
+
+// Moves every point to the LiDAR frame at the sweep end with the interpolated motion
+// (eq. 4.8-4.10; Algorithm 1, line 15). Other fields are kept; time offsets are kept as measured.
+PointCloud deskew_to_end(const PointCloud& cloud, const SE3& T_start_end, double scan_period_s);
+
+class LoamOdometry {
+ public:
+  explicit LoamOdometry(OdometryParams p);
+
+  // Motion over the sweep whose features are `f`, starting from `guess`. Degenerate directions
+  // stay at the guess. Does not change the reference.
+  //
+  // The previous sweep is projected to its end (= this sweep's start) with the motion being
+  // estimated (constant velocity over the two sweeps), re-projected every correspondence round.
+  // Projecting it with its own earlier estimate instead closes a loop through the sweeps: an error
+  // e in one estimate distorts the reference and returns as about -0.85 e in the next (the walls
+  // behind the LiDAR are seen mid-sweep), which rings and, for the weakly observed roll and pitch,
+  // grows.
+  OdometryResult estimate(const LoamFeatures& f, const SE3& guess) const;
+  // Makes this sweep the reference for the next one; T_start_end is its estimated motion.
+  void set_reference(const LoamFeatures& f, const SE3& T_start_end);
+  bool has_reference() const { return !raw_edges_.empty() || !raw_planars_.empty(); }
+  // The reference sweep's map features, de-skewed to its end (the mapping step's input).
+  const PointCloud& reference_edges() const { return ref_edges_; }
+  const PointCloud& reference_planars() const { return ref_planars_; }
+  void reset();
+  const OdometryParams& params() const { return p_; }
+
+ private:
+  std::vector<Constraint> associate(const LoamFeatures& f, const Vector6d& x) const;
+
+  OdometryParams p_;
+  PointCloud raw_edges_, raw_planars_;  // the previous sweep's map features, as measured
+  PointCloud ref_edges_, ref_planars_;  // the same, de-skewed to its end with its own estimate
+};
+
+}  // namespace bipednav::localization

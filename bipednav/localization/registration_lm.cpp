@@ -1,0 +1,203 @@
+#include "bipednav/localization/registration_lm.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+
+#include "bipednav/common/error.hpp"
+
+namespace bipednav::localization {
+
+namespace {
+
+Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
+  Eigen::Matrix3d K;
+  K << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
+  return K;
+}
+
+Eigen::Matrix3d rodrigues(const Eigen::Vector3d& theta) {
+  const double angle = theta.norm();
+  if (angle < 1e-12) return Eigen::Matrix3d::Identity() + skew(theta);
+  return Eigen::AngleAxisd(angle, theta / angle).toRotationMatrix();
+}
+
+// Derivative of the constraint distance with respect to the moved point.
+Eigen::Vector3d distance_gradient(const Constraint& c, const Eigen::Vector3d& q) {
+  if (!c.is_line) return c.axis;
+  const Eigen::Vector3d v = q - c.anchor;
+  const Eigen::Vector3d e = v - c.axis.dot(v) * c.axis;
+  const double n = e.norm();
+  return n > 1e-12 ? Eigen::Vector3d(e / n) : Eigen::Vector3d::Zero();
+}
+
+double total_loss(const std::vector<Constraint>& cs, const Vector6d& x, double c) {
+  double sum = 0.0;
+  for (const auto& k : cs) sum += k.weight * bisquare_loss(constraint_distance(k, apply_motion(x, k.s, k.point)), c);
+  return sum;
+}
+
+NormalEquations linearize(const std::vector<Constraint>& cs, const Vector6d& x, double c) {
+  NormalEquations ne;
+  for (const auto& k : cs) {
+    const Eigen::Vector3d rp = rodrigues(k.s * x.tail<3>()) * k.point;
+    const Eigen::Vector3d q = rp + k.s * x.head<3>();
+    const double r = constraint_distance(k, q);
+    const double w = k.weight * bisquare_weight(r, c);
+    if (w <= 0.0) continue;
+    const Eigen::Vector3d grad = distance_gradient(k, q);
+    Eigen::Matrix<double, 1, 6> J;
+    // dq/dt = s I; dq/dtheta ~= -s [R p]x (first-order rotation perturbation).
+    J.head<3>() = k.s * grad.transpose();
+    J.tail<3>() = k.s * rp.cross(grad).transpose();
+    ne.add_row(J, r, w);
+  }
+  return ne;
+}
+
+}  // namespace
+
+Eigen::Vector3d apply_motion(const Vector6d& x, double s, const Eigen::Vector3d& p) {
+  return rodrigues(s * x.tail<3>()) * p + s * x.head<3>();
+}
+
+SE3 motion_to_se3(const Vector6d& x, double s) {
+  SE3 T = SE3::Identity();
+  T.linear() = rodrigues(s * x.tail<3>());
+  T.translation() = s * x.head<3>();
+  return T;
+}
+
+Vector6d se3_to_motion(const SE3& T) {
+  Vector6d x;
+  const Eigen::AngleAxisd aa(T.rotation());
+  x.head<3>() = T.translation();
+  x.tail<3>() = aa.angle() * aa.axis();
+  return x;
+}
+
+double constraint_distance(const Constraint& c, const Eigen::Vector3d& q) {
+  const Eigen::Vector3d v = q - c.anchor;
+  if (!c.is_line) return c.axis.dot(v);
+  return (v - c.axis.dot(v) * c.axis).norm();
+}
+
+Constraint line_constraint(const Eigen::Vector3d& point, double s, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  Constraint c;
+  c.point = point;
+  c.s = s;
+  c.anchor = a;
+  const Eigen::Vector3d d = b - a;
+  c.axis = d.norm() > 1e-9 ? Eigen::Vector3d(d.normalized()) : Eigen::Vector3d::UnitZ();
+  c.is_line = true;
+  return c;
+}
+
+bool plane_constraint(const Eigen::Vector3d& point, double s, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                      const Eigen::Vector3d& c, Constraint& out) {
+  const Eigen::Vector3d ab = b - a, ac = c - a;
+  const Eigen::Vector3d n = ab.cross(ac);
+  if (n.norm() < 1e-3 * ab.norm() * ac.norm() || n.norm() < 1e-12) return false;
+  out.point = point;
+  out.s = s;
+  out.anchor = a;
+  out.axis = n.normalized();
+  out.is_line = false;
+  return true;
+}
+
+double bisquare_weight(double r, double c) {
+  const double u = r / c;
+  if (std::abs(u) >= 1.0) return 0.0;
+  const double v = 1.0 - u * u;
+  return v * v;
+}
+
+double bisquare_loss(double r, double c) {
+  const double u = r / c;
+  if (std::abs(u) >= 1.0) return c * c / 6.0;
+  const double v = 1.0 - u * u;
+  return c * c / 6.0 * (1.0 - v * v * v);
+}
+
+int project_to_constrained(const Matrix6d& H, double weight_sum, double min_eigenvalue, Vector6d& delta) {
+  if (weight_sum <= 0.0) {
+    delta.setZero();
+    return 6;
+  }
+  const Eigen::SelfAdjointEigenSolver<Matrix6d> es(H / weight_sum);
+  int suppressed = 0;
+  Vector6d projected = Vector6d::Zero();
+  for (int i = 0; i < 6; ++i) {
+    const Vector6d v = es.eigenvectors().col(i);
+    if (es.eigenvalues()(i) < min_eigenvalue) {
+      ++suppressed;
+      continue;
+    }
+    projected += v * v.dot(delta);
+  }
+  delta = projected;
+  return suppressed;
+}
+
+bool lm_step(const NormalEquations& ne, double lambda, double min_eigenvalue, Vector6d& delta, int& degenerate_dims) {
+  Matrix6d A = ne.H;
+  A.diagonal() += lambda * ne.H.diagonal() + Vector6d::Constant(1e-9);
+  delta = -A.ldlt().solve(ne.g);
+  if (!delta.allFinite()) return false;
+  degenerate_dims = project_to_constrained(ne.H, ne.weight_sum, min_eigenvalue, delta);
+  return delta.allFinite();
+}
+
+void LmParams::validate() const {
+  require(max_iterations >= 1, "max_iterations", ">= 1");
+  require(bisquare_c_m > 0.0, "bisquare_c_m", "> 0");
+  require(initial_lambda >= 0.0, "initial_lambda", ">= 0");
+  require(degenerate_min_eigenvalue >= 0.0, "degenerate_min_eigenvalue", ">= 0");
+  require(converged_translation_m > 0.0, "converged_translation_m", "> 0");
+  require(converged_rotation_rad > 0.0, "converged_rotation_rad", "> 0");
+}
+
+LmSolution solve_lm(const std::vector<Constraint>& constraints, const Vector6d& x0, const LmParams& p) {
+  LmSolution sol;
+  sol.x = x0;
+  double lambda = p.initial_lambda;
+  double loss = total_loss(constraints, sol.x, p.bisquare_c_m);
+  for (sol.iterations = 0; sol.iterations < p.max_iterations;) {
+    const NormalEquations ne = linearize(constraints, sol.x, p.bisquare_c_m);
+    ++sol.iterations;
+    Vector6d delta;
+    if (ne.rows < 6 || !lm_step(ne, lambda, p.degenerate_min_eigenvalue, delta, sol.degenerate_dims)) {
+      sol.degenerate_dims = 6;
+      break;
+    }
+    const Vector6d candidate = sol.x + delta;
+    const double candidate_loss = total_loss(constraints, candidate, p.bisquare_c_m);
+    if (candidate_loss <= loss) {
+      sol.x = candidate;
+      loss = candidate_loss;
+      lambda = std::max(lambda * 0.1, 1e-7);
+      if (delta.head<3>().norm() < p.converged_translation_m && delta.tail<3>().norm() < p.converged_rotation_rad) {
+        sol.converged = true;
+        break;
+      }
+    } else {
+      lambda = lambda > 0.0 ? lambda * 10.0 : 1e-4;
+      if (lambda > 1e4) {
+        sol.converged = true;  // no descent direction left: at a (local) minimum
+        break;
+      }
+    }
+  }
+  double sq = 0.0;
+  for (const auto& k : constraints) {
+    const double r = constraint_distance(k, apply_motion(sol.x, k.s, k.point));
+    if (std::abs(r) < p.bisquare_c_m) {
+      ++sol.inliers;
+      sq += r * r;
+    }
+  }
+  sol.rms_m = sol.inliers > 0 ? std::sqrt(sq / static_cast<double>(sol.inliers)) : 0.0;
+  return sol;
+}
+
+}  // namespace bipednav::localization
