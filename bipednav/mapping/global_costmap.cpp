@@ -62,13 +62,7 @@ ChangeSet GlobalCostmap::update(const Pose2& T_map_base, const std::vector<Obser
                                 const LocalCostmap* local) {
   if (!T_map_base.is_finite()) throw Error("global costmap: robot pose is not finite");
   CellRect dirty;
-  if (params_.lidar_clearing) {
-    dirty.include(obstacle_layer_.update(occupancy_, lidar_obs));
-  } else {
-    std::vector<Observation> marking_only = lidar_obs;
-    for (auto& o : marking_only) o.clearing = false;
-    dirty.include(obstacle_layer_.update(occupancy_, marking_only));
-  }
+  dirty.include(obstacle_layer_.update(occupancy_, lidar_obs, params_.lidar_clearing));
   if (local && params_.merge_local) dirty.include(merge_local(*local));
   return refresh(dirty);
 }

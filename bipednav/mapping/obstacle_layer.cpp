@@ -14,14 +14,14 @@ void ObstacleLayerParams::validate() const {
 
 ObstacleLayer::ObstacleLayer(const ObstacleLayerParams& params) : params_(params) { params.validate(); }
 
-CellRect ObstacleLayer::update(Costmap2D& grid, const std::vector<Observation>& observations) {
+CellRect ObstacleLayer::update(Costmap2D& grid, const std::vector<Observation>& observations, bool allow_clearing) {
   CellRect changed;
   if (traced_.size() != grid.data().size()) {
     traced_.assign(grid.data().size(), 0);
     stamp_ = 0;
   }
   for (const auto& obs : observations)
-    if (obs.clearing) clear_observation(grid, obs, changed);
+    if (obs.clearing && allow_clearing) clear_observation(grid, obs, changed);
   for (const auto& obs : observations)
     if (obs.marking) mark_observation(grid, obs, changed);
   return changed;

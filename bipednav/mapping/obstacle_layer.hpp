@@ -37,7 +37,8 @@ class ObstacleLayer {
   explicit ObstacleLayer(const ObstacleLayerParams& params = {});
 
   // Applies the observations to `grid`; returns the bounding box of the cells whose value changed.
-  CellRect update(Costmap2D& grid, const std::vector<Observation>& observations);
+  // With `allow_clearing` false no observation clears (marking only).
+  CellRect update(Costmap2D& grid, const std::vector<Observation>& observations, bool allow_clearing = true);
 
   const ObstacleLayerParams& params() const { return params_; }
 

@@ -109,3 +109,19 @@ TEST(GlobalCostmap, PriorMapAndBadInput) {
   EXPECT_THROW(global.update({0, std::nan(""), 0}, {}, nullptr), bipednav::Error);
   EXPECT_THROW(GlobalCostmap({0, 10, 0.1, 0.0, 0.0}), bipednav::ParamError);
 }
+
+TEST(GlobalCostmap, LidarClearingCanBeDisabled) {
+  for (bool clearing : {true, false}) {
+    GlobalCostmapParams p;
+    p.lidar_clearing = clearing;
+    GlobalCostmap global({50, 50, 0.1, 0.0, 0.0}, p);
+    Observation obs;
+    obs.origin_map = {0.55, 2.55, 0.5};
+    obs.points_map = {{2.05f, 2.55f, 0.5f}};
+    global.update({0.55, 2.55, 0.0}, {obs}, nullptr);
+    obs.points_map = {{4.05f, 2.55f, 0.5f}};  // the first obstacle moved away
+    global.update({0.55, 2.55, 0.0}, {obs}, nullptr);
+    EXPECT_EQ(global.occupancy().cost(20, 25), clearing ? kFree : kLethal);
+    EXPECT_EQ(global.occupancy().cost(40, 25), kLethal);
+  }
+}
