@@ -15,6 +15,7 @@ SearchOutcome AStar::search(const GridCostModel& model, std::size_t start, std::
   SearchOutcome out;
   g_[start] = 0.0;
   parent_[start] = static_cast<std::uint32_t>(start);
+  const int gx = model.x_of(goal), gy = model.y_of(goal);
   open_.insert(start, {model.heuristic(start, goal), model.heuristic(start, goal)});
   while (!open_.empty()) {
     const std::size_t u = open_.pop();
@@ -34,7 +35,7 @@ SearchOutcome AStar::search(const GridCostModel& model, std::size_t start, std::
       if (gv >= g_[v]) continue;
       g_[v] = gv;
       parent_[v] = static_cast<std::uint32_t>(u);
-      const Cost h = model.heuristic(v, goal);
+      const Cost h = model.octile(x + kDx[k] - gx, y + kDy[k] - gy);
       open_.push(v, {gv + h, h});  // ties broken towards the goal
     }
   }

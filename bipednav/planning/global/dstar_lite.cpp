@@ -5,16 +5,16 @@
 
 namespace bipednav::planning {
 
-Key DStarLite::calculate_key(std::size_t s) const {
+Key DStarLite::calculate_key(std::size_t s, int x, int y) const {
   const Cost m = std::min(g_[s], rhs_[s]);
   if (m >= kInfCost) return {kInfCost, kInfCost};
-  return {m + model_.heuristic(start_, s) + km_, m};
+  return {m + model_.octile(x - start_x_, y - start_y_) + km_, m};
 }
 
-void DStarLite::update_vertex(std::size_t u) {
+void DStarLite::update_vertex(std::size_t u, int x, int y) {
   const bool inconsistent = g_[u] != rhs_[u];
   if (inconsistent)
-    open_.push(u, calculate_key(u));
+    open_.push(u, calculate_key(u, x, y));
   else if (open_.contains(u))
     open_.remove(u);
 }
@@ -40,6 +40,8 @@ void DStarLite::initialize(std::size_t start, std::size_t goal) {
   stamp_gen_ = 0;
   km_ = 0;
   start_ = last_ = start;
+  start_x_ = model_.x_of(start);
+  start_y_ = model_.y_of(start);
   goal_ = goal;
   rhs_[goal] = 0;
   open_.insert(goal, {model_.heuristic(start, goal), 0});
@@ -48,6 +50,8 @@ void DStarLite::initialize(std::size_t start, std::size_t goal) {
 void DStarLite::move_start(std::size_t start) {
   if (start == start_) return;
   start_ = start;
+  start_x_ = model_.x_of(start);
+  start_y_ = model_.y_of(start);
   km_ += model_.heuristic(last_, start_);
   last_ = start_;
 }
@@ -61,7 +65,7 @@ void DStarLite::expand_overconsistent(std::size_t u) {
     if (c >= kInfCost) continue;
     const std::size_t s = model_.idx(x + kDx[k], y + kDy[k]);
     if (s != goal_) rhs_[s] = std::min(rhs_[s], c + g_[u]);  // g(u) is finite here
-    update_vertex(s);
+    update_vertex(s, x + kDx[k], y + kDy[k]);
   }
 }
 
@@ -74,10 +78,10 @@ void DStarLite::expand_underconsistent(std::size_t u) {
     if (c >= kInfCost) continue;
     const std::size_t s = model_.idx(x + kDx[k], y + kDy[k]);
     if (s != goal_ && rhs_[s] == add_cost(c, g_old)) rhs_[s] = best_successor_value(s);
-    update_vertex(s);
+    update_vertex(s, x + kDx[k], y + kDy[k]);
   }
   // u itself (the "∪ {u}" of line 27): its rhs does not depend on g(u), only its key changes.
-  update_vertex(u);
+  update_vertex(u, x, y);
 }
 
 SearchStatus DStarLite::compute_shortest_path(const Deadline& deadline, std::size_t& expansions) {

@@ -51,8 +51,10 @@ class DStarLite {
   std::size_t invariant_violations() const;
 
  private:
-  Key calculate_key(std::size_t s) const;  // eqs. 5.2-5.3
-  void update_vertex(std::size_t u);
+  Key calculate_key(std::size_t s, int x, int y) const;  // eqs. 5.2-5.3; (x, y) = cell of s
+  Key calculate_key(std::size_t s) const { return calculate_key(s, model_.x_of(s), model_.y_of(s)); }
+  void update_vertex(std::size_t u, int x, int y);
+  void update_vertex(std::size_t u) { update_vertex(u, model_.x_of(u), model_.y_of(u)); }
   Cost best_successor_value(std::size_t s) const;  // min over s' of c(s, s') + g(s')
   void expand_overconsistent(std::size_t u);
   void expand_underconsistent(std::size_t u);
@@ -64,6 +66,7 @@ class DStarLite {
   IndexedHeap open_;
   Cost km_ = 0;
   std::size_t start_ = 0;
+  int start_x_ = 0, start_y_ = 0;
   std::size_t last_ = 0;
   std::size_t goal_ = 0;
   // Scratch for update_cells: affected vertices (deduplicated by stamp) and their old edge costs.

@@ -74,14 +74,13 @@ class GridCostModel {
     return kStepLen[k] * (fa + fb);
   }
   // Admissible, consistent heuristic: octile length times the smallest possible factor sum.
-  Cost heuristic(std::size_t a, std::size_t b) const {
-    int dx = static_cast<int>(a % width_) - static_cast<int>(b % width_);
-    int dy = static_cast<int>(a / width_) - static_cast<int>(b / width_);
+  Cost octile(int dx, int dy) const {
     dx = dx < 0 ? -dx : dx;
     dy = dy < 0 ? -dy : dy;
     const Cost mn = dx < dy ? dx : dy, mx = dx < dy ? dy : dx;
     return ((mx - mn) * kStepLen[0] + mn * kStepLen[4]) * 2 * min_factor_;
   }
+  Cost heuristic(std::size_t a, std::size_t b) const { return octile(x_of(a) - x_of(b), y_of(a) - y_of(b)); }
   // A path cost in metres (times the factors): cells x resolution.
   double to_metres(Cost c) const { return static_cast<double>(c) / (2.0 * kFactorUnit * kLengthUnit) * resolution_m_; }
 
