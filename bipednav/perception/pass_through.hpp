@@ -20,6 +20,23 @@ struct PassThroughParams {
   void validate() const;
 };
 
+// The test of one point, with the parameters prepared once (float, squared ranges).
+class PassThroughTest {
+ public:
+  PassThroughTest(const PassThroughParams& params, const Eigen::Vector3f& origin = Eigen::Vector3f::Zero(),
+                  const Plane& plane = ground_plane_z0());
+  bool keep(const Eigen::Vector3f& p) const {
+    const float r2 = (p - origin_).squaredNorm();
+    const float h = signed_distance(plane_, p);
+    return p.allFinite() && r2 >= r2_min_ && r2 <= r2_max_ && h >= h_min_ && h <= h_max_;
+  }
+
+ private:
+  Eigen::Vector3f origin_;
+  Eigen::Vector4f plane_;
+  float r2_min_, r2_max_, h_min_, h_max_;
+};
+
 // Keeps the finite points whose distance to `origin` is in [min_range_m, max_range_m] and whose
 // signed height above `plane` (unit normal, as from normalize_plane) is in
 // [min_height_m, max_height_m]. NaN and infinite points are always dropped. Optional fields follow
@@ -27,10 +44,5 @@ struct PassThroughParams {
 PointCloud pass_through(const PointCloud& in, const PassThroughParams& params,
                         const Eigen::Vector3f& origin = Eigen::Vector3f::Zero(),
                         const Plane& plane = ground_plane_z0());
-
-// Indices of the kept points (same test), for callers that carry extra per-point data.
-std::vector<std::size_t> pass_through_indices(const std::vector<Eigen::Vector3f>& points,
-                                              const PassThroughParams& params, const Eigen::Vector3f& origin,
-                                              const Plane& plane);
 
 }  // namespace bipednav::perception

@@ -22,24 +22,26 @@ void PerceptionParams::validate() const {
   require(obstacle_height_margin_m >= 0.0, "obstacle_height_margin_m", ">= 0 m");
 }
 
-PerceptionPipeline::PerceptionPipeline(PerceptionParams params) : params_(std::move(params)), rng_(params_.seed) {
-  params_.validate();
+PerceptionPipeline::PerceptionPipeline(PerceptionParams params)
+    : params_((params.validate(), std::move(params))), rng_(params_.seed), depth_voxel_(params_.depth_voxel) {
   params_.prior_ground = normalize_plane(params_.prior_ground);
 }
 
 void PerceptionPipeline::add_depth(FusedCloud& fused, const DepthCloud& depth, const RobotProfile& robot,
-                                   PerceptionOutput& out) const {
+                                   PerceptionOutput& out) {
   const SensorMount* mount = robot.sensor(depth.camera);
   if (!mount)
     throw Error("perception: depth cloud from camera '" + depth.camera + "', which robot profile '" + robot.name +
                 "' does not mount");
   for (const auto& p : depth.cloud.points) out.depth_points_in += p.allFinite() ? 1u : 0u;
-  const PointCloud voxels = voxel_downsample(depth.cloud, params_.depth_voxel);  // section 4.2.1
-  out.depth_points_voxel += voxels.size();
+  // Range first (section 4.2.2), then the voxel grid (4.2.1): the far, sparse points that the range
+  // limit drops would each fill a voxel of their own, so this order does the same work cheaper.
   PassThroughParams range;
-  range.max_range_m = params_.depth_max_range_m;  // section 4.2.2
-  append_sensor_cloud(fused, pass_through(voxels, range), mount->T_base_sensor(), mount->name,
-                      params_.depth_max_range_m);
+  range.max_range_m = params_.depth_max_range_m;
+  const PassThroughTest crop(range);
+  depth_voxel_.filter(depth.cloud, voxels_, &crop);
+  out.depth_points_voxel += voxels_.size();
+  append_sensor_cloud(fused, voxels_, mount->T_base_sensor(), mount->name, params_.depth_max_range_m);
 }
 
 void PerceptionPipeline::add_lidar(FusedCloud& fused, const PointCloud& sweep, const RobotProfile& robot) const {
@@ -91,7 +93,10 @@ void PerceptionPipeline::classify(const FusedCloud& fused, double robot_height_m
 PerceptionOutput PerceptionPipeline::process(const SensorFrame& frame, const RobotProfile& robot) {
   const Stopwatch total;
   PerceptionOutput out;
-  FusedCloud fused;
+  FusedCloud& fused = fused_;
+  fused.cloud.clear();
+  fused.source.clear();
+  fused.sources.clear();
   Stopwatch sw;
   for (const DepthCloud& d : frame.depth) add_depth(fused, d, robot, out);
   out.timings.depth_ms = sw.elapsed_ms();

@@ -58,12 +58,12 @@ struct PerceptionOutput {
   bool plane_from_ransac = false;          // false: the prior plane was used (see PerceptionParams)
   std::size_t ground_inliers = 0;
   std::vector<SensorSource> sources;   // origins for ray-trace clearing
-  std::size_t depth_points_in = 0;     // finite depth points before the voxel grid
-  std::size_t depth_points_voxel = 0;  // after it
+  std::size_t depth_points_in = 0;     // finite depth points received
+  std::size_t depth_points_voxel = 0;  // after the range filter and the voxel grid
   PerceptionTimings timings;
 };
 
-// Depth clouds: voxel grid -> range filter (<= depth_max_range_m from the camera) -> base frame.
+// Depth clouds: range filter (<= depth_max_range_m from the camera) -> voxel grid -> base frame.
 // LiDAR sweep: range filter (-> voxel grid) -> base frame. The fused cloud is segmented by RANSAC
 // with a normal prior; a plane that is missing, has too few inliers or lies more than
 // max_ground_offset_m from the prior (Digit's LiDAR sees the floor only beyond ~5.5 m, so a frame
@@ -80,13 +80,16 @@ class PerceptionPipeline {
   const PerceptionParams& params() const { return params_; }
 
  private:
-  void add_depth(FusedCloud& fused, const DepthCloud& depth, const RobotProfile& robot, PerceptionOutput& out) const;
+  void add_depth(FusedCloud& fused, const DepthCloud& depth, const RobotProfile& robot, PerceptionOutput& out);
   void add_lidar(FusedCloud& fused, const PointCloud& sweep, const RobotProfile& robot) const;
   void choose_plane(const PlaneFit& fit, PerceptionOutput& out) const;
   void classify(const FusedCloud& fused, double robot_height_m, PerceptionOutput& out) const;
 
   PerceptionParams params_;
   Rng rng_;
+  VoxelGrid depth_voxel_;  // stages and buffers kept between frames (no per-frame allocation)
+  PointCloud voxels_;
+  FusedCloud fused_;
 };
 
 }  // namespace bipednav::perception
