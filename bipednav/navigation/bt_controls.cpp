@@ -6,79 +6,29 @@
 
 namespace bipednav::navigation {
 
-BtStatus BtSequence::tick(double now_s) {
-  while (current_ < child_count()) {
-    const BtStatus s = child(current_).execute_tick(now_s);
-    if (s == BtStatus::RUNNING) return s;
-    if (s == BtStatus::FAILURE) {
-      halt_children();
-      current_ = 0;
-      return s;
-    }
-    ++current_;
-  }
+BtStatus BtSequentialNode::finish(BtStatus s) {
   halt_children();
   current_ = 0;
-  return BtStatus::SUCCESS;
+  return s;
 }
 
-void BtSequence::halt() {
-  current_ = 0;
-  halt_children();
-}
-
-BtStatus BtFallback::tick(double now_s) {
-  while (current_ < child_count()) {
-    const BtStatus s = child(current_).execute_tick(now_s);
-    if (s == BtStatus::RUNNING) return s;
-    if (s == BtStatus::SUCCESS) {
-      halt_children();
-      current_ = 0;
-      return s;
-    }
-    ++current_;
-  }
-  halt_children();
-  current_ = 0;
-  return BtStatus::FAILURE;
-}
-
-void BtFallback::halt() {
-  current_ = 0;
-  halt_children();
-}
-
-namespace {
-
-// Shared by the reactive nodes: `stop_on` ends the node with that status, RUNNING halts
-// every other child, anything else moves on to the next child.
-BtStatus reactive_tick(const std::vector<std::unique_ptr<BtNode>>& kids, double now_s, BtStatus stop_on,
-                       BtStatus all_done) {
-  for (std::size_t i = 0; i < kids.size(); ++i) {
-    const BtStatus s = kids[i]->execute_tick(now_s);
+BtStatus BtSequentialNode::tick(double now_s) {
+  const BtStatus all_done = stop_on_ == BtStatus::FAILURE ? BtStatus::SUCCESS : BtStatus::FAILURE;
+  for (std::size_t i = reactive_ ? 0 : current_; i < child_count(); ++i) {
+    const BtStatus s = child(i).execute_tick(now_s);
+    if (s == stop_on_) return finish(s);
     if (s == BtStatus::RUNNING) {
-      for (std::size_t j = 0; j < kids.size(); ++j)
-        if (j != i) kids[j]->halt_node();
-      return s;
-    }
-    if (s == stop_on) {
-      for (const auto& k : kids) k->halt_node();
+      if (reactive_)
+        for (std::size_t j = 0; j < child_count(); ++j)
+          if (j != i) halt_child(j);
+      current_ = i;
       return s;
     }
   }
-  for (const auto& k : kids) k->halt_node();
-  return all_done;
+  return finish(all_done);
 }
 
-}  // namespace
-
-BtStatus BtReactiveSequence::tick(double now_s) {
-  return reactive_tick(children(), now_s, BtStatus::FAILURE, BtStatus::SUCCESS);
-}
-
-BtStatus BtReactiveFallback::tick(double now_s) {
-  return reactive_tick(children(), now_s, BtStatus::SUCCESS, BtStatus::FAILURE);
-}
+void BtSequentialNode::halt() { finish(BtStatus::IDLE); }
 
 BtParallel::BtParallel(BtNodeConfig config) : BtControlNode(std::move(config)) {
   success_threshold_ = std::get<int>(bt_literal_param(this->config(), "success_count", BtType::Int));

@@ -17,50 +17,29 @@ class BtControlNode : public BtNode {
   void halt() override { halt_children(); }
 };
 
-// Ticks children in order; remembers the RUNNING child (it resumes there next tick).
-class BtSequence final : public BtControlNode {
+// Sequence (stop_on = FAILURE) and Fallback (stop_on = SUCCESS): ticks the children in order
+// until one returns stop_on, which ends the node with that status; when all children return
+// the other status the node does too.
+//  - memory (Sequence, Fallback): a RUNNING child is resumed on the next tick without
+//    re-ticking the children before it.
+//  - reactive (ReactiveSequence, ReactiveFallback): every tick starts from the first child;
+//    a RUNNING child halts all other children, so an earlier child that changes its result
+//    halts the later running one.
+class BtSequentialNode final : public BtControlNode {
  public:
-  using BtControlNode::BtControlNode;
+  BtSequentialNode(BtNodeConfig config, BtStatus stop_on, bool reactive)
+      : BtControlNode(std::move(config)), stop_on_(stop_on), reactive_(reactive) {}
 
  protected:
   BtStatus tick(double now_s) override;
   void halt() override;
 
  private:
+  BtStatus finish(BtStatus s);
+
+  BtStatus stop_on_;
+  bool reactive_;
   std::size_t current_ = 0;
-};
-
-// Ticks children in order until one does not fail; remembers the RUNNING child.
-class BtFallback final : public BtControlNode {
- public:
-  using BtControlNode::BtControlNode;
-
- protected:
-  BtStatus tick(double now_s) override;
-  void halt() override;
-
- private:
-  std::size_t current_ = 0;
-};
-
-// Re-evaluates every child from the first on each tick; a RUNNING child halts all others,
-// a FAILURE halts the RUNNING one.
-class BtReactiveSequence final : public BtControlNode {
- public:
-  using BtControlNode::BtControlNode;
-
- protected:
-  BtStatus tick(double now_s) override;
-};
-
-// Re-evaluates every child from the first on each tick; a RUNNING child halts all others,
-// a SUCCESS halts the RUNNING one.
-class BtReactiveFallback final : public BtControlNode {
- public:
-  using BtControlNode::BtControlNode;
-
- protected:
-  BtStatus tick(double now_s) override;
 };
 
 // Ticks every unfinished child each tick; SUCCESS once success_count children succeeded,

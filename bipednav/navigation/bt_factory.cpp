@@ -27,6 +27,11 @@ BtBuilder force(BtStatus s) {
   return [s](const BtNodeConfig& c) { return std::make_unique<BtForceStatus>(c, s); };
 }
 
+BtBuilder sequential(BtStatus stop_on, bool reactive) {
+  return
+      [stop_on, reactive](const BtNodeConfig& c) { return std::make_unique<BtSequentialNode>(c, stop_on, reactive); };
+}
+
 BtBuilder constant(BtStatus s) {
   return [s](const BtNodeConfig& c) { return std::make_unique<BtConstantLeaf>(c, s); };
 }
@@ -35,10 +40,10 @@ BtBuilder constant(BtStatus s) {
 
 BtFactory::BtFactory() {
   using P = BtPortSpec;
-  add("Sequence", control(make<BtSequence>()));
-  add("Fallback", control(make<BtFallback>()));
-  add("ReactiveSequence", control(make<BtReactiveSequence>()));
-  add("ReactiveFallback", control(make<BtReactiveFallback>()));
+  add("Sequence", control(sequential(BtStatus::FAILURE, false)));
+  add("Fallback", control(sequential(BtStatus::SUCCESS, false)));
+  add("ReactiveSequence", control(sequential(BtStatus::FAILURE, true)));
+  add("ReactiveFallback", control(sequential(BtStatus::SUCCESS, true)));
   add("Parallel", control(make<BtParallel>(),
                           {P::input("success_count", BtType::Int, "-1"), P::input("failure_count", BtType::Int, "1")}));
   add("RecoveryNode", control(make<BtRecoveryNode>(), {P::input("number_of_retries", BtType::Int, "1")}, 2, 2));
