@@ -1,8 +1,274 @@
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
 #include "apps/commands.hpp"
+#include "bipednav/common/error.hpp"
+#include "bipednav/io/map_server.hpp"
+#include "bipednav/io/movingai.hpp"
+#include "bipednav/mapping/global_costmap.hpp"
+#include "bipednav/planning/global/global_planner.hpp"
+#include "bipednav/planning/global/movingai_runner.hpp"
+#include "bipednav/planning/global/replan_benchmark.hpp"
+#include "bipednav/viz/canvas.hpp"
 
 namespace bipednav::app {
 
-// Filled in by the module's issue.
-void add_plan_commands(CLI::App& /*app*/, CLI::App& /*bench*/) {}
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// "x,y" or "x,y,yaw" (metres, radians).
+Pose2 parse_pose(const std::string& text, const std::string& option) {
+  std::vector<double> v;
+  std::stringstream ss(text);
+  std::string part;
+  while (std::getline(ss, part, ',')) {
+    try {
+      std::size_t used = 0;
+      v.push_back(std::stod(part, &used));
+      if (used != part.size()) throw std::invalid_argument(part);
+    } catch (const std::exception&) {
+      throw Error(option + ": expected x,y or x,y,yaw in metres/radians, got '" + text + "'");
+    }
+  }
+  if (v.size() != 2 && v.size() != 3) throw Error(option + ": expected x,y or x,y,yaw, got '" + text + "'");
+  return {v[0], v[1], v.size() == 3 ? v[2] : 0.0};
+}
+
+json pose_json(const Pose2& p) { return {p.x, p.y, p.theta}; }
+
+struct GridOptions {
+  std::string map, start, goal, planner = "dstar_lite", out, unknown = "unknown";
+  double inscribed_m = 0.25, inflation_m = 0.8, scaling = 3.0, cost_weight = 3.0;
+  bool unknown_is_obstacle = false, json_out = false;
+};
+
+void write_plan_png(const std::string& file, const mapping::Costmap2D& map, const planning::PlanResult& r,
+                    const Pose2& start, const Pose2& goal) {
+  const auto& g = map.geometry();
+  viz::CanvasParams cp;
+  cp.min_x_m = g.origin_x_m;
+  cp.min_y_m = g.origin_y_m;
+  cp.max_x_m = g.origin_x_m + g.size_x_m();
+  cp.max_y_m = g.origin_y_m + g.size_y_m();
+  cp.pixels_per_m = std::clamp(1200.0 / std::max(g.size_x_m(), g.size_y_m()), 2.0, 200.0);
+  viz::Canvas canvas(cp);
+  canvas.grid(map);
+  std::vector<Eigen::Vector2d> pts;
+  for (const auto& p : r.path.poses) pts.push_back(p.position());
+  if (pts.size() >= 2) canvas.polyline(pts, viz::colors::kRed, 2.0);
+  canvas.arrow(start, 0.05 * std::max(g.size_x_m(), g.size_y_m()), viz::colors::kGreen, 3.0);
+  canvas.arrow(goal, 0.05 * std::max(g.size_x_m(), g.size_y_m()), viz::colors::kOrange, 3.0);
+  canvas.text_px(10, 14, std::string(outcome_name(r.result.outcome)) + ": " + r.result.message, viz::colors::kBlack);
+  canvas.write_png(file);
+}
+
+void run_grid(const GridOptions& o) {
+  const Pose2 start = parse_pose(o.start, "--start"), goal = parse_pose(o.goal, "--goal");
+  const mapping::Costmap2D prior = io::read_map_server(o.map);
+  mapping::GlobalCostmapParams cp;
+  cp.inscribed_radius_m = o.inscribed_m;
+  cp.inflation_radius_m = o.inflation_m;
+  cp.cost_scaling_factor = o.scaling;
+  cp.unknown_cost_mode = o.unknown;
+  cp.resolution_m = prior.resolution_m();
+  cp.validate();
+  mapping::GlobalCostmap costmap(prior.geometry(), cp);
+  costmap.set_occupancy(prior);
+  planning::GlobalPlannerParams pp;
+  pp.cost.cost_weight = o.cost_weight;
+  pp.cost.unknown_is_obstacle = o.unknown_is_obstacle;
+  auto planner = planning::make_global_planner(o.planner, pp);
+  const planning::PlanResult r = planner->plan(costmap.costmap(), start, goal, {});
+  if (!o.out.empty()) write_plan_png(o.out, costmap.costmap(), r, start, goal);
+  if (o.json_out) {
+    json poses = json::array();
+    for (const auto& p : r.path.poses) poses.push_back(pose_json(p));
+    json j = {{"planner", o.planner},
+              {"outcome", outcome_name(r.result.outcome)},
+              {"code", code(r.result.outcome)},
+              {"message", r.result.message},
+              {"cost", r.cost},
+              {"length_m", r.path.length_m()},
+              {"expansions", r.expansions},
+              {"time_ms", r.time_ms},
+              {"path", poses}};
+    if (!o.out.empty()) j["png"] = o.out;
+    std::printf("%s\n", j.dump(2).c_str());
+  } else {
+    std::printf("%s (%s): %s\n  cost %.3f, length %.3f m, %zu poses, %zu expansions, %.3f ms\n",
+                std::string(outcome_name(r.result.outcome)).c_str(), o.planner.c_str(), r.result.message.c_str(),
+                r.cost, r.path.length_m(), r.path.size(), r.expansions, r.time_ms);
+  }
+}
+
+json movingai_json(const std::vector<planning::MovingAiRowResult>& rows, const std::string& planner) {
+  json out = json::array();
+  double max_err = 0.0, total_ms = 0.0;
+  int solved = 0;
+  for (const auto& r : rows) {
+    const auto& p = r.problem;
+    json row = {{"start", {p.start_x, p.start_y}}, {"goal", {p.goal_x, p.goal_y}}, {"length", nullptr},
+                {"optimal", p.optimal_length},     {"expansions", r.expansions},   {"time_ms", r.time_ms}};
+    if (r.length) {
+      row["length"] = *r.length;
+      max_err = std::max(max_err, std::abs(*r.length - p.optimal_length));
+      ++solved;
+    } else {
+      row["outcome"] = outcome_name(r.result.outcome);
+      max_err = std::max(max_err, std::abs(p.optimal_length));  // an unsolved row counts fully
+    }
+    total_ms += r.time_ms;
+    out.push_back(std::move(row));
+  }
+  return {{"planner", planner},
+          {"rows", out},
+          {"summary",
+           {{"rows", rows.size()}, {"solved", solved}, {"max_abs_error", max_err}, {"total_time_ms", total_ms}}}};
+}
+
+void run_movingai(const std::string& map_file, const std::string& scen_file, const std::string& planner_name,
+                  bool json_out) {
+  const auto map = io::read_movingai_map(map_file);
+  const auto problems = io::read_movingai_scen(scen_file);
+  auto planner = planning::make_global_planner(planner_name, {});
+  const auto rows = planning::run_movingai(map, problems, *planner);
+  json j = movingai_json(rows, planner_name);
+  if (json_out) {
+    std::printf("%s\n", j.dump(2).c_str());
+    return;
+  }
+  const auto& s = j["summary"];
+  std::printf("%s on %s: %d/%d rows solved, max |length - optimal| = %.6f, total %.1f ms\n", planner_name.c_str(),
+              map_file.c_str(), s["solved"].get<int>(), s["rows"].get<int>(), s["max_abs_error"].get<double>(),
+              s["total_time_ms"].get<double>());
+}
+
+// tests/data/movingai next to the sources: searched upwards from the working directory and from
+// the executable (the build directory lives inside the source tree).
+fs::path find_movingai_dir(const std::string& given) {
+  if (!given.empty()) return given;
+  std::vector<fs::path> roots = {fs::current_path()};
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) roots.push_back(exe.parent_path());
+  for (fs::path p : roots)
+    for (; !p.empty(); p = p.parent_path()) {
+      for (const char* rel : {"tests/data/movingai", "../shared/data/movingai"})
+        if (fs::exists(p / rel / "maps")) return p / rel;
+      if (p == p.parent_path()) break;
+    }
+  return {};
+}
+
+json movingai_first_plans(const fs::path& dir) {
+  json out = json::array();
+  for (const char* name : {"arena", "den312d", "lak303d", "Berlin_0_256"}) {
+    const auto map = io::read_movingai_map(dir / "maps" / (std::string(name) + ".map"));
+    const auto problems = io::read_movingai_scen(dir / "scen" / (std::string(name) + ".map.scen"));
+    json entry = {{"map", name}, {"rows", problems.size()}};
+    for (const char* planner_name : {"dstar_lite", "astar"}) {
+      auto planner = planning::make_global_planner(planner_name, {});
+      const auto rows = planning::run_movingai(map, problems, *planner);
+      double sum = 0.0, mx = 0.0, err = 0.0;
+      for (const auto& r : rows) {
+        sum += r.time_ms;
+        mx = std::max(mx, r.time_ms);
+        err = std::max(err, r.length ? std::abs(*r.length - r.problem.optimal_length) : 1e9);
+      }
+      const std::string k = planner_name;
+      entry[k + "_first_plan_mean_ms"] = sum / std::max<std::size_t>(1, rows.size());
+      entry[k + "_first_plan_max_ms"] = mx;
+      entry[k + "_max_abs_error"] = err;
+    }
+    out.push_back(entry);
+  }
+  return out;
+}
+
+void run_bench(const std::string& movingai_dir, int max_replans) {
+  planning::ReplanBenchParams p;
+  p.max_replans = max_replans;
+  const planning::ReplanStats s = planning::run_replan_benchmark(p);
+  const double goal_exp = 10.0, goal_time = 5.0;
+  json j = {{"world", "three_rooms 6 x 30 m at 0.1 m, obstacles revealed within 3 m"},
+            {"replans", s.replans},
+            {"reached_goal", s.reached_goal},
+            {"travelled_m", s.travelled_m},
+            {"changed_cells", s.changed_cells},
+            {"cost_mismatches", s.cost_mismatches},
+            {"first_plan_dstar_ms", s.first_dstar_ms},
+            {"first_plan_astar_ms", s.first_astar_ms},
+            {"first_plan_dstar_expansions", s.first_dstar_expansions},
+            {"first_plan_astar_expansions", s.first_astar_expansions},
+            {"replan_dstar_mean_expansions", s.dstar_mean_expansions},
+            {"replan_astar_mean_expansions", s.astar_mean_expansions},
+            {"replan_dstar_mean_ms", s.dstar_mean_ms},
+            {"replan_astar_mean_ms", s.astar_mean_ms},
+            {"replan_dstar_max_ms", s.dstar_max_ms},
+            {"replan_astar_max_ms", s.astar_max_ms},
+            {"expansions_ratio", s.expansions_ratio},
+            {"goal_expansions_ratio", goal_exp},
+            {"meets_goal_expansions_ratio", s.expansions_ratio >= goal_exp},
+            {"time_ratio", s.time_ratio},
+            {"goal_time_ratio", goal_time},
+            {"meets_goal_time_ratio", s.time_ratio >= goal_time}};
+  const fs::path dir = find_movingai_dir(movingai_dir);
+  if (dir.empty()) {
+    j["movingai"] = nullptr;
+    j["movingai_note"] = "tests/data/movingai not found; pass --movingai-dir";
+  } else {
+    j["movingai_dir"] = dir.string();
+    j["movingai"] = movingai_first_plans(dir);
+  }
+  std::printf("%s\n", j.dump(2).c_str());
+}
+
+}  // namespace
+
+void add_plan_commands(CLI::App& app, CLI::App& bench) {
+  CLI::App* plan = app.add_subcommand("plan", "Global path planning (D* Lite, A*)");
+  plan->require_subcommand(1);
+
+  auto g = std::make_shared<GridOptions>();
+  CLI::App* grid = plan->add_subcommand("grid", "Plan on a map_server map (inflated like the global costmap)");
+  grid->add_option("map", g->map, "map_server YAML")->required();
+  grid->add_option("--start", g->start, "x,y[,yaw] in metres/radians")->required();
+  grid->add_option("--goal", g->goal, "x,y[,yaw] in metres/radians")->required();
+  grid->add_option("--planner", g->planner, "dstar_lite | astar")->check(CLI::IsMember({"dstar_lite", "astar"}));
+  grid->add_option("--out", g->out, "PNG of the costmap and the path");
+  grid->add_option("--inscribed-radius", g->inscribed_m, "m");
+  grid->add_option("--inflation-radius", g->inflation_m, "m");
+  grid->add_option("--cost-scaling", g->scaling, "1/m");
+  grid->add_option("--cost-weight", g->cost_weight, "w in 1 + w * cost / 252");
+  grid->add_option("--unknown", g->unknown, "cost of unknown cells: free | unknown | lethal");
+  grid->add_flag("--unknown-is-obstacle", g->unknown_is_obstacle, "unknown cells are impassable");
+  grid->add_flag("--json", g->json_out, "print one JSON object");
+  grid->callback([g] { run_grid(*g); });
+
+  auto m = std::make_shared<GridOptions>();
+  CLI::App* mai = plan->add_subcommand("movingai", "Plan every row of a Moving AI scenario (unit cell costs)");
+  mai->add_option("map", m->map, "Moving AI .map")->required();
+  mai->add_option("scen", m->start, "Moving AI .scen")->required();
+  mai->add_option("--planner", m->planner, "dstar_lite | astar")->check(CLI::IsMember({"dstar_lite", "astar"}));
+  mai->add_flag("--json", m->json_out, "print one JSON object with rows and summary");
+  mai->callback([m] { run_movingai(m->map, m->start, m->planner, m->json_out); });
+
+  auto dir = std::make_shared<std::string>();
+  auto replans = std::make_shared<int>(2000);
+  CLI::App* b = bench.add_subcommand("global", "D* Lite replanning vs A* (three rooms), Moving AI first plans");
+  auto json_flag = std::make_shared<bool>(false);
+  b->add_flag("--json", *json_flag, "print one JSON object (the only output format)");
+  b->add_option("--movingai-dir", *dir, "directory with maps/ and scen/ (default: tests/data/movingai)");
+  b->add_option("--max-replans", *replans, "replan limit");
+  b->callback([dir, replans] { run_bench(*dir, *replans); });
+}
 
 }  // namespace bipednav::app
