@@ -55,7 +55,7 @@ std::vector<double> winding_signature(const std::vector<Eigen::Vector2d>& path,
     const Eigen::Vector2d& c = centroids[l];
     for (std::size_t i = 1; i < path.size(); ++i) {
       const Eigen::Vector2d a = path[i - 1] - c, b = path[i] - c;
-      sig[l] += angle_diff(std::atan2(b.y(), b.x()), std::atan2(a.y(), a.x()));
+      sig[l] += std::atan2(a.x() * b.y() - a.y() * b.x(), a.dot(b));  // signed angle from a to b
     }
   }
   return sig;
@@ -84,7 +84,9 @@ double segment_obstacle_distance(const Eigen::Vector2d& a, const Eigen::Vector2d
 }
 
 std::vector<std::vector<Eigen::Vector2d>> candidate_paths(const Pose2& start, const Pose2& goal,
-                                                          const std::vector<Obstacle>& obstacles, double min_dist_m,
+                                                          const std::vector<Obstacle>& obstacles,
+                                                          const std::vector<Eigen::Vector2d>& centroids,
+                                                          double min_dist_m,
                                                           const std::vector<std::vector<double>>& known, int max_new,
                                                           const HomotopyParams& params) {
   std::vector<std::vector<Eigen::Vector2d>> out;
@@ -101,6 +103,7 @@ std::vector<std::vector<Eigen::Vector2d>> candidate_paths(const Pose2& start, co
   }
   std::sort(near.begin(), near.end());
   if (static_cast<int>(near.size()) > params.max_keypoint_obstacles) near.resize(params.max_keypoint_obstacles);
+  const double clearance = params.roadmap_clearance_ratio * min_dist_m;
   std::vector<Eigen::Vector2d> nodes{s};
   for (const auto& [lat, i] : near) {
     const Obstacle& o = obstacles[i];
@@ -109,7 +112,7 @@ std::vector<std::vector<Eigen::Vector2d>> candidate_paths(const Pose2& start, co
       const double t = (p - s).dot(dir);
       bool free = t > 0.0 && t < len;
       for (std::size_t j = 0; free && j < obstacles.size(); ++j)
-        free = obstacle_distance(obstacles[j], p.x(), p.y()) > min_dist_m;
+        free = obstacle_distance(obstacles[j], p.x(), p.y()) > clearance;
       if (free) nodes.push_back(p);
     }
   }
@@ -120,12 +123,10 @@ std::vector<std::vector<Eigen::Vector2d>> candidate_paths(const Pose2& start, co
   std::vector<std::vector<int>> adj(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) {
     for (int j = 1; j < n; ++j) {
-      if (t[j] > t[i] + 1e-6 && edge_free(nodes[i], nodes[j], obstacles, min_dist_m)) adj[i].push_back(j);
+      if (t[j] > t[i] + 1e-6 && edge_free(nodes[i], nodes[j], obstacles, clearance)) adj[i].push_back(j);
     }
   }
   // Best-first enumeration of paths in order of length (k shortest paths in a DAG).
-  std::vector<Eigen::Vector2d> centroids;
-  for (const auto& o : obstacles) centroids.push_back(o.centroid);
   std::vector<std::vector<double>> seen = known;
   std::priority_queue<Partial, std::vector<Partial>, std::greater<>> open;
   open.push({0.0, {0}});
@@ -205,8 +206,8 @@ void HomotopyPlanner::add_candidates(const Pose2& start, const Pose2& goal, cons
   if (free_slots <= 0) return;
   std::vector<std::vector<double>> known;
   for (const auto& b : bands_) known.push_back(winding_signature(band_polyline(b.band), centroids));
-  for (const auto& path : candidate_paths(start, goal, obstacles, params_.limits.min_obstacle_dist_m, known, free_slots,
-                                          params_.homotopy)) {
+  for (const auto& path : candidate_paths(start, goal, obstacles, centroids, params_.limits.min_obstacle_dist_m, known,
+                                          free_slots, params_.homotopy)) {
     const std::vector<Eigen::Vector2d> inner(path.begin() + 1, path.end() - 1);
     bands_.push_back({next_id_++, init_band(start, inner, goal, params_.limits, params_.band), {}, false});
   }
@@ -232,16 +233,30 @@ const BandCandidate* HomotopyPlanner::select() {
     const double c = b.cost.selection() * (b.id == selected_id_ ? params_.homotopy.selection_hysteresis : 1.0);
     if (best == nullptr || c < best_cost) best = &b, best_cost = c;
   }
-  selected_id_ = best != nullptr ? best->id : 0;
-  return best;
+  if (best == nullptr) {
+    selected_id_ = 0;
+    return nullptr;
+  }
+  selected_id_ = best->id;
+  // Bands far worse than the best only cost time; their slots go to fresh candidates.
+  const double limit = params_.homotopy.max_cost_ratio * best->cost.selection();
+  std::erase_if(bands_, [&](const BandCandidate& b) { return b.id != selected_id_ && b.cost.selection() > limit; });
+  for (const auto& b : bands_) {
+    if (b.id == selected_id_) return &b;
+  }
+  return nullptr;
 }
 
 const BandCandidate* HomotopyPlanner::plan(const Pose2& start, const Pose2& goal, const Twist& start_velocity,
                                            const std::vector<Eigen::Vector2d>& via_points,
                                            const std::vector<Obstacle>& obstacles) {
+  // Only obstacles near the start-goal corridor can tell the candidates apart.
   std::vector<Eigen::Vector2d> centroids;
-  centroids.reserve(obstacles.size());
-  for (const auto& o : obstacles) centroids.push_back(o.centroid);
+  const double reach = params_.homotopy.corridor_halfwidth_m;
+  for (const auto& o : obstacles) {
+    if (distance_to_segment(o.centroid.x(), o.centroid.y(), start.position(), goal.position()) - o.radius_m < reach)
+      centroids.push_back(o.centroid);
+  }
   warm_start(start, goal, centroids);
   add_candidates(start, goal, via_points, obstacles, centroids);
   optimise_all(start_velocity, via_points, obstacles);

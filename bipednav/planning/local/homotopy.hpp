@@ -27,9 +27,12 @@ double segment_obstacle_distance(const Eigen::Vector2d& a, const Eigen::Vector2d
 // Candidate paths start -> goal through keypoints left and right of the obstacles near the
 // start-goal line (a sparse roadmap whose edges only advance towards the goal and keep
 // min_dist_m from every obstacle), enumerated shortest first, one per homotopy class, skipping the
-// classes in `known`. Returns at most max_new paths (each including start and goal).
+// classes in `known` (signatures over `centroids`). Returns at most max_new paths (each including
+// start and goal).
 std::vector<std::vector<Eigen::Vector2d>> candidate_paths(const Pose2& start, const Pose2& goal,
-                                                          const std::vector<Obstacle>& obstacles, double min_dist_m,
+                                                          const std::vector<Obstacle>& obstacles,
+                                                          const std::vector<Eigen::Vector2d>& centroids,
+                                                          double min_dist_m,
                                                           const std::vector<std::vector<double>>& known, int max_new,
                                                           const HomotopyParams& params);
 

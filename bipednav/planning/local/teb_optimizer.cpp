@@ -179,6 +179,7 @@ bool solve_once(std::vector<double>& x, std::vector<double>& dt, const TebProble
   opt.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
   opt.linear_solver_type = solver_type(ctx.params->linear_solver);
   opt.max_num_iterations = ctx.params->no_inner_iterations;
+  opt.function_tolerance = ctx.params->function_tolerance;
   opt.num_threads = 1;
   opt.logging_type = ceres::SILENT;
   opt.minimizer_progress_to_stdout = false;

@@ -38,6 +38,7 @@ void TebOptimizerParams::validate() const {
   require(std::isfinite(weight_adapt_factor) && weight_adapt_factor >= 1.0, "weight_adapt_factor", ">= 1");
   require(nonneg(penalty_epsilon), "penalty_epsilon", ">= 0");
   require(pos(sign_gain), "sign_gain", "> 0");
+  require(pos(function_tolerance) && function_tolerance < 1.0, "function_tolerance", "in (0, 1)");
   require(no_inner_iterations >= 1, "no_inner_iterations", ">= 1");
   require(no_outer_iterations >= 1, "no_outer_iterations", ">= 1");
   require(obstacles_per_pose >= 0 && obstacles_per_pose <= 8, "obstacles_per_pose", "in [0, 8]");
@@ -63,6 +64,8 @@ void HomotopyParams::validate() const {
   require(nonneg(keypoint_margin_m), "keypoint_margin_m", ">= 0");
   require(max_path_expansions >= 1, "max_path_expansions", ">= 1");
   require(pos(signature_tolerance_rad), "signature_tolerance_rad", "> 0");
+  require(pos(roadmap_clearance_ratio) && roadmap_clearance_ratio <= 1.0, "roadmap_clearance_ratio", "in (0, 1]");
+  require(std::isfinite(max_cost_ratio) && max_cost_ratio >= 1.0, "max_cost_ratio", ">= 1");
 }
 
 void TebParams::validate() const {

@@ -45,7 +45,8 @@ struct TebOptimizerParams {
   double penalty_epsilon = 0.05;     // epsilon margin of the inequality penalties
   double sign_gain = 100.0;          // gamma of the smooth sign approximation, eq. 5.10
   int no_inner_iterations = 5;       // Levenberg-Marquardt iterations per solve
-  int no_outer_iterations = 3;       // solves, with weight adaptation in between
+  int no_outer_iterations = 2;       // solves, with weight adaptation in between
+  double function_tolerance = 1e-4;  // relative cost change ending a solve early (warm starts converge fast)
   int obstacles_per_pose = 2;        // nearest obstacles entering the problem per pose
   double obstacle_influence_dist_m = 1.5;
   // "sparse_normal_cholesky" (SuiteSparse), "dense_normal_cholesky", "dense_qr" or "dense_schur".
@@ -74,6 +75,8 @@ struct HomotopyParams {
   int max_keypoint_obstacles = 6;
   double keypoint_margin_m = 0.1;
   int max_path_expansions = 500;
+  double roadmap_clearance_ratio = 0.5;  // roadmap edges keep this fraction of min_obstacle_dist (as TEB)
+  double max_cost_ratio = 2.5;           // unselected bands costing more than this times the best are dropped
   double signature_tolerance_rad = 1.0;
 
   void validate() const;

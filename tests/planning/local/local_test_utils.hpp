@@ -76,3 +76,44 @@ inline Pose2 integrate(const Pose2& p, const Twist& cmd, double dt) {
 }
 
 }  // namespace bipednav::planning::local::test
+
+#include <functional>
+#include <vector>
+
+#include "bipednav/planning/local/local_planner.hpp"
+
+namespace bipednav::planning::local::test {
+
+// Closed loop: a unicycle integrating the planner's commands every period_s.
+struct SimRun {
+  Pose2 final_pose;
+  bool reached = false;
+  int steps = 0;
+  std::vector<Twist> cmds;
+  std::vector<Pose2> poses;
+  std::vector<Outcome> outcomes;
+};
+
+inline SimRun simulate(LocalPlanner& planner, Pose2 start, const Path& plan, const mapping::Costmap2D& map,
+                       int max_steps, double period_s = 0.1) {
+  SimRun run;
+  Pose2 p = start;
+  Twist v;
+  for (int i = 0; i < max_steps; ++i) {
+    const auto r = planner.compute(p, v, plan, map, i * period_s);
+    run.outcomes.push_back(r.result.outcome);
+    run.cmds.push_back(r.cmd);
+    run.steps = i + 1;
+    if (r.goal_reached) {
+      run.reached = true;
+      break;
+    }
+    v = r.cmd;
+    p = integrate(p, v, period_s);
+    run.poses.push_back(p);
+  }
+  run.final_pose = p;
+  return run;
+}
+
+}  // namespace bipednav::planning::local::test
