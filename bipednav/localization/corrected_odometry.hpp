@@ -1,0 +1,56 @@
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "bipednav/common/point_cloud.hpp"
+#include "bipednav/common/se3.hpp"
+#include "bipednav/common/sensor_frame.hpp"
+#include "bipednav/localization/gicp.hpp"
+
+namespace bipednav::localization {
+
+// Kinematic odometry corrected by GICP between consecutive depth clouds (second reference,
+// section III).
+struct CorrectedOdometryParams {
+  GicpParams gicp{};
+  double ground_band_m = 0.05;         // points this close to the ground (base z = 0) are removed
+  std::size_t min_points = 50;         // fewer points after ground removal: no correction this time
+  double max_correction_step_m = 0.3;  // a larger change of T_corr in one update is rejected
+  double max_correction_step_rad = 0.2;
+  double max_fitness_m2 = 0.05;  // worse mean squared match distance is rejected
+  void validate() const;
+};
+
+// The kinematic odometry pose as a 6D transform: x, y, yaw from the leg odometry, height z from
+// the kinematics, roll and pitch from the IMU (the reference rotates the estimate about the stance
+// foot so the IMU frame agrees with the IMU reading).
+SE3 kinematic_pose(const Odometry& odom, double z_m = 0.0);
+
+struct CorrectionUpdate {
+  SE3 T_corrected_base = SE3::Identity();  // T_corr^t * T_odom^t (base frame)
+  SE3 T_corr = SE3::Identity();            // the correction of eq. 1
+  bool corrected = false;                  // false: the correction was kept from the last update
+  std::string reason;                      // why not, when not
+  GicpResult gicp;
+};
+
+class CorrectedOdometry {
+ public:
+  CorrectedOdometry(CorrectedOdometryParams p, const SE3& T_base_sensor);
+
+  // One depth cloud (sensor frame) with the odometry pose of the same instant. Solves eq. 1,
+  //   T_corr^t = argmin_T' sum_i | T_corr^{t-1} T_odom^{t-1} q_i - T' T_odom^t p_i |^2,
+  // by GICP initialised with T_corr^{t-1}; the corrected pose is T_corr^t T_odom^t.
+  CorrectionUpdate update(const SE3& T_odom_base, const PointCloud& cloud_sensor);
+  const SE3& correction() const { return T_corr_; }
+  void reset();
+
+ private:
+  CorrectedOdometryParams p_;
+  SE3 T_base_sensor_;
+  SE3 T_corr_ = SE3::Identity();
+  std::optional<GicpCloud> previous_;  // T_corr^{t-1} T_odom^{t-1} q_i: the last cloud, corrected
+};
+
+}  // namespace bipednav::localization

@@ -1,0 +1,97 @@
+#include <gtest/gtest.h>
+
+#include "bipednav/common/angles.hpp"
+#include "bipednav/io/robot_profile_yaml.hpp"
+#include "bipednav/localization/drift_metrics.hpp"
+#include "bipednav/localization/loam.hpp"
+#include "bipednav/sim/scenario.hpp"
+#include "bipednav/sim/simulation.hpp"
+#include "test_data.hpp"
+
+namespace bipednav::localization {
+namespace {
+
+// Steers at the next waypoint with the true pose (the test is about localization, not control).
+struct Route {
+  std::vector<Eigen::Vector2d> waypoints;
+  std::size_t next = 0;
+  bool done() const { return next >= waypoints.size(); }
+  Twist command(const Pose2& pose, double v_max) {
+    while (!done() && (waypoints[next] - pose.position()).norm() < 0.15) ++next;
+    if (done()) return {};
+    const Eigen::Vector2d d = waypoints[next] - pose.position();
+    const double err = angle_diff(std::atan2(d.y(), d.x()), pose.theta);
+    Twist t;
+    t.angular_z = std::clamp(2.0 * err, -0.8, 0.8);
+    t.linear_x = std::abs(err) > 0.5 ? 0.0 : v_max * std::cos(err);
+    return t;
+  }
+};
+
+struct DriveResult {
+  Drift loam, odometry;
+  std::size_t sweeps = 0, unhealthy = 0;
+};
+
+DriveResult drive_three_rooms(bool use_prior) {
+  const auto root = test::source_dir();
+  const sim::Scenario scenario = sim::load_scenario(root / "scenarios" / "three_rooms.yaml");
+  const RobotProfile robot = io::load_robot_profile(root / "config" / (scenario.robot + ".yaml"));
+  sim::SimulationParams sp;
+  sp.seed = scenario.seed;
+  sp.enable_depth = false;
+  sim::Simulation sim(scenario.world, robot, scenario.start, sp);
+  const SE3 T_base_lidar = robot.sensor("lidar")->T_base_sensor();
+  Route route{{{2.2, 1.6}, {9.0, 1.6}, {11.2, 1.6}, {12.8, 0.4}}};
+
+  std::optional<Loam> loam;
+  std::optional<SE3> anchor_odom, last_odom_lidar;
+  SE3 odom_now = SE3::Identity(), T_world_start = SE3::Identity();
+  std::vector<SE3> truth, est_loam, est_odom;
+  DriveResult res;
+  while (!route.done() && sim.now_s() < 120.0) {
+    const SensorFrame f = sim.step(sim.now_s() < 0.1 ? Twist{} : route.command(sim.true_pose(), 0.26));
+    if (f.odometry) odom_now = se3_from_pose2(f.odometry->T_odom_base);
+    if (!f.lidar) continue;
+    const SE3 T_world_base = se3_from_pose2(sim.true_pose());
+    const SE3 odom_lidar = odom_now * T_base_lidar;
+    if (!loam) {  // anchor both estimates at the true pose of the first sweep
+      LoamParams lp;
+      lp.T_world_lidar_initial = T_world_base * T_base_lidar;
+      loam.emplace(lp);
+      anchor_odom = odom_now;
+      T_world_start = T_world_base;
+    }
+    std::optional<SE3> prior;
+    if (use_prior && last_odom_lidar) prior = last_odom_lidar->inverse() * odom_lidar;
+    last_odom_lidar = odom_lidar;
+    const LoamOutput out = loam->process(*f.lidar, prior);
+    ++res.sweeps;
+    if (!out.healthy) ++res.unhealthy;
+    truth.push_back(T_world_base);
+    est_loam.push_back(out.T_world_lidar * T_base_lidar.inverse());
+    est_odom.push_back(T_world_start * anchor_odom->inverse() * odom_now);
+  }
+  EXPECT_TRUE(route.done()) << "the route was not completed in time";
+  res.loam = trajectory_drift(truth, est_loam);
+  res.odometry = trajectory_drift(truth, est_odom);
+  return res;
+}
+
+TEST(LoamSimulation, ThreeRoomsDriftIsSmallAndBeatsOdometry) {
+  const DriveResult r = drive_three_rooms(true);
+  RecordProperty("loam_translation_percent", std::to_string(r.loam.translation_percent));
+  std::printf(
+      "three_rooms: %.1f m, LOAM %.2f %% / %.3f deg per 10 m (max %.3f m), odometry %.2f %% / %.3f deg per 10 m\n",
+      r.loam.distance_m, r.loam.translation_percent, r.loam.yaw_deg_per_10m, r.loam.max_translation_error_m,
+      r.odometry.translation_percent, r.odometry.yaw_deg_per_10m);
+  EXPECT_GT(r.loam.distance_m, 10.0);
+  EXPECT_LE(r.loam.translation_percent, 1.0);
+  EXPECT_LE(r.loam.yaw_deg_per_10m, 0.5);
+  EXPECT_LT(r.loam.translation_error_m, 0.5 * r.odometry.translation_error_m);
+  EXPECT_LT(r.loam.yaw_deg_per_10m, 0.5 * r.odometry.yaw_deg_per_10m);
+  EXPECT_LE(r.unhealthy, r.sweeps / 50);
+}
+
+}  // namespace
+}  // namespace bipednav::localization
