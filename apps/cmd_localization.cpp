@@ -1,8 +1,358 @@
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <numeric>
+#include <optional>
+#include <sstream>
+
 #include "apps/commands.hpp"
+#include "bipednav/common/angles.hpp"
+#include "bipednav/common/error.hpp"
+#include "bipednav/io/pcd.hpp"
+#include "bipednav/io/ply.hpp"
+#include "bipednav/io/robot_profile_yaml.hpp"
+#include "bipednav/localization/drift_metrics.hpp"
+#include "bipednav/localization/gicp.hpp"
+#include "bipednav/localization/loam.hpp"
+#include "bipednav/perception/voxel_grid.hpp"
+#include "bipednav/sim/scenario.hpp"
+#include "bipednav/sim/simulation.hpp"
 
 namespace bipednav::app {
 
-// Filled in by the module's issue.
-void add_localization_commands(CLI::App& /*app*/, CLI::App& /*bench*/) {}
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+using localization::Drift;
+
+PointCloud load_cloud(const std::string& file, double voxel_m) {
+  const std::string ext = fs::path(file).extension().string();
+  PointCloud c;
+  if (ext == ".pcd")
+    c = io::read_pcd(file);
+  else if (ext == ".ply")
+    c = io::read_ply(file);
+  else
+    throw FileError(file, "", "expected a .pcd or .ply point cloud");
+  PointCloud kept = c.empty_copy();
+  for (std::size_t i = 0; i < c.size(); ++i)  // points at the sensor origin are no returns
+    if (c.points[i].allFinite() && c.points[i].norm() > 1e-3f) kept.push_back_from(c, i);
+  if (voxel_m <= 0.0) return kept;
+  perception::VoxelGridParams vp;
+  vp.leaf_size_m = Eigen::Vector3d::Constant(voxel_m);
+  return perception::voxel_downsample(kept, vp);
+}
+
+json matrix_json(const SE3& T) {
+  json rows = json::array();
+  for (int r = 0; r < 4; ++r) {
+    json row = json::array();
+    for (int c = 0; c < 4; ++c) row.push_back(T.matrix()(r, c));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+struct RegisterOptions {
+  std::string source, target;
+  double voxel_m = 0.2;
+  int threads = 1;
+  bool json_out = false;
+};
+
+void run_register(const RegisterOptions& o) {
+  if (!(o.voxel_m >= 0.0 && std::isfinite(o.voxel_m))) throw Error("--voxel: expected a size >= 0 m");
+  const PointCloud source = load_cloud(o.source, o.voxel_m), target = load_cloud(o.target, o.voxel_m);
+  localization::GicpParams p;
+  p.threads = o.threads;
+  const localization::GicpResult r = localization::gicp_align(source, target, SE3::Identity(), p);
+  const json j = {{"T_target_source", matrix_json(r.T_target_source)},
+                  {"fitness", r.fitness},
+                  {"converged", r.converged},
+                  {"iterations", r.iterations},
+                  {"correspondences", r.correspondences},
+                  {"source_points", source.size()},
+                  {"target_points", target.size()},
+                  {"time_ms", r.time_ms}};
+  if (o.json_out) {
+    std::printf("%s\n", j.dump(2).c_str());
+    return;
+  }
+  const Eigen::Vector3d t = r.T_target_source.translation();
+  const Eigen::Vector3d rpy = matrix_to_rpy(r.T_target_source.rotation());
+  std::printf(
+      "T_target_source: t = (%.4f, %.4f, %.4f) m, rpy = (%.3f, %.3f, %.3f) deg; fitness %.4f m^2, %s after %d "
+      "iterations, %.1f ms\n",
+      t.x(), t.y(), t.z(), rad2deg(rpy.x()), rad2deg(rpy.y()), rad2deg(rpy.z()), r.fitness,
+      r.converged ? "converged" : "NOT converged", r.iterations, r.time_ms);
+}
+
+struct OdometryOptions {
+  std::string scenario;
+  std::string config_dir;
+  std::string waypoints;
+  double duration_s = 0.0;  // 0: until the route is done (or the scenario's time limit)
+  double speed_mps = 0.0;   // 0: the robot's maximum
+  bool no_prior = false;
+  bool json_out = false;
+};
+
+// The route for `bipednav odometry`: explicit waypoints, a built-in route through three_rooms, or
+// straight ahead.
+std::vector<Eigen::Vector2d> route_for(const OdometryOptions& o, const sim::Scenario& s) {
+  std::vector<Eigen::Vector2d> wps;
+  std::istringstream in(o.waypoints);
+  std::string item;
+  while (in >> item) {
+    double x = 0, y = 0;
+    if (std::sscanf(item.c_str(), "%lf,%lf", &x, &y) != 2)
+      throw Error("--waypoints: expected 'x,y x,y ...', got '" + item + "'");
+    wps.emplace_back(x, y);
+  }
+  if (!wps.empty()) return wps;
+  if (s.name == "three_rooms")
+    return {{2.2, 1.6}, {9.0, 1.6}, {11.2, 1.6}, {12.8, 0.4}, {16.0, -0.2}, {17.2, -1.6}, {21.5, -1.6}, {28.5, -1.6}};
+  const double c = std::cos(s.start.theta), sn = std::sin(s.start.theta);
+  return {{s.start.x + 100.0 * c, s.start.y + 100.0 * sn}};
+}
+
+Twist steer(const Pose2& pose, const Eigen::Vector2d& goal, double v) {
+  const Eigen::Vector2d d = goal - pose.position();
+  const double heading_error = angle_diff(std::atan2(d.y(), d.x()), pose.theta);
+  Twist t;
+  t.angular_z = std::clamp(1.5 * heading_error, -0.8, 0.8);
+  t.linear_x = std::abs(heading_error) < 0.5 ? v : 0.0;
+  return t;
+}
+
+json drift_json(const Drift& d) {
+  return {{"translation_error_m", d.translation_error_m},
+          {"translation_drift_percent", d.translation_percent},
+          {"yaw_error_deg", d.yaw_error_deg},
+          {"yaw_drift_deg_per_10m", d.yaw_deg_per_10m},
+          {"height_error_m", d.height_error_m},
+          {"max_translation_error_m", d.max_translation_error_m}};
+}
+
+void run_odometry(const OdometryOptions& o) {
+  const sim::Scenario scenario = sim::load_scenario(o.scenario);
+  const fs::path cfg =
+      !o.config_dir.empty() ? fs::path(o.config_dir) : fs::path(o.scenario).parent_path() / ".." / "config";
+  const RobotProfile robot = io::load_robot_profile(cfg / (scenario.robot + ".yaml"));
+  const SensorMount* mount = robot.sensor("lidar");
+  if (!mount || mount->type != "vlp16") throw Error("robot '" + robot.name + "' has no vlp16 mount named 'lidar'");
+  const SE3 T_base_lidar = mount->T_base_sensor();
+  sim::SimulationParams sp;
+  sp.seed = scenario.seed;
+  sp.enable_depth = false;
+  sim::Simulation sim(scenario.world, robot, scenario.start, sp);
+  const std::vector<Eigen::Vector2d> route = route_for(o, scenario);
+  const double v = o.speed_mps > 0 ? std::min(o.speed_mps, robot.max_vel_x_mps) : robot.max_vel_x_mps;
+  const double t_end = o.duration_s > 0 ? o.duration_s : scenario.time_limit_s;
+
+  std::optional<localization::Loam> loam;
+  std::optional<SE3> odom_anchor, last_odom_lidar;
+  SE3 odom = SE3::Identity(), T_world_first = SE3::Identity();
+  std::vector<SE3> truth, est_loam, est_odom;
+  std::vector<double> odo_ms, map_ms;
+  std::size_t next = 0, unhealthy = 0, degenerate = 0;
+  while (sim.now_s() < t_end && next < route.size()) {
+    while (next < route.size() && (route[next] - sim.true_pose().position()).norm() < 0.2) ++next;
+    const Twist cmd = next < route.size() && sim.now_s() >= 0.1 ? steer(sim.true_pose(), route[next], v) : Twist{};
+    const SensorFrame f = sim.step(cmd);
+    if (f.odometry) odom = se3_from_pose2(f.odometry->T_odom_base);
+    if (!f.lidar) continue;
+    const SE3 T_world_base = se3_from_pose2(sim.true_pose());
+    if (!loam) {
+      localization::LoamParams lp;
+      lp.T_world_lidar_initial = T_world_base * T_base_lidar;
+      loam.emplace(lp);
+      odom_anchor = odom;
+      T_world_first = T_world_base;
+    }
+    const SE3 odom_lidar = odom * T_base_lidar;
+    std::optional<SE3> prior;
+    if (!o.no_prior && last_odom_lidar) prior = last_odom_lidar->inverse() * odom_lidar;
+    last_odom_lidar = odom_lidar;
+    const localization::LoamOutput out = loam->process(*f.lidar, prior);
+    unhealthy += out.healthy ? 0 : 1;
+    degenerate += out.degenerate ? 1 : 0;
+    odo_ms.push_back(out.odometry_ms);
+    if (out.mapped) map_ms.push_back(out.mapping_ms);
+    truth.push_back(T_world_base);
+    est_loam.push_back(out.T_world_lidar * T_base_lidar.inverse());
+    est_odom.push_back(T_world_first * odom_anchor->inverse() * odom);
+  }
+  if (truth.empty()) throw Error("no LiDAR sweep was produced (is --duration long enough?)");
+  const Drift dl = localization::trajectory_drift(truth, est_loam);
+  const Drift dd = localization::trajectory_drift(truth, est_odom);
+  const auto mean = [](const std::vector<double>& x) {
+    return x.empty() ? 0.0 : std::accumulate(x.begin(), x.end(), 0.0) / static_cast<double>(x.size());
+  };
+  const json j = {{"scenario", scenario.name},
+                  {"simulated_s", sim.now_s()},
+                  {"distance_m", dl.distance_m},
+                  {"sweeps", truth.size()},
+                  {"route_completed", next >= route.size()},
+                  {"motion_prior", !o.no_prior},
+                  {"unhealthy_sweeps", unhealthy},
+                  {"degenerate_sweeps", degenerate},
+                  {"loam", drift_json(dl)},
+                  {"odometry", drift_json(dd)},
+                  {"loam_odometry_mean_ms", mean(odo_ms)},
+                  {"loam_mapping_mean_ms", mean(map_ms)}};
+  if (o.json_out) {
+    std::printf("%s\n", j.dump(2).c_str());
+    return;
+  }
+  std::printf(
+      "%s: %.1f m in %.1f s, %zu sweeps. LOAM: %.2f %% of distance, %.3f deg per 10 m. Raw odometry: %.2f %%, "
+      "%.3f deg per 10 m\n",
+      scenario.name.c_str(), dl.distance_m, sim.now_s(), truth.size(), dl.translation_percent, dl.yaw_deg_per_10m,
+      dd.translation_percent, dd.yaw_deg_per_10m);
+}
+
+struct BenchOptions {
+  std::string scenario = "scenarios/three_rooms.yaml";
+  std::string data_dir;  // holding 251370668.pcd, 251371071.pcd, relative.txt
+  int sweeps = 100;
+  bool json_out = false;
+};
+
+// Simulated VLP-16 sweeps (with odometry priors) along the three_rooms route; the simulator's cost
+// is kept out of the LOAM timings.
+json bench_loam(const BenchOptions& o) {
+  OdometryOptions oo;
+  oo.scenario = o.scenario;
+  const sim::Scenario scenario = sim::load_scenario(o.scenario);
+  const RobotProfile robot =
+      io::load_robot_profile(fs::path(o.scenario).parent_path() / ".." / "config" / (scenario.robot + ".yaml"));
+  sim::SimulationParams sp;
+  sp.seed = scenario.seed;
+  sp.enable_depth = false;
+  sim::Simulation sim(scenario.world, robot, scenario.start, sp);
+  const auto route = route_for(oo, scenario);
+  std::vector<PointCloud> sweeps;
+  std::size_t next = 0;
+  while (static_cast<int>(sweeps.size()) < o.sweeps && sim.now_s() < 600.0) {
+    while (next < route.size() && (route[next] - sim.true_pose().position()).norm() < 0.2) ++next;
+    const SensorFrame f =
+        sim.step(next < route.size() ? steer(sim.true_pose(), route[next], robot.max_vel_x_mps) : Twist{});
+    if (f.lidar) sweeps.push_back(*f.lidar);
+  }
+  localization::Loam loam;
+  std::vector<double> odo_ms, map_ms;
+  std::size_t points = 0;
+  for (const auto& s : sweeps) {
+    const localization::LoamOutput out = loam.process(s);
+    odo_ms.push_back(out.odometry_ms);
+    if (out.mapped) map_ms.push_back(out.mapping_ms);
+    points += s.size();
+  }
+  std::vector<double> sorted = odo_ms;
+  std::sort(sorted.begin(), sorted.end());
+  const auto pct = [&](double q) {
+    return sorted.empty() ? 0.0 : sorted[static_cast<std::size_t>(q * (sorted.size() - 1))];
+  };
+  const double mapping_mean =
+      map_ms.empty() ? 0.0 : std::accumulate(map_ms.begin(), map_ms.end(), 0.0) / static_cast<double>(map_ms.size());
+  const double median = pct(0.5);
+  return {
+      {"loam_sweeps", sweeps.size()},         {"loam_points_per_sweep", sweeps.empty() ? 0 : points / sweeps.size()},
+      {"loam_odometry_median_ms", median},    {"loam_odometry_p95_ms", pct(0.95)},
+      {"loam_mapping_mean_ms", mapping_mean}, {"loam_total_per_sweep_ms", median + mapping_mean / 10.0},
+      {"goal_loam_odometry_median_ms", 20.0}, {"meets_goal_loam_odometry_median", median <= 20.0}};
+}
+
+fs::path scan_pair_dir(const BenchOptions& o) {
+  if (!o.data_dir.empty()) return o.data_dir;
+  for (const fs::path d : {"tests/data/lidar/fast_gicp", "../shared/data/lidar/fast_gicp"})
+    if (fs::exists(d / "relative.txt")) return d;
+  throw Error("scan pair not found in tests/data/lidar/fast_gicp or ../shared/data/lidar/fast_gicp (use --data-dir)");
+}
+
+json bench_gicp(const BenchOptions& o) {
+  const fs::path dir = scan_pair_dir(o);
+  const PointCloud target = load_cloud((dir / "251370668.pcd").string(), 0.2);
+  const PointCloud source = load_cloud((dir / "251371071.pcd").string(), 0.2);
+  std::ifstream in(dir / "relative.txt");
+  Eigen::Matrix4d M;
+  for (int i = 0; i < 16; ++i) in >> M(i / 4, i % 4);
+  if (!in) throw FileError((dir / "relative.txt").string(), "", "expected 16 numbers");
+  SE3 truth;
+  truth.matrix() = M;
+  std::vector<double> times;
+  localization::GicpResult r;
+  for (int rep = 0; rep < 3; ++rep) {
+    r = localization::gicp_align(source, target, SE3::Identity());
+    times.push_back(r.time_ms);
+  }
+  std::sort(times.begin(), times.end());
+  const SE3 err = truth.inverse() * r.T_target_source;
+  constexpr double kReferenceMs = 410.0;  // second reference, section VII (GICP on the combined clouds)
+  return {{"gicp_source_points", source.size()},
+          {"gicp_target_points", target.size()},
+          {"gicp_median_ms", times[1]},
+          {"gicp_iterations", r.iterations},
+          {"gicp_converged", r.converged},
+          {"gicp_translation_error_m", err.translation().norm()},
+          {"gicp_rotation_error_deg", rad2deg(Eigen::AngleAxisd(err.rotation()).angle())},
+          {"reference_gicp_ms", kReferenceMs},
+          {"speedup_vs_reference_ratio", kReferenceMs / std::max(times[1], 1e-9)},
+          {"pcl_gicp_ms", nullptr},
+          {"goal_speedup_vs_pcl_ratio", 3.0},
+          {"meets_goal_speedup_vs_pcl", nullptr},
+          {"pcl_note", "PCL is opt-in: build bipednav_bench_pcl_gicp (-DBIPEDNAV_BENCH_PCL=ON) for the side-by-side"}};
+}
+
+void add_localization_bench(CLI::App& bench) {
+  auto o = std::make_shared<BenchOptions>();
+  CLI::App* b = bench.add_subcommand("localization", "LOAM per simulated VLP-16 sweep and GICP on the scan pair");
+  b->add_option("--scenario", o->scenario, "Scenario for the simulated sweeps")->capture_default_str();
+  b->add_option("--data-dir", o->data_dir, "Directory of the fast_gicp scan pair");
+  b->add_option("--sweeps", o->sweeps, "Simulated sweeps for LOAM")->capture_default_str()->check(CLI::Range(2, 10000));
+  b->add_flag("--json", o->json_out, "Print one JSON object");
+  b->callback([o] {
+    json j = bench_loam(*o);
+    j.update(bench_gicp(*o));
+    if (o->json_out)
+      std::printf("%s\n", j.dump(2).c_str());
+    else
+      std::printf("LOAM odometry median %.2f ms/sweep (goal 20); GICP %.1f ms (reference 410 ms)\n",
+                  j["loam_odometry_median_ms"].get<double>(), j["gicp_median_ms"].get<double>());
+  });
+}
+
+}  // namespace
+
+void add_localization_commands(CLI::App& app, CLI::App& bench) {
+  auto reg = std::make_shared<RegisterOptions>();
+  CLI::App* r = app.add_subcommand("register", "Align SOURCE to TARGET with Generalized-ICP (from identity)");
+  r->add_option("source", reg->source, "Source cloud (.pcd or .ply)")->required()->check(CLI::ExistingFile);
+  r->add_option("target", reg->target, "Target cloud (.pcd or .ply)")->required()->check(CLI::ExistingFile);
+  r->add_option("--voxel", reg->voxel_m, "Voxel down-sampling leaf in m (0: none)")->capture_default_str();
+  r->add_option("--threads", reg->threads, "Worker threads")->capture_default_str()->check(CLI::Range(1, 256));
+  r->add_flag("--json", reg->json_out, "Print one JSON object");
+  r->callback([reg] { run_register(*reg); });
+
+  auto odo = std::make_shared<OdometryOptions>();
+  CLI::App* d = app.add_subcommand("odometry", "Drive a scenario in the simulator; report LOAM and raw odometry drift");
+  d->add_option("scenario", odo->scenario, "Scenario YAML file")->required()->check(CLI::ExistingFile);
+  d->add_option("--duration", odo->duration_s, "Simulated seconds (default: until the route is done)");
+  d->add_option("--waypoints", odo->waypoints,
+                "Route as 'x,y x,y ...' (default: built in for three_rooms, else straight)");
+  d->add_option("--speed", odo->speed_mps, "Forward speed in m/s (default: the robot's maximum)");
+  d->add_option("--config-dir", odo->config_dir, "Directory of robot profiles (default: <scenario>/../config)");
+  d->add_flag("--no-prior", odo->no_prior, "Do not give LOAM the odometry as a motion prior");
+  d->add_flag("--json", odo->json_out, "Print one JSON object");
+  d->callback([odo] { run_odometry(*odo); });
+
+  add_localization_bench(bench);
+}
 
 }  // namespace bipednav::app
