@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
+#include "apps/bench_sim.hpp"
 #include "apps/commands.hpp"
 #include "bipednav/common/clock.hpp"
 #include "bipednav/common/error.hpp"
@@ -17,10 +18,6 @@
 #include "bipednav/sim/simulation.hpp"
 #include "bipednav/sim/world_drawing.hpp"
 #include "bipednav/viz/canvas.hpp"
-#if __has_include("apps/bench_sim.hpp")
-#include "apps/bench_sim.hpp"
-#define BIPEDNAV_HAVE_SIM_BENCH 1
-#endif
 
 namespace bipednav::app {
 namespace {
@@ -271,11 +268,7 @@ void add_sim_commands(CLI::App& app, CLI::App& bench) {
   cmd->add_option("--step", opt->step_s, "Simulation step in seconds")->capture_default_str();
   cmd->add_flag("--quiet", opt->quiet, "No progress bar");
   cmd->callback([opt] { run_sim_command(*opt); });
-#ifdef BIPEDNAV_HAVE_SIM_BENCH
   add_sim_bench(bench);
-#else
-  (void)bench;
-#endif
 }
 
 }  // namespace bipednav::app
