@@ -23,13 +23,14 @@ DepthCamera::DepthCamera(const DepthCameraParams& params, std::string frame_id, 
     : params_(params), frame_id_(std::move(frame_id)), noise_(seed) {
   params_.validate();
   const int w = params_.width, h = params_.height;
+  ray_of_pixel_.resize(static_cast<std::size_t>(w) * h);
   for (int tv = 0; tv < h; tv += 4)
     for (int tu = 0; tu < w; tu += 4)
       for (int v = tv; v < std::min(tv + 4, h); ++v)
-        for (int u = tu; u < std::min(tu + 4, w); ++u) order_.push_back(v * w + u);
-  rays_.reserve(order_.size());
-  for (int p : order_) rays_.push_back(pixel_ray(p % w, p / w));
-  world_dirs_.resize(rays_.size());
+        for (int u = tu; u < std::min(tu + 4, w); ++u) {
+          ray_of_pixel_[v * w + u] = static_cast<int>(rays_.size());
+          rays_.push_back(pixel_ray(u, v));
+        }
   ranges_.resize(rays_.size());
 }
 
@@ -49,25 +50,25 @@ PointCloud DepthCamera::capture(const SE3& T_world_camera, const RayCaster& cast
 }
 
 PointCloud DepthCamera::capture_at(double stamp_s, const SE3& T_world_camera, const RayCaster& caster) {
-  const Eigen::Matrix3f R = T_world_camera.linear().cast<float>();
-  for (std::size_t i = 0; i < rays_.size(); ++i) world_dirs_[i] = R * rays_[i];
   // A ray can reach depth max_range_m at range max_range_m / cos(angle to the axis).
   const float max_cast = static_cast<float>(params_.max_range_m / rays_.front().x()) * 1.01f;
-  caster.cast_batch(T_world_camera.translation().cast<float>(), world_dirs_, max_cast, ranges_, true);
+  caster.cast_batch(T_world_camera.translation().cast<float>(), T_world_camera.linear().cast<float>(), rays_, max_cast,
+                    ranges_, true);
 
   PointCloud cloud;
   cloud.frame_id = frame_id_;
   cloud.stamp_s = stamp_s;
+  cloud.points.resize(rays_.size());
   const float nan = std::numeric_limits<float>::quiet_NaN();
-  cloud.points.assign(rays_.size(), Eigen::Vector3f(nan, nan, nan));
   const auto z_min = static_cast<float>(params_.min_range_m), z_max = static_cast<float>(params_.max_range_m);
   const auto k = static_cast<float>(params_.noise_coeff_per_m);
-  for (std::size_t i = 0; i < rays_.size(); ++i) {
+  for (std::size_t p = 0; p < cloud.points.size(); ++p) {
+    const int i = ray_of_pixel_[p];
     const float z = ranges_[i] * rays_[i].x();  // depth; +inf (no hit) fails the test below
-    if (!(z >= z_min && z <= z_max)) continue;
     const float z_noisy = z + k * z * z * noise_();
-    if (!(z_noisy > 0.0f)) continue;
-    cloud.points[order_[i]] = rays_[i] * (ranges_[i] * z_noisy / z);
+    cloud.points[p] = z >= z_min && z <= z_max && z_noisy > 0.0f
+                          ? Eigen::Vector3f(rays_[i] * (ranges_[i] * z_noisy / z))
+                          : Eigen::Vector3f(nan, nan, nan);
   }
   return cloud;
 }

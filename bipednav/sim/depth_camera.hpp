@@ -52,10 +52,9 @@ class DepthCamera {
   std::string frame_id_;
   GaussianNoise noise_;
   std::uint64_t count_ = 0;
-  std::vector<int> order_;             // ray index -> pixel index, 4 x 4 tiles for packet coherence
+  std::vector<int> ray_of_pixel_;      // rays are cast in 4 x 4 pixel tiles for packet coherence
   std::vector<Eigen::Vector3f> rays_;  // unit rays in tile order, camera frame
-  std::vector<Eigen::Vector3f> world_dirs_;
-  std::vector<float> ranges_;
+  std::vector<float> ranges_;          // in tile order
 };
 
 }  // namespace bipednav::sim

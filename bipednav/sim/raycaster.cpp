@@ -2,6 +2,7 @@
 
 #include <embree3/rtcore.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -70,11 +71,26 @@ std::optional<double> horizontal_plane_z(const Geometry& g) {
 struct RayCaster::Impl {
   RTCDevice device = nullptr;
   RTCScene statics = nullptr;  // static triangles
-  RTCScene top = nullptr;      // rays go here: == statics without actors, else instances of all
+  RTCScene movers = nullptr;   // instances of the actor scenes (null without actors)
   std::vector<RTCScene> actor_scenes;
   std::vector<RTCGeometry> actor_instances;
   std::vector<Actor> actors;
-  std::vector<float> plane_z;  // unbounded horizontal planes
+  std::vector<float> plane_z;         // unbounded horizontal planes
+  Eigen::AlignedBox3f movers_bounds;  // world bounds of all actors now (empty without actors)
+
+  // True if the ray segment [0, tfar] can meet an actor (slab test against their bounds):
+  // most rays and packets skip the actor scene entirely.
+  bool may_hit_movers(const Eigen::Vector3f& o, const Eigen::Vector3f& d, float tfar) const {
+    float t0 = 0.0f, t1 = tfar;
+    for (int k = 0; k < 3; ++k) {
+      const float inv = 1.0f / d[k];
+      float a = (movers_bounds.min()[k] - o[k]) * inv, b = (movers_bounds.max()[k] - o[k]) * inv;
+      if (a > b) std::swap(a, b);
+      t0 = a > t0 ? a : t0;  // NaN (origin on a slab face, parallel ray) keeps the bound
+      t1 = b < t1 ? b : t1;
+    }
+    return t0 <= t1;
+  }
   std::size_t static_triangles = 0;
 
   // Distance to the nearest horizontal plane along the ray, +inf if none is ahead.
@@ -91,7 +107,7 @@ struct RayCaster::Impl {
   ~Impl() {
     for (RTCGeometry g : actor_instances) rtcReleaseGeometry(g);
     for (RTCScene s : actor_scenes) rtcReleaseScene(s);
-    if (top && top != statics) rtcReleaseScene(top);
+    if (movers) rtcReleaseScene(movers);
     if (statics) rtcReleaseScene(statics);
     if (device) rtcReleaseDevice(device);
   }
@@ -123,21 +139,12 @@ RayCaster::RayCaster(const World& world, const RayCasterParams& params) : impl_(
   rtcCommitScene(d.statics);
   check_device(d.device, "static scene");
 
-  if (world.actors.empty()) {
-    d.top = d.statics;
-    return;
-  }
+  if (world.actors.empty()) return;
+  // Statics are not instanced under a common top scene: a ray first traverses the static BVH,
+  // then the small actor scene with tfar already cut to the static hit.
   d.actors = world.actors;
-  d.top = new_scene(d.device, static_cast<RTCSceneFlags>(RTC_SCENE_FLAG_DYNAMIC | RTC_SCENE_FLAG_ROBUST),
-                    RTC_BUILD_QUALITY_LOW);
-  auto add_instance = [&](RTCScene child) {
-    RTCGeometry inst = rtcNewGeometry(d.device, RTC_GEOMETRY_TYPE_INSTANCE);
-    rtcSetGeometryInstancedScene(inst, child);
-    set_instance_transform(inst, SE3::Identity());
-    rtcAttachGeometry(d.top, inst);
-    return inst;
-  };
-  rtcReleaseGeometry(add_instance(d.statics));  // the top scene keeps it alive
+  d.movers = new_scene(d.device, static_cast<RTCSceneFlags>(RTC_SCENE_FLAG_DYNAMIC | RTC_SCENE_FLAG_ROBUST),
+                       RTC_BUILD_QUALITY_LOW);
   for (const Actor& a : world.actors) {
     RTCScene s = new_scene(d.device, robust, RTC_BUILD_QUALITY_MEDIUM);
     TriangleSoup parts;
@@ -145,7 +152,11 @@ RayCaster::RayCaster(const World& world, const RayCasterParams& params) : impl_(
     attach_triangles(d.device, s, parts);
     rtcCommitScene(s);
     d.actor_scenes.push_back(s);
-    d.actor_instances.push_back(add_instance(s));
+    RTCGeometry inst = rtcNewGeometry(d.device, RTC_GEOMETRY_TYPE_INSTANCE);
+    rtcSetGeometryInstancedScene(inst, s);
+    set_instance_transform(inst, SE3::Identity());
+    rtcAttachGeometry(d.movers, inst);
+    d.actor_instances.push_back(inst);
   }
   check_device(d.device, "actor scenes");
   set_time(0.0);
@@ -162,7 +173,11 @@ void RayCaster::set_time(double t_s) {
   if (d.actors.empty()) return;
   for (std::size_t i = 0; i < d.actors.size(); ++i)
     set_instance_transform(d.actor_instances[i], d.actors[i].pose_at(t_s));
-  rtcCommitScene(d.top);
+  rtcCommitScene(d.movers);
+  RTCBounds b;
+  rtcGetSceneBounds(d.movers, &b);
+  d.movers_bounds = Eigen::AlignedBox3f(Eigen::Vector3f(b.lower_x, b.lower_y, b.lower_z),
+                                        Eigen::Vector3f(b.upper_x, b.upper_y, b.upper_z));
   check_device(d.device, "set_time");
 }
 
@@ -189,13 +204,16 @@ float RayCaster::cast(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir,
   rh.ray.mask = 0xFFFFFFFFu;
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(impl_->top, &ctx, &rh);
+  rtcIntersect1(impl_->statics, &ctx, &rh);
+  if (impl_->movers && impl_->may_hit_movers(origin.cast<float>(), u.cast<float>(), rh.ray.tfar))
+    rtcIntersect1(impl_->movers, &ctx, &rh);  // only a closer hit replaces the static one
   if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) return rh.ray.tfar;
   return plane <= max_range_m ? plane : kInf;
 }
 
-void RayCaster::cast_batch(const Eigen::Vector3f& origin, std::span<const Eigen::Vector3f> unit_dirs, float max_range_m,
-                           std::span<float> ranges, bool coherent) const {
+void RayCaster::cast_batch(const Eigen::Vector3f& origin, const Eigen::Matrix3f& R,
+                           std::span<const Eigen::Vector3f> unit_dirs, float max_range_m, std::span<float> ranges,
+                           bool coherent) const {
   if (ranges.size() != unit_dirs.size()) throw Error("RayCaster::cast_batch: ranges and dirs differ in size");
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
@@ -203,6 +221,7 @@ void RayCaster::cast_batch(const Eigen::Vector3f& origin, std::span<const Eigen:
   alignas(64) RTCRayHit16 rh;
   alignas(64) int valid[16];
   float plane[16];
+  Eigen::Vector3f dirs[16];
   // Embree only writes tfar and the hit, so the fields common to all rays are set once.
   for (int i = 0; i < 16; ++i) {
     rh.ray.org_x[i] = origin.x();
@@ -218,7 +237,8 @@ void RayCaster::cast_batch(const Eigen::Vector3f& origin, std::span<const Eigen:
     const std::size_t n = std::min<std::size_t>(16, unit_dirs.size() - base);
     for (std::size_t i = 0; i < 16; ++i) {
       const bool on = i < n;
-      const Eigen::Vector3f& u = unit_dirs[base + (on ? i : 0)];
+      const Eigen::Vector3f u = R * unit_dirs[base + (on ? i : 0)];
+      dirs[i] = u;
       valid[i] = on ? -1 : 0;
       rh.ray.dir_x[i] = u.x();
       rh.ray.dir_y[i] = u.y();
@@ -228,7 +248,12 @@ void RayCaster::cast_batch(const Eigen::Vector3f& origin, std::span<const Eigen:
       rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
       rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
     }
-    rtcIntersect16(valid, impl_->top, &ctx, &rh);
+    rtcIntersect16(valid, impl_->statics, &ctx, &rh);
+    if (impl_->movers) {
+      bool any = false;
+      for (std::size_t i = 0; i < n && !any; ++i) any = impl_->may_hit_movers(origin, dirs[i], rh.ray.tfar[i]);
+      if (any) rtcIntersect16(valid, impl_->movers, &ctx, &rh);
+    }
     for (std::size_t i = 0; i < n; ++i) {
       if (rh.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID)
         ranges[base + i] = rh.ray.tfar[i];

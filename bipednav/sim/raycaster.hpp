@@ -19,8 +19,8 @@ struct RayCasterParams {
 
 // Ray casting against a World on Embree 3. The static geometry is one triangle scene built
 // once; each actor is its own scene placed by an instance whose transform set_time() updates
-// (only the small top-level scene is rebuilt). Unbounded horizontal planes (the ground) are
-// intersected analytically, outside the BVH. Curved shapes are tessellated with facets that
+// (only the small scene of actor instances is rebuilt; rays visit it after the static scene). Unbounded horizontal
+// planes (the ground) are intersected analytically, outside the BVH. Curved shapes are tessellated with facets that
 // straddle the true surface (radial error <= params.tessellation.max_chord_error_m, 0.5 mm by
 // default). Casting is const and thread-safe; set_time() is not. Move-only (owns the device).
 class RayCaster {
@@ -44,7 +44,13 @@ class RayCaster {
   // (rtcIntersect16); ranges[i] is the hit distance or +infinity. `coherent` hints that
   // neighbouring rays are similar (camera tiles).
   void cast_batch(const Eigen::Vector3f& origin, std::span<const Eigen::Vector3f> unit_dirs, float max_range_m,
-                  std::span<float> ranges, bool coherent = false) const;
+                  std::span<float> ranges, bool coherent = false) const {
+    cast_batch(origin, Eigen::Matrix3f::Identity(), unit_dirs, max_range_m, ranges, coherent);
+  }
+  // Same, with directions given in a sensor frame rotated by R_world_sensor.
+  void cast_batch(const Eigen::Vector3f& origin, const Eigen::Matrix3f& R_world_sensor,
+                  std::span<const Eigen::Vector3f> unit_dirs_sensor, float max_range_m, std::span<float> ranges,
+                  bool coherent = false) const;
 
   std::size_t static_triangle_count() const;
   std::size_t actor_count() const;

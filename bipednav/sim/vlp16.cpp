@@ -34,7 +34,6 @@ Vlp16::Vlp16(const Vlp16Params& params, std::string frame_id, std::uint64_t seed
                           static_cast<float>(std::cos(el) * std::sin(az)), static_cast<float>(std::sin(el)));
     }
   }
-  world_dirs_.resize(params_.rings);
   ranges_.resize(params_.rings);
 }
 
@@ -56,8 +55,9 @@ double Vlp16::column_time_s(std::uint64_t sweep, int column) const {
 void Vlp16::fire_column(int column, double t_s, const RayCaster& caster, const SE3& T_world_sensor) {
   const Eigen::Matrix3f R = T_world_sensor.linear().cast<float>();
   const Eigen::Vector3f origin = T_world_sensor.translation().cast<float>();
-  for (int r = 0; r < params_.rings; ++r) world_dirs_[r] = R * beam(column, r);
-  caster.cast_batch(origin, world_dirs_, static_cast<float>(params_.max_range_m), ranges_);
+  const std::span<const Eigen::Vector3f> beams(&beams_[static_cast<std::size_t>(column) * params_.rings],
+                                               params_.rings);
+  caster.cast_batch(origin, R, beams, static_cast<float>(params_.max_range_m), ranges_);
   const float dt = static_cast<float>(t_s - current_.stamp_s);
   for (int r = 0; r < params_.rings; ++r) {
     const float range = ranges_[r];

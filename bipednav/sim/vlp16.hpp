@@ -63,7 +63,6 @@ class Vlp16 {
   std::string frame_id_;
   GaussianNoise noise_;
   std::vector<Eigen::Vector3f> beams_;  // column-major, sensor frame
-  std::vector<Eigen::Vector3f> world_dirs_;
   std::vector<float> ranges_;
   std::uint64_t sweep_ = 0;
   int next_column_ = 0;
