@@ -57,6 +57,7 @@ class VoxelGrid {
   Eigen::Vector3d inv_leaf_;
   std::vector<detail::VoxelAccumulator> acc_;
   std::vector<std::uint32_t> slots_;  // open addressing, linear probing: index into acc_
+  std::vector<std::uint64_t> keys_;   // voxel key per input point
   std::size_t mask_ = 0;
   int shift_ = 0;
 };

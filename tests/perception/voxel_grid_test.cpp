@@ -89,3 +89,27 @@ TEST(VoxelGrid, DenseGridReducesToOnePointPerVoxel) {
 
 }  // namespace
 }  // namespace bipednav::perception
+
+namespace bipednav::perception {
+namespace {
+
+TEST(VoxelGridClass, ReusedBetweenCallsAndCropped) {
+  VoxelGrid grid(VoxelGridParams{});
+  PointCloud a, b, out;
+  for (int i = 0; i < 5000; ++i) a.points.emplace_back(0.01f * i, 0.0f, 0.0f);  // 50 m line, 2500 voxels
+  b.points = {{0.001f, 0.001f, 0.001f}, {0.003f, 0.003f, 0.003f}, {5.0f, 0.0f, 0.0f}};
+  grid.filter(a, out);
+  EXPECT_EQ(out.size(), 2500u);
+  grid.filter(b, out);
+  ASSERT_EQ(out.size(), 2u);
+  EXPECT_TRUE(out.points[0].isApprox(Eigen::Vector3f(0.002f, 0.002f, 0.002f)));
+  PassThroughParams range;
+  range.max_range_m = 1.0;
+  const PassThroughTest crop(range);
+  grid.filter(b, out, &crop);
+  EXPECT_EQ(out.size(), 1u);
+  EXPECT_THROW(grid.filter(out, out), Error);
+}
+
+}  // namespace
+}  // namespace bipednav::perception
