@@ -1,18 +1,127 @@
+#include <cmath>
 #include <iostream>
+#include <memory>
 #include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
 
 #include "apps/commands.hpp"
+#include "bipednav/common/error.hpp"
+#include "bipednav/io/map_server.hpp"
 #include "bipednav/planning/local/bench_scene.hpp"
+#include "bipednav/planning/local/local_planner.hpp"
+#include "bipednav/viz/canvas.hpp"
 
 namespace bipednav::app {
 
 namespace {
+
+using planning::local::LocalPlanner;
+
+Pose2 parse_pose(const std::string& s, const std::string& what) {
+  std::stringstream ss(s);
+  Pose2 p;
+  char c1 = 0, c2 = 0;
+  if (!(ss >> p.x >> c1 >> p.y >> c2 >> p.theta) || c1 != ',' || c2 != ',' || !p.is_finite())
+    throw Error(what + ": expected x,y,yaw (metres, radians), got '" + s + "'");
+  return p;
+}
+
+// The rolling local window (size_m square centred on the robot) cut from a larger map; cells
+// beyond the map are unknown.
+mapping::Costmap2D local_window(const mapping::Costmap2D& map, const Pose2& robot, double size_m) {
+  const double res = map.resolution_m();
+  mapping::GridGeometry g;
+  g.width = g.height = static_cast<int>(std::lround(size_m / res));
+  g.resolution_m = res;
+  const auto& mg = map.geometry();
+  // Snap the window to the map's cells.
+  g.origin_x_m = mg.origin_x_m + std::floor((robot.x - 0.5 * size_m - mg.origin_x_m) / res) * res;
+  g.origin_y_m = mg.origin_y_m + std::floor((robot.y - 0.5 * size_m - mg.origin_y_m) / res) * res;
+  mapping::Costmap2D w(g, mapping::kUnknown);
+  for (int y = 0; y < g.height; ++y) {
+    for (int x = 0; x < g.width; ++x) {
+      const auto c = g.cell_center(x, y);
+      if (const auto mc = mg.world_to_cell(c.x(), c.y())) w.set_cost(x, y, map.cost(*mc));
+    }
+  }
+  return w;
+}
+
+struct PlanOptions {
+  std::string map, start, goal, out, planner = "teb";
+  int steps = 600;
+  int threads = 1;
+};
+
+void local_plan(const PlanOptions& o) {
+  const mapping::Costmap2D map = io::read_map_server(o.map);
+  const Pose2 start = parse_pose(o.start, "--start"), goal = parse_pose(o.goal, "--goal");
+  planning::local::LocalPlannerParams params;
+  params.teb.homotopy.num_threads = o.threads;
+  params.validate();
+  std::unique_ptr<LocalPlanner> planner = planning::local::make_local_planner(o.planner, params);
+  // The global plan is the straight line; the local planner finds its way around obstacles.
+  Path plan;
+  const double len = distance(start, goal);
+  const int n = std::max(1, static_cast<int>(std::ceil(len / 0.1)));
+  const double heading = std::atan2(goal.y - start.y, goal.x - start.x);
+  for (int i = 0; i <= n; ++i) {
+    const double f = static_cast<double>(i) / n;
+    plan.poses.push_back({start.x + f * (goal.x - start.x), start.y + f * (goal.y - start.y), heading});
+  }
+  plan.poses.back().theta = goal.theta;
+  const double dt = params.teb.control_period_s;
+  Pose2 p = start;
+  Twist v;
+  std::vector<Eigen::Vector2d> driven{p.position()};
+  Path last_traj;
+  nlohmann::json j;
+  j["reached"] = false;
+  int step = 0;
+  for (; step < o.steps; ++step) {
+    const auto r = planner->compute(p, v, plan, local_window(map, p, 8.0), step * dt);
+    last_traj = r.trajectory;
+    j["last_outcome"] = std::string(outcome_name(r.result.outcome));
+    if (r.goal_reached) {
+      j["reached"] = true;
+      break;
+    }
+    v = r.cmd;
+    p = p * Pose2{v.linear_x * dt, 0.0, v.angular_z * dt};
+    driven.push_back(p.position());
+  }
+  j["planner"] = o.planner;
+  j["cycles"] = step;
+  j["time_s"] = step * dt;
+  j["final_pose"] = {p.x, p.y, p.theta};
+  if (!o.out.empty()) {
+    viz::CanvasParams cp;
+    const auto& g = map.geometry();
+    cp.min_x_m = g.origin_x_m, cp.min_y_m = g.origin_y_m;
+    cp.max_x_m = g.origin_x_m + g.size_x_m(), cp.max_y_m = g.origin_y_m + g.size_y_m();
+    cp.pixels_per_m = std::clamp(800.0 / std::max(g.size_x_m(), g.size_y_m()), 5.0, 100.0);
+    viz::Canvas canvas(cp);
+    canvas.grid(map);
+    std::vector<Eigen::Vector2d> local;
+    for (const auto& q : last_traj.poses) local.push_back(q.position());
+    canvas.polyline({start.position(), goal.position()}, viz::colors::kRed, 1.5);
+    canvas.polyline(driven, viz::colors::kPurple, 2.0);
+    canvas.polyline(local, viz::colors::kGreen, 2.0);
+    canvas.circle(goal.position(), 0.1, viz::colors::kRed);
+    canvas.arrow(p, 0.4, viz::colors::kBlack);
+    canvas.write_png(o.out);
+    j["out"] = o.out;
+  }
+  std::cout << j.dump(2) << std::endl;
+}
 
 void bench_local(int cycles, int threads) {
   using namespace planning::local;
   nlohmann::json j;
   j["benchmark"] = "local";
   j["threads"] = threads;
+  j["homotopy_classes"] = true;
   j["goal_median_ms"] = 10.0;
   j["goal_p99_ms"] = 25.0;
   for (const int n : {0, 20, 100}) {
@@ -28,12 +137,16 @@ void bench_local(int cycles, int threads) {
     e["median_ms"] = st.median_ms;
     e["p99_ms"] = st.p99_ms;
     e["max_ms"] = st.max_ms;
+    e["cpu_median_ms"] = st.cpu_median_ms;
+    e["cpu_p99_ms"] = st.cpu_p99_ms;
     j["per_obstacle_count"].push_back(e);
     if (n == 100) {
       j["median_ms"] = st.median_ms;
       j["p99_ms"] = st.p99_ms;
       j["meets_goal_median"] = st.median_ms <= 10.0;
       j["meets_goal_p99"] = st.p99_ms <= 25.0;
+      j["cpu_median_ms"] = st.cpu_median_ms;
+      j["cpu_p99_ms"] = st.cpu_p99_ms;
     }
   }
   std::cout << j.dump(2) << std::endl;
@@ -41,7 +154,20 @@ void bench_local(int cycles, int threads) {
 
 }  // namespace
 
-void add_local_commands(CLI::App& /*app*/, CLI::App& bench) {
+void add_local_commands(CLI::App& app, CLI::App& bench) {
+  CLI::App* local = app.add_subcommand("local", "Local planning (TEB or the path tracker)");
+  local->require_subcommand(1);
+  auto o = std::make_shared<PlanOptions>();
+  CLI::App* plan = local->add_subcommand("plan", "Drive a simulated robot from start to goal on a map_server map");
+  plan->add_option("map", o->map, "map_server YAML")->required();
+  plan->add_option("--start", o->start, "start pose x,y,yaw")->required();
+  plan->add_option("--goal", o->goal, "goal pose x,y,yaw")->required();
+  plan->add_option("--out", o->out, "PNG of the map, the driven path and the last local trajectory");
+  plan->add_option("--planner", o->planner, "teb | tracker");
+  plan->add_option("--steps", o->steps, "maximum control cycles")->check(CLI::PositiveNumber);
+  plan->add_option("--threads", o->threads, "threads for the homotopy candidates")->check(CLI::PositiveNumber);
+  plan->callback([o] { local_plan(*o); });
+
   auto* b = bench.add_subcommand("local", "TEB local planner cycle time with 0, 20 and 100 obstacles");
   auto cycles = std::make_shared<int>(100);
   auto threads = std::make_shared<int>(1);

@@ -27,6 +27,8 @@ struct LocalBenchStats {
   double median_ms = 0.0;
   double p99_ms = 0.0;
   double max_ms = 0.0;
+  double cpu_median_ms = 0.0;  // CPU time of the calling thread (robust on a loaded machine)
+  double cpu_p99_ms = 0.0;
   int success_cycles = 0;
 };
 LocalBenchStats run_local_bench(const LocalBenchScene& scene, const TebParams& params, int cycles);
