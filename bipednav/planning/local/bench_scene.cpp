@@ -10,8 +10,6 @@
 
 namespace bipednav::planning::local {
 
-namespace {
-
 void stamp_disc(mapping::Costmap2D& m, double x, double y, double r, double inscribed) {
   const auto& g = m.geometry();
   const int reach = static_cast<int>(std::ceil((r + inscribed) / g.resolution_m)) + 1;
@@ -29,6 +27,8 @@ void stamp_disc(mapping::Costmap2D& m, double x, double y, double r, double insc
     }
   }
 }
+
+namespace {
 
 double thread_cpu_ms() {
   timespec t{};

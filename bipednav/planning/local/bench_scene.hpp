@@ -20,6 +20,10 @@ struct LocalBenchScene {
 };
 LocalBenchScene make_local_bench_scene(int n_obstacles, std::uint64_t seed);
 
+// Marks the cells whose centre lies within r of (x, y) lethal and those within r + inscribed_m
+// inscribed (a round obstacle with its inscribed ring).
+void stamp_disc(mapping::Costmap2D& costmap, double x, double y, double r, double inscribed_m);
+
 // Cycle times of the TEB planner driving a simulated unicycle through a scene.
 struct LocalBenchStats {
   int obstacles = 0;  // obstacles extracted from the costmap

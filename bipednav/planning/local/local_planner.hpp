@@ -1,6 +1,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string_view>
 
 #include "bipednav/common/outcome.hpp"
@@ -43,6 +44,10 @@ struct LocalPlannerParams {
   TrackerParams tracker;
   void validate() const;
 };
+
+// The result for bad input (see plan_utils' check_inputs), or nullopt when the input is usable.
+std::optional<LocalPlanResult> reject_bad_inputs(const Pose2& T_map_base, const Twist& current_velocity,
+                                                 const Path& global_plan, const mapping::Costmap2D& local_costmap);
 
 // Factory table: "teb" or "tracker"; throws ParamError for another name.
 std::unique_ptr<LocalPlanner> make_local_planner(std::string_view name, const LocalPlannerParams& params);

@@ -49,12 +49,9 @@ LocalPlanResult TebPlanner::finish(LocalPlanResult r, const Twist& desired, cons
 
 LocalPlanResult TebPlanner::compute(const Pose2& T_map_base, const Twist& current_velocity, const Path& global_plan,
                                     const mapping::Costmap2D& local_costmap, double /*now_s*/) {
+  if (auto bad = reject_bad_inputs(T_map_base, current_velocity, global_plan, local_costmap)) return *bad;
   LocalPlanResult r;
   r.trajectory.frame_id = global_plan.frame_id;
-  if (auto bad = check_inputs(T_map_base, current_velocity, global_plan, local_costmap)) {
-    r.result = *bad;
-    return r;
-  }
   const Pose2 robot{T_map_base.x, T_map_base.y, normalize_angle(T_map_base.theta)};
   const GoalApproach ga =
       approach_goal(robot, global_plan.poses.back(), params_.xy_goal_tolerance_m, params_.yaw_goal_tolerance_rad,

@@ -43,12 +43,9 @@ PathTracker::PathTracker(TrackerParams params) : params_(std::move(params)) { pa
 
 LocalPlanResult PathTracker::compute(const Pose2& T_map_base, const Twist& current_velocity, const Path& global_plan,
                                      const mapping::Costmap2D& local_costmap, double /*now_s*/) {
+  if (auto bad = reject_bad_inputs(T_map_base, current_velocity, global_plan, local_costmap)) return *bad;
   LocalPlanResult r;
   r.trajectory.frame_id = global_plan.frame_id;
-  if (auto bad = check_inputs(T_map_base, current_velocity, global_plan, local_costmap)) {
-    r.result = *bad;
-    return r;
-  }
   const CommandLimits lim{params_.max_vel_x_mps, 0.0, params_.max_vel_theta_radps, params_.acc_lim_x_mps2,
                           params_.acc_lim_theta_radps2};
   const Pose2& goal = global_plan.poses.back();

@@ -5,6 +5,7 @@
 #include "bipednav/common/path.hpp"
 #include "bipednav/common/twist.hpp"
 #include "bipednav/mapping/costmap2d.hpp"
+#include "bipednav/planning/local/bench_scene.hpp"
 
 namespace bipednav::planning::local::test {
 
@@ -20,17 +21,7 @@ inline mapping::Costmap2D empty_costmap(double cx, double cy, double size_m = 8.
 
 // Marks cells whose centre lies within r of (x, y) lethal, and those within r + inscribed inscribed.
 inline void add_disc(mapping::Costmap2D& m, double x, double y, double r, double inscribed = 0.2) {
-  const auto& g = m.geometry();
-  for (int cy = 0; cy < g.height; ++cy) {
-    for (int cx = 0; cx < g.width; ++cx) {
-      const auto c = g.cell_center(cx, cy);
-      const double d = std::hypot(c.x() - x, c.y() - y);
-      if (d <= r)
-        m.set_cost(cx, cy, mapping::kLethal);
-      else if (d <= r + inscribed && m.cost(cx, cy) < mapping::kInscribed)
-        m.set_cost(cx, cy, mapping::kInscribed);
-    }
-  }
+  stamp_disc(m, x, y, r, inscribed);
 }
 
 // Axis-aligned lethal rectangle [x0, x1] x [y0, y1] with an inscribed ring.

@@ -14,6 +14,11 @@ Obstacle point_obstacle(double x, double y) {
   o.centroid = {x, y};
   return o;
 }
+std::vector<Eigen::Vector2d> band_polyline_of(const TebBand& b) {
+  std::vector<Eigen::Vector2d> pts;
+  for (const auto& q : b.poses) pts.push_back(q.position());
+  return pts;
+}
 std::vector<Eigen::Vector2d> centroids_of(const std::vector<Obstacle>& obs) {
   std::vector<Eigen::Vector2d> c;
   for (const auto& o : obs) c.push_back(o.centroid);
@@ -73,6 +78,32 @@ TEST(ThreadPool, RunsEveryIndexOnceAndRethrows) {
                                    if (i == 2) throw std::runtime_error("x");
                                  }),
                std::runtime_error);
+}
+
+}  // namespace bipednav::planning::local
+
+namespace bipednav::planning::local {
+
+TEST(HomotopyPlanner, KeepsDistinctClassesAndItsSelection) {
+  TebParams p;
+  HomotopyPlanner planner(p);
+  const std::vector<Obstacle> obs{point_obstacle(1.5, 0.0)};
+  const Pose2 start{0, 0, 0}, goal{3, 0, 0};
+  const BandCandidate* first = planner.plan(start, goal, {}, {}, obs);
+  ASSERT_NE(first, nullptr);
+  const std::uint64_t id = first->id;
+  ASSERT_EQ(planner.candidates().size(), 2u);  // left and right of the obstacle
+  const std::vector<Eigen::Vector2d> c{{1.5, 0.0}};
+  const auto s0 = winding_signature(band_polyline_of(planner.candidates()[0].band), c);
+  const auto s1 = winding_signature(band_polyline_of(planner.candidates()[1].band), c);
+  EXPECT_FALSE(same_homotopy_class(s0, s1, 1.0));
+  // The symmetric alternative is no cheaper by the hysteresis margin: the selection stays.
+  for (int i = 0; i < 5; ++i) {
+    const BandCandidate* b = planner.plan(start, goal, {}, {}, obs);
+    ASSERT_NE(b, nullptr);
+    EXPECT_EQ(b->id, id);
+    EXPECT_GT(b->cost.min_obstacle_dist_m, p.limits.min_obstacle_dist_m - 0.05);
+  }
 }
 
 }  // namespace bipednav::planning::local
