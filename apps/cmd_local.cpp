@@ -54,6 +54,26 @@ struct PlanOptions {
   int threads = 1;
 };
 
+// The map, the straight global plan (red), the driven path (purple) and the last local trajectory (green).
+void draw_run(const std::string& out, const mapping::Costmap2D& map, const Pose2& start, const Pose2& goal,
+              const std::vector<Eigen::Vector2d>& driven, const Path& last_traj, const Pose2& robot) {
+  viz::CanvasParams cp;
+  const auto& g = map.geometry();
+  cp.min_x_m = g.origin_x_m, cp.min_y_m = g.origin_y_m;
+  cp.max_x_m = g.origin_x_m + g.size_x_m(), cp.max_y_m = g.origin_y_m + g.size_y_m();
+  cp.pixels_per_m = std::clamp(800.0 / std::max(g.size_x_m(), g.size_y_m()), 5.0, 100.0);
+  viz::Canvas canvas(cp);
+  canvas.grid(map);
+  std::vector<Eigen::Vector2d> local;
+  for (const auto& q : last_traj.poses) local.push_back(q.position());
+  canvas.polyline({start.position(), goal.position()}, viz::colors::kRed, 1.5);
+  canvas.polyline(driven, viz::colors::kPurple, 2.0);
+  canvas.polyline(local, viz::colors::kGreen, 2.0);
+  canvas.circle(goal.position(), 0.1, viz::colors::kRed);
+  canvas.arrow(robot, 0.4, viz::colors::kBlack);
+  canvas.write_png(out);
+}
+
 void local_plan(const PlanOptions& o) {
   const mapping::Costmap2D map = io::read_map_server(o.map);
   const Pose2 start = parse_pose(o.start, "--start"), goal = parse_pose(o.goal, "--goal");
@@ -96,21 +116,7 @@ void local_plan(const PlanOptions& o) {
   j["time_s"] = step * dt;
   j["final_pose"] = {p.x, p.y, p.theta};
   if (!o.out.empty()) {
-    viz::CanvasParams cp;
-    const auto& g = map.geometry();
-    cp.min_x_m = g.origin_x_m, cp.min_y_m = g.origin_y_m;
-    cp.max_x_m = g.origin_x_m + g.size_x_m(), cp.max_y_m = g.origin_y_m + g.size_y_m();
-    cp.pixels_per_m = std::clamp(800.0 / std::max(g.size_x_m(), g.size_y_m()), 5.0, 100.0);
-    viz::Canvas canvas(cp);
-    canvas.grid(map);
-    std::vector<Eigen::Vector2d> local;
-    for (const auto& q : last_traj.poses) local.push_back(q.position());
-    canvas.polyline({start.position(), goal.position()}, viz::colors::kRed, 1.5);
-    canvas.polyline(driven, viz::colors::kPurple, 2.0);
-    canvas.polyline(local, viz::colors::kGreen, 2.0);
-    canvas.circle(goal.position(), 0.1, viz::colors::kRed);
-    canvas.arrow(p, 0.4, viz::colors::kBlack);
-    canvas.write_png(o.out);
+    draw_run(o.out, map, start, goal, driven, last_traj, p);
     j["out"] = o.out;
   }
   std::cout << j.dump(2) << std::endl;

@@ -83,19 +83,20 @@ double segment_obstacle_distance(const Eigen::Vector2d& a, const Eigen::Vector2d
   return d;
 }
 
-std::vector<std::vector<Eigen::Vector2d>> candidate_paths(const Pose2& start, const Pose2& goal,
-                                                          const std::vector<Obstacle>& obstacles,
-                                                          const std::vector<Eigen::Vector2d>& centroids,
-                                                          double min_dist_m,
-                                                          const std::vector<std::vector<double>>& known, int max_new,
-                                                          const HomotopyParams& params) {
-  std::vector<std::vector<Eigen::Vector2d>> out;
-  const Eigen::Vector2d s = start.position(), g = goal.position();
+namespace {
+
+// The sparse roadmap: start (node 0), keypoints left and right of the obstacles nearest to the
+// start-goal line, goal (last node); edges only advance along the line and keep the clearance.
+struct Roadmap {
+  std::vector<Eigen::Vector2d> nodes;
+  std::vector<std::vector<int>> adj;
+};
+
+Roadmap build_roadmap(const Eigen::Vector2d& s, const Eigen::Vector2d& g, const std::vector<Obstacle>& obstacles,
+                      double min_dist_m, const HomotopyParams& params) {
   const double len = (g - s).norm();
-  if (len < 1e-6 || max_new <= 0) return out;
   const Eigen::Vector2d dir = (g - s) / len, nrm(-dir.y(), dir.x());
-  // Obstacles near the start-goal line, nearest to it first.
-  std::vector<std::pair<double, std::size_t>> near;
+  std::vector<std::pair<double, std::size_t>> near;  // nearest to the line first
   for (std::size_t i = 0; i < obstacles.size(); ++i) {
     const Eigen::Vector2d r = obstacles[i].centroid - s;
     const double t = r.dot(dir), lat = std::abs(r.dot(nrm)) - obstacles[i].radius_m;
@@ -104,7 +105,8 @@ std::vector<std::vector<Eigen::Vector2d>> candidate_paths(const Pose2& start, co
   std::sort(near.begin(), near.end());
   if (static_cast<int>(near.size()) > params.max_keypoint_obstacles) near.resize(params.max_keypoint_obstacles);
   const double clearance = params.roadmap_clearance_ratio * min_dist_m;
-  std::vector<Eigen::Vector2d> nodes{s};
+  Roadmap rm;
+  rm.nodes.push_back(s);
   for (const auto& [lat, i] : near) {
     const Obstacle& o = obstacles[i];
     for (const double side : {1.0, -1.0}) {
@@ -113,19 +115,34 @@ std::vector<std::vector<Eigen::Vector2d>> candidate_paths(const Pose2& start, co
       bool free = t > 0.0 && t < len;
       for (std::size_t j = 0; free && j < obstacles.size(); ++j)
         free = obstacle_distance(obstacles[j], p.x(), p.y()) > clearance;
-      if (free) nodes.push_back(p);
+      if (free) rm.nodes.push_back(p);
     }
   }
-  nodes.push_back(g);
-  const int n = static_cast<int>(nodes.size()), goal_node = n - 1;
-  std::vector<double> t(static_cast<std::size_t>(n));
-  for (int i = 0; i < n; ++i) t[i] = (nodes[i] - s).dot(dir);
-  std::vector<std::vector<int>> adj(static_cast<std::size_t>(n));
+  rm.nodes.push_back(g);
+  const int n = static_cast<int>(rm.nodes.size());
+  rm.adj.resize(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) {
+    const double ti = (rm.nodes[i] - s).dot(dir);
     for (int j = 1; j < n; ++j) {
-      if (t[j] > t[i] + 1e-6 && edge_free(nodes[i], nodes[j], obstacles, clearance)) adj[i].push_back(j);
+      if ((rm.nodes[j] - s).dot(dir) > ti + 1e-6 && edge_free(rm.nodes[i], rm.nodes[j], obstacles, clearance))
+        rm.adj[i].push_back(j);
     }
   }
+  return rm;
+}
+
+}  // namespace
+
+std::vector<std::vector<Eigen::Vector2d>> candidate_paths(const Pose2& start, const Pose2& goal,
+                                                          const std::vector<Obstacle>& obstacles,
+                                                          const std::vector<Eigen::Vector2d>& centroids,
+                                                          double min_dist_m,
+                                                          const std::vector<std::vector<double>>& known, int max_new,
+                                                          const HomotopyParams& params) {
+  std::vector<std::vector<Eigen::Vector2d>> out;
+  if ((goal.position() - start.position()).norm() < 1e-6 || max_new <= 0) return out;
+  const Roadmap rm = build_roadmap(start.position(), goal.position(), obstacles, min_dist_m, params);
+  const int goal_node = static_cast<int>(rm.nodes.size()) - 1;
   // Best-first enumeration of paths in order of length (k shortest paths in a DAG).
   std::vector<std::vector<double>> seen = known;
   std::priority_queue<Partial, std::vector<Partial>, std::greater<>> open;
@@ -135,7 +152,7 @@ std::vector<std::vector<Eigen::Vector2d>> candidate_paths(const Pose2& start, co
     open.pop();
     if (p.nodes.back() == goal_node) {
       std::vector<Eigen::Vector2d> path;
-      for (int k : p.nodes) path.push_back(nodes[k]);
+      for (int k : p.nodes) path.push_back(rm.nodes[k]);
       auto sig = winding_signature(path, centroids);
       if (std::none_of(seen.begin(), seen.end(),
                        [&](const auto& k) { return same_homotopy_class(k, sig, params.signature_tolerance_rad); })) {
@@ -145,8 +162,8 @@ std::vector<std::vector<Eigen::Vector2d>> candidate_paths(const Pose2& start, co
       }
       continue;
     }
-    for (int j : adj[p.nodes.back()]) {
-      Partial q{p.length + (nodes[j] - nodes[p.nodes.back()]).norm(), p.nodes};
+    for (int j : rm.adj[p.nodes.back()]) {
+      Partial q{p.length + (rm.nodes[j] - rm.nodes[p.nodes.back()]).norm(), p.nodes};
       q.nodes.push_back(j);
       open.push(std::move(q));
     }
