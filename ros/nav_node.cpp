@@ -1,0 +1,271 @@
+// bipednav_nav_node: the Navigator as a ROS 1 node. Callbacks only convert messages, call the
+// core and publish; all conversion is in conversions.cpp. See ros/README.md for topics/params.
+#include <actionlib/server/simple_action_server.h>
+#include <move_base_msgs/MoveBaseAction.h>
+#include <ros/ros.h>
+#include <tf2_ros/buffer.h>
+#include <tf2_ros/transform_broadcaster.h>
+#include <tf2_ros/transform_listener.h>
+
+#include <memory>
+#include <optional>
+
+#include "bipednav/navigation/navigator.hpp"
+#include "bipednav/runner/scenario_runner.hpp"
+#include "ros/conversions.hpp"
+
+namespace bipednav::ros1 {
+namespace {
+
+struct NodeParams {
+  std::string robot = "turtlebot3";
+  std::string config_dir;  // empty: the compiled-in config/
+  std::string scenario;    // optional: world bounds and start pose for the global map
+  std::string map_frame = "map", odom_frame = "odom", base_frame = "base_link";
+  double tick_rate_hz = 50.0;
+  double map_min_x_m = -10.0, map_min_y_m = -10.0, map_max_x_m = 10.0, map_max_y_m = 10.0;
+  double initial_x_m = 0.0, initial_y_m = 0.0, initial_theta_rad = 0.0;
+  double footstep_length_m = 0.0;  // > 0 draws footstep markers (walkers)
+};
+
+// A fixed-rate gate on the ROS clock for publishing.
+struct Every {
+  double period_s;
+  double next_s = 0.0;
+  bool ready(double now) {
+    if (now + 1e-9 < next_s) return false;
+    next_s = now + period_s;
+    return true;
+  }
+};
+
+class NavNode {
+ public:
+  NavNode(ros::NodeHandle& nh, ros::NodeHandle& pnh);
+
+ private:
+  void load(ros::NodeHandle& pnh);
+  void on_goal();
+  void on_preempt();
+  void on_simple_goal(const geometry_msgs::PoseStamped& msg);
+  std::optional<Pose2> goal_in_map(const geometry_msgs::PoseStamped& msg);
+  void on_tick(const ros::TimerEvent&);
+  void report_action();
+  void publish(double now);
+
+  NodeParams p_;
+  RobotProfile robot_;
+  navigation::NavigatorParams nav_params_;
+  mapping::GridGeometry geometry_;
+  Pose2 initial_;
+  std::unique_ptr<navigation::Navigator> nav_;
+  SensorFrame pending_;
+  ros::Publisher cmd_pub_, global_map_pub_, local_map_pub_, plan_pub_, traj_pub_, marker_pub_;
+  std::vector<ros::Subscriber> subs_;
+  ros::Timer timer_;
+  tf2_ros::Buffer tf_buffer_;
+  tf2_ros::TransformListener tf_listener_{tf_buffer_};
+  tf2_ros::TransformBroadcaster tf_broadcaster_;
+  actionlib::SimpleActionServer<move_base_msgs::MoveBaseAction> server_;
+  Every global_gate_{0.5}, local_gate_{0.2}, path_gate_{0.2}, feedback_gate_{0.2};
+};
+
+template <typename T>
+T param(ros::NodeHandle& pnh, const std::string& name, T def) {
+  pnh.param<T>(name, def, def);
+  return def;
+}
+
+void NavNode::load(ros::NodeHandle& pnh) {
+  p_.robot = param(pnh, "robot", p_.robot);
+  p_.config_dir = param(pnh, "config_dir", p_.config_dir);
+  p_.scenario = param(pnh, "scenario", p_.scenario);
+  p_.map_frame = param(pnh, "map_frame", p_.map_frame);
+  p_.odom_frame = param(pnh, "odom_frame", p_.odom_frame);
+  p_.base_frame = param(pnh, "base_frame", p_.base_frame);
+  p_.tick_rate_hz = param(pnh, "tick_rate_hz", p_.tick_rate_hz);
+  p_.footstep_length_m = param(pnh, "footstep_length_m", p_.footstep_length_m);
+  robot_ = runner::load_robot(p_.robot, p_.config_dir);
+  nav_params_ = navigation::NavigatorParams::for_robot(robot_);
+  auto& n = nav_params_;
+  n.server.global_planner = param(pnh, "global_planner", n.server.global_planner);
+  n.server.local_planner = param(pnh, "local_planner", n.server.local_planner);
+  n.localization.method = param(pnh, "localization", n.localization.method);
+  n.server.goal.xy_tolerance_m = param(pnh, "goal_xy_tolerance_m", n.server.goal.xy_tolerance_m);
+  n.server.goal.yaw_tolerance_rad = param(pnh, "goal_yaw_tolerance_rad", n.server.goal.yaw_tolerance_rad);
+  n.global_map.resolution_m = param(pnh, "global_resolution_m", n.global_map.resolution_m);
+  n.control_rate_hz = param(pnh, "control_rate_hz", n.control_rate_hz);
+  n.behavior_tree = param(pnh, "behavior_tree", n.behavior_tree);
+  n.validate();
+  require(p_.tick_rate_hz > 0.0, "tick_rate_hz", "> 0");
+  if (!p_.scenario.empty()) {
+    const sim::Scenario sc = sim::load_scenario(p_.scenario);
+    geometry_ = runner::global_geometry_for(sc, n.global_map.resolution_m);
+    initial_ = sc.start;
+  } else {
+    sim::Scenario bounds_only;
+    bounds_only.bounds = {param(pnh, "map_min_x_m", p_.map_min_x_m), param(pnh, "map_min_y_m", p_.map_min_y_m),
+                          param(pnh, "map_max_x_m", p_.map_max_x_m), param(pnh, "map_max_y_m", p_.map_max_y_m)};
+    geometry_ = runner::global_geometry_for(bounds_only, n.global_map.resolution_m, 0.0);
+  }
+  initial_.x = param(pnh, "initial_x_m", initial_.x);
+  initial_.y = param(pnh, "initial_y_m", initial_.y);
+  initial_.theta = param(pnh, "initial_theta_rad", initial_.theta);
+}
+
+NavNode::NavNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : server_(nh, "move_base", false) {
+  load(pnh);
+  nav_ = std::make_unique<navigation::Navigator>(nav_params_, robot_, geometry_, initial_);
+  cmd_pub_ = nh.advertise<geometry_msgs::Twist>("cmd_vel", 10);
+  global_map_pub_ = nh.advertise<nav_msgs::OccupancyGrid>("global_costmap", 1, true);
+  local_map_pub_ = nh.advertise<nav_msgs::OccupancyGrid>("local_costmap", 1);
+  plan_pub_ = nh.advertise<nav_msgs::Path>("global_plan", 1, true);
+  traj_pub_ = nh.advertise<nav_msgs::Path>("local_plan", 1);
+  marker_pub_ = nh.advertise<visualization_msgs::MarkerArray>("markers", 1);
+  // One PointCloud2 topic per sensor mount of the robot profile: <mount>/points.
+  for (const auto& mount : robot_.sensors) {
+    const std::string name = mount.name;
+    const bool lidar = mount.type == "vlp16";
+    subs_.push_back(nh.subscribe<sensor_msgs::PointCloud2>(
+        name + "/points", 4, [this, name, lidar](const sensor_msgs::PointCloud2::ConstPtr& msg) {
+          try {
+            PointCloud cloud = from_msg(*msg);
+            if (lidar) {
+              pending_.lidar = std::move(cloud);
+            } else {
+              pending_.depth.push_back(DepthCloud{name, std::move(cloud)});
+            }
+          } catch (const std::exception& e) {
+            ROS_WARN_THROTTLE(5.0, "bipednav_nav_node: dropped %s cloud: %s", name.c_str(), e.what());
+          }
+        }));
+  }
+  subs_.push_back(nh.subscribe<nav_msgs::Odometry>(
+      "odom", 20, [this](const nav_msgs::Odometry::ConstPtr& msg) { pending_.odometry = from_msg(*msg); }));
+  subs_.push_back(nh.subscribe("move_base_simple/goal", 1, &NavNode::on_simple_goal, this));
+  server_.registerGoalCallback([this] { on_goal(); });
+  server_.registerPreemptCallback([this] { on_preempt(); });
+  server_.start();
+  timer_ = nh.createTimer(ros::Duration(1.0 / p_.tick_rate_hz), &NavNode::on_tick, this);
+  ROS_INFO("bipednav_nav_node: robot %s, global map %dx%d at %.2f m, planners %s/%s", robot_.name.c_str(),
+           geometry_.width, geometry_.height, geometry_.resolution_m, nav_params_.server.global_planner.c_str(),
+           nav_params_.server.local_planner.c_str());
+}
+
+std::optional<Pose2> NavNode::goal_in_map(const geometry_msgs::PoseStamped& msg) {
+  try {
+    const Pose2 goal = from_msg(msg.pose);
+    const std::string& frame = msg.header.frame_id;
+    if (frame.empty() || frame == p_.map_frame) return goal;
+    if (frame == p_.odom_frame) return nav_->T_map_odom() * goal;
+    const auto T = tf_buffer_.lookupTransform(p_.map_frame, frame, ros::Time(0), ros::Duration(0.2));
+    geometry_msgs::Pose origin;
+    origin.position.x = T.transform.translation.x;
+    origin.position.y = T.transform.translation.y;
+    origin.orientation = T.transform.rotation;
+    return from_msg(origin) * goal;
+  } catch (const std::exception& e) {
+    ROS_ERROR("bipednav_nav_node: rejected goal in frame '%s': %s", msg.header.frame_id.c_str(), e.what());
+    return std::nullopt;
+  }
+}
+
+void NavNode::on_goal() {
+  const auto goal = server_.acceptNewGoal();  // preempts (PREEMPTED) a running goal
+  const auto pose = goal_in_map(goal->target_pose);
+  if (!pose) {
+    move_base_msgs::MoveBaseResult result;
+    server_.setAborted(result, "INVALID_GOAL (53): goal pose could not be transformed into the map frame");
+    return;
+  }
+  ROS_INFO("bipednav_nav_node: new goal (%.2f, %.2f, %.2f)", pose->x, pose->y, pose->theta);
+  nav_->set_goal(*pose);
+}
+
+void NavNode::on_preempt() {
+  // A new goal also raises the preempt request; on_goal() follows and preempts through
+  // acceptNewGoal() while the navigator switches goals without stopping.
+  if (server_.isNewGoalAvailable()) return;
+  nav_->cancel();
+  server_.setPreempted(move_base_msgs::MoveBaseResult(), "CANCELED (101): goal canceled by the client");
+}
+
+void NavNode::on_simple_goal(const geometry_msgs::PoseStamped& msg) {
+  const auto pose = goal_in_map(msg);
+  if (!pose) return;
+  if (server_.isActive())
+    server_.setPreempted(move_base_msgs::MoveBaseResult(), "preempted by a goal on move_base_simple/goal");
+  nav_->set_goal(*pose);
+}
+
+void NavNode::report_action() {
+  if (!server_.isActive()) return;
+  const auto& st = nav_->status();
+  if (st.state == navigation::NavState::ACTIVE || st.state == navigation::NavState::IDLE) return;
+  const std::string text = std::string(outcome_name(st.result.outcome)) + " (" +
+                           std::to_string(code(st.result.outcome)) + "): " + st.result.message;
+  if (st.state == navigation::NavState::SUCCEEDED) {
+    server_.setSucceeded(move_base_msgs::MoveBaseResult(), text);
+  } else {
+    ROS_WARN("bipednav_nav_node: goal aborted: %s", text.c_str());
+    server_.setAborted(move_base_msgs::MoveBaseResult(), text);
+  }
+}
+
+void NavNode::on_tick(const ros::TimerEvent&) {
+  const double now = ros::Time::now().toSec();
+  pending_.stamp_s = now;
+  Twist cmd;
+  try {
+    cmd = nav_->tick(pending_);
+  } catch (const std::exception& e) {
+    ROS_ERROR_THROTTLE(2.0, "bipednav_nav_node: tick failed: %s", e.what());
+  }
+  pending_ = SensorFrame{};
+  cmd_pub_.publish(to_msg(cmd));
+  tf_broadcaster_.sendTransform(to_transform(nav_->T_map_odom(), p_.map_frame, p_.odom_frame, now));
+  report_action();
+  publish(now);
+}
+
+void NavNode::publish(double now) {
+  if (global_gate_.ready(now)) global_map_pub_.publish(to_msg(nav_->global_map().costmap(), p_.map_frame, now));
+  if (local_gate_.ready(now)) {
+    local_map_pub_.publish(to_msg(nav_->local_map().costmap(), p_.map_frame, now));
+    MarkerInput m;
+    m.frame_id = p_.map_frame;
+    m.stamp_s = now;
+    m.robot = nav_->pose();
+    m.footprint_radius_m = robot_.footprint_radius_m;
+    m.goal = nav_->goal();
+    m.local_costmap = &nav_->local_map().costmap();
+    m.local_trajectory = &nav_->local_trajectory();
+    m.step_length_m = p_.footstep_length_m;
+    marker_pub_.publish(to_markers(m));
+  }
+  if (path_gate_.ready(now)) {
+    plan_pub_.publish(to_msg(nav_->global_path(), now));
+    traj_pub_.publish(to_msg(nav_->local_trajectory(), now));
+  }
+  if (server_.isActive() && feedback_gate_.ready(now)) {
+    move_base_msgs::MoveBaseFeedback fb;
+    fb.base_position = to_pose_stamped(nav_->pose(), p_.map_frame, now);
+    server_.publishFeedback(fb);
+  }
+}
+
+}  // namespace
+}  // namespace bipednav::ros1
+
+int main(int argc, char** argv) {
+  ros::init(argc, argv, "bipednav_nav_node");
+  ros::NodeHandle nh, pnh("~");
+  try {
+    bipednav::ros1::NavNode node(nh, pnh);
+    ros::spin();
+  } catch (const std::exception& e) {
+    ROS_FATAL("bipednav_nav_node: %s", e.what());
+    return 1;
+  }
+  return 0;
+}
