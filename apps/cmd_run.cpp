@@ -1,8 +1,206 @@
+// `bipednav run`: the closed loop in the simulator, and `bipednav bench scenarios`.
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
 #include "apps/commands.hpp"
+#include "bipednav/common/progress.hpp"
+#include "bipednav/runner/run_figure.hpp"
+#include "bipednav/runner/scenario_runner.hpp"
+#include "bipednav/sim/sdf_world.hpp"
+#include "bipednav/sim/world_drawing.hpp"
+
+#ifndef BIPEDNAV_SOURCE_DIR
+#define BIPEDNAV_SOURCE_DIR "."
+#endif
 
 namespace bipednav::app {
 
-// Filled in by the module's issue.
-void add_run_commands(CLI::App& /*app*/, CLI::App& /*bench*/) {}
+namespace {
+
+std::filesystem::path scenario_dir() { return std::filesystem::path(BIPEDNAV_SOURCE_DIR) / "scenarios"; }
+
+// "hexagon_static" or a path to a scenario file.
+std::filesystem::path resolve_scenario(const std::string& name) {
+  if (std::filesystem::exists(name)) return name;
+  const auto p = scenario_dir() / (name + ".yaml");
+  if (std::filesystem::exists(p)) return p;
+  throw Error("no scenario '" + name + "' (neither a file nor scenarios/" + name + ".yaml)");
+}
+
+Pose2 parse_pose(const std::string& text, const std::string& what) {
+  Pose2 p;
+  double v[3] = {0, 0, 0};
+  int n = 0;
+  std::size_t pos = 0;
+  while (n < 3 && pos <= text.size()) {
+    const std::size_t comma = text.find(',', pos);
+    const std::string tok = text.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos);
+    try {
+      std::size_t used = 0;
+      v[n] = std::stod(tok, &used);
+      if (used != tok.size()) throw std::invalid_argument(tok);
+    } catch (const std::exception&) {
+      throw Error(what + ": expected x,y[,yaw] numbers, got '" + text + "'");
+    }
+    ++n;
+    if (comma == std::string::npos) break;
+    pos = comma + 1;
+  }
+  if (n < 2) throw Error(what + ": expected x,y[,yaw], got '" + text + "'");
+  p = {v[0], v[1], v[2]};
+  if (!p.is_finite()) throw Error(what + ": not finite");
+  return p;
+}
+
+// A scenario around any Gazebo world file.
+sim::Scenario scenario_from_world(const std::string& world_file, const std::string& robot, const std::string& start,
+                                  const std::string& goal) {
+  sim::Scenario s;
+  const std::filesystem::path file(world_file);
+  s.name = file.stem().string();
+  s.world = sim::load_sdf_world(file, {file.parent_path() / "../models", scenario_dir() / "worlds"});
+  s.robot = robot.empty() ? "turtlebot3" : robot;
+  s.start = parse_pose(start, "--start");
+  s.goals = {{0.0, parse_pose(goal, "--goal")}};
+  s.time_limit_s = 180.0;
+  const sim::Bounds2 b = sim::world_bounds(s.world);
+  s.bounds = {std::min({b.min_x_m, s.start.x, s.goals[0].pose.x}), std::min({b.min_y_m, s.start.y, s.goals[0].pose.y}),
+              std::max({b.max_x_m, s.start.x, s.goals[0].pose.x}), std::max({b.max_y_m, s.start.y, s.goals[0].pose.y})};
+  s.validate();
+  return s;
+}
+
+nlohmann::json to_json(const runner::RunResult& r) {
+  nlohmann::json j;
+  j["scenario"] = r.scenario;
+  j["robot"] = r.robot;
+  j["success"] = r.success;
+  j["outcome"] = std::string(outcome_name(r.outcome.outcome));
+  j["outcome_code"] = code(r.outcome.outcome);
+  j["message"] = r.outcome.message;
+  j["collisions"] = r.collisions;
+  if (r.first_collision) {
+    j["first_collision"] = {{"time_s", r.first_collision->time_s},
+                            {"x_m", r.first_collision->point.x()},
+                            {"y_m", r.first_collision->point.y()},
+                            {"obstacle", r.first_collision->obstacle}};
+  }
+  j["time_s"] = r.time_s;
+  j["path_length_m"] = r.path_length_m;
+  j["min_clearance_m"] = r.min_clearance_m;
+  j["goal_error_m"] = r.goal_error_m;
+  j["goal_error_rad"] = r.goal_error_rad;
+  j["localization_error_m"] = r.localization_error_m;
+  j["replans"] = r.replans;
+  j["recoveries"] = r.recoveries;
+  j["real_time_factor"] = r.real_time_factor;
+  j["wall_s"] = r.wall_s;
+  j["goals_given"] = r.goals_given;
+  return j;
+}
+
+void print_summary(const runner::RunResult& r) {
+  std::printf("%s with %s: %s (%s%s%s)\n", r.scenario.c_str(), r.robot.c_str(), r.success ? "SUCCESS" : "FAILED",
+              std::string(outcome_name(r.outcome.outcome)).c_str(), r.outcome.message.empty() ? "" : ": ",
+              r.outcome.message.c_str());
+  std::printf("  time %.1f s, path %.2f m, min clearance %.3f m, collisions %d\n", r.time_s, r.path_length_m,
+              r.min_clearance_m, r.collisions);
+  std::printf("  goal error %.3f m / %.3f rad, localization error %.3f m\n", r.goal_error_m, r.goal_error_rad,
+              r.localization_error_m);
+  std::printf("  replans %zu, recoveries %zu, real-time factor %.1fx\n", r.replans, r.recoveries, r.real_time_factor);
+}
+
+struct RunArgs {
+  std::string scenario = "hexagon_static";
+  std::string out = "out";
+  std::string world, start = "0,0,0", goal;
+  runner::RunOptions options;
+  std::uint64_t seed = 0;
+  double time_limit_s = 0.0;
+};
+
+void run_command(const RunArgs& a) {
+  const sim::Scenario s = a.world.empty() ? sim::load_scenario(resolve_scenario(a.scenario))
+                                          : scenario_from_world(a.world, a.options.robot, a.start, a.goal);
+  runner::RunOptions o = a.options;
+  if (a.seed) o.seed = a.seed;
+  if (a.time_limit_s > 0) o.time_limit_s = a.time_limit_s;
+  o.progress = true;
+  const runner::RunResult r = runner::run_scenario(s, o);
+  std::filesystem::create_directories(a.out);
+  const auto dir = std::filesystem::path(a.out);
+  std::ofstream(dir / "run.json") << to_json(r).dump(2) << "\n";
+  runner::write_run_figure(dir / "run.png", s, r);
+  print_summary(r);
+  std::printf("  wrote %s and %s\n", (dir / "run.json").c_str(), (dir / "run.png").c_str());
+}
+
+void bench_scenarios(int seeds, const std::vector<std::string>& robots, bool json) {
+  const std::vector<std::string> names = {"hexagon_static",   "hexagon_dynamic",   "three_rooms",
+                                          "digit_lab_static", "digit_lab_dynamic", "turtlebot3_world"};
+  nlohmann::json rows = nlohmann::json::array();
+  ProgressBar bar("scenarios", names.size() * robots.size() * seeds, true);
+  std::size_t done = 0, ok_total = 0;
+  for (const auto& name : names) {
+    const sim::Scenario s = sim::load_scenario(resolve_scenario(name));
+    for (const auto& robot : robots) {
+      int ok = 0;
+      double rtf = 0.0;
+      for (int seed = 1; seed <= seeds; ++seed) {
+        runner::RunOptions o;
+        o.robot = robot;
+        o.seed = static_cast<std::uint64_t>(seed);
+        const auto r = runner::run_scenario(s, o);
+        ok += r.success;
+        rtf += r.real_time_factor / seeds;
+        bar.update(++done);
+      }
+      ok_total += ok;
+      rows.push_back({{"scenario", name}, {"robot", robot}, {"succeeded", ok}, {"runs", seeds}, {"mean_rtf", rtf}});
+    }
+  }
+  bar.finish();
+  if (json) {
+    std::printf("%s\n", nlohmann::json{{"rows", rows}, {"succeeded", ok_total}, {"runs", done}}.dump(2).c_str());
+    return;
+  }
+  std::printf("%-20s %-12s %9s %9s\n", "scenario", "robot", "success", "RTF");
+  for (const auto& r : rows)
+    std::printf("%-20s %-12s %4d / %-3d %8.1fx\n", r["scenario"].get<std::string>().c_str(),
+                r["robot"].get<std::string>().c_str(), r["succeeded"].get<int>(), r["runs"].get<int>(),
+                r["mean_rtf"].get<double>());
+}
+
+}  // namespace
+
+void add_run_commands(CLI::App& app, CLI::App& bench) {
+  auto args = std::make_shared<RunArgs>();
+  CLI::App* run = app.add_subcommand("run", "Navigate a scenario closed-loop in the built-in simulator");
+  run->add_option("scenario", args->scenario, "Scenario name (scenarios/NAME.yaml) or file")->capture_default_str();
+  run->add_option("--out", args->out, "Output directory for run.json and run.png")->capture_default_str();
+  run->add_option("--robot", args->options.robot, "Robot profile (turtlebot3, digit): overrides the scenario's");
+  run->add_option("--seed", args->seed, "Seed (overrides the scenario's)");
+  run->add_option("--time-limit", args->time_limit_s, "Time limit in simulated seconds");
+  run->add_option("--localization", args->options.localization, "loam or odometry");
+  run->add_option("--local-planner", args->options.local_planner, "teb or tracker");
+  run->add_option("--global-planner", args->options.global_planner, "dstar_lite or astar");
+  run->add_option("--world", args->world, "A Gazebo .world file instead of a scenario");
+  run->add_option("--start", args->start, "With --world: start pose x,y,yaw")->capture_default_str();
+  run->add_option("--goal", args->goal, "With --world: goal pose x,y,yaw");
+  run->callback([args] {
+    if (!args->world.empty() && args->goal.empty()) throw Error("--world needs --goal x,y,yaw");
+    run_command(*args);
+  });
+
+  auto seeds = std::make_shared<int>(1);
+  auto robots = std::make_shared<std::vector<std::string>>(std::vector<std::string>{"turtlebot3", "digit"});
+  auto json = std::make_shared<bool>(false);
+  CLI::App* sc = bench.add_subcommand("scenarios", "Run every scenario with N seeds and both robots");
+  sc->add_option("--seeds", *seeds, "Seeds per scenario and robot")->capture_default_str()->check(CLI::Range(1, 1000));
+  sc->add_option("--robots", *robots, "Robot profiles")->capture_default_str();
+  sc->add_flag("--json", *json, "Print one JSON object");
+  sc->callback([seeds, robots, json] { bench_scenarios(*seeds, *robots, *json); });
+}
 
 }  // namespace bipednav::app

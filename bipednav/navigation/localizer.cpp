@@ -1,0 +1,109 @@
+#include "bipednav/navigation/localizer.hpp"
+
+#include <cmath>
+
+namespace bipednav::navigation {
+
+void LocalizerParams::validate() const {
+  require(method == "loam" || method == "odometry", "localization.method", "loam or odometry");
+  require(sweep_duration_s > 0.0, "localization.sweep_duration_s", "> 0");
+  require(max_correction_jump_m > 0.0, "localization.max_correction_jump_m", "> 0");
+  require(max_correction_jump_rad > 0.0, "localization.max_correction_jump_rad", "> 0");
+  require(unhealthy_after_bad_sweeps >= 1, "localization.unhealthy_after_bad_sweeps", ">= 1");
+  require(odometry_timeout_s > 0.0, "localization.odometry_timeout_s", "> 0");
+  loam.validate();
+}
+
+Localizer::Localizer(LocalizerParams params, const RobotProfile& robot, const Pose2& T_map_base_initial)
+    : params_(std::move(params)), correction_(T_map_base_initial) {
+  params_.validate();
+  for (const auto& s : robot.sensors) {
+    if (s.type == "vlp16") {
+      T_base_lidar_ = s.T_base_sensor();
+      has_lidar_ = true;
+    }
+  }
+  if (params_.method == "loam" && has_lidar_) loam_ = std::make_unique<localization::Loam>(params_.loam);
+}
+
+void Localizer::reset(const Pose2& T_map_base) {
+  correction_ = T_map_base * odom_now_.inverse();
+  anchored_ = false;
+  prev_sweep_odom_.reset();
+  bad_sweeps_ = 0;
+  if (loam_) loam_->reset();
+}
+
+void Localizer::add_odometry(const Odometry& odom) {
+  if (!odom.T_odom_base.is_finite() || !odom.velocity.is_finite()) {
+    reason_ = "odometry is not finite";
+    return;
+  }
+  // Out-of-order or repeated stamps are dropped: the history must stay sorted.
+  if (!history_.empty() && odom.stamp_s <= history_.back().stamp_s) return;
+  history_.push_back(odom);
+  while (history_.size() > 2 && history_.front().stamp_s < odom.stamp_s - 2.0) history_.pop_front();
+  odom_now_ = odom.T_odom_base;
+  velocity_ = odom.velocity;
+  last_odom_s_ = odom.stamp_s;
+}
+
+std::optional<Pose2> Localizer::odom_at(double t_s) const {
+  if (history_.empty() || t_s < history_.front().stamp_s - 1e-9) return std::nullopt;
+  for (std::size_t i = 1; i < history_.size(); ++i) {
+    const Odometry& a = history_[i - 1];
+    const Odometry& b = history_[i];
+    if (t_s <= b.stamp_s) {
+      const double s = (t_s - a.stamp_s) / std::max(1e-9, b.stamp_s - a.stamp_s);
+      const Pose2 d = a.T_odom_base.inverse() * b.T_odom_base;
+      return a.T_odom_base * Pose2{s * d.x, s * d.y, s * d.theta};
+    }
+  }
+  // Slightly past the newest sample: hold it (the sweep end and the step end coincide).
+  if (t_s <= history_.back().stamp_s + 0.05) return history_.back().T_odom_base;
+  return std::nullopt;
+}
+
+void Localizer::add_sweep(const PointCloud& sweep) {
+  if (!loam_) return;
+  const double t_end = sweep.stamp_s + params_.sweep_duration_s;
+  const auto odom_end = odom_at(t_end);
+  if (!odom_end) {
+    reason_ = "no odometry at the sweep's end";
+    ++bad_sweeps_;
+    return;
+  }
+  const SE3 T_lidar_base = T_base_lidar_.inverse();
+  if (!anchored_) {
+    loam_->reset();
+    loam_->set_pose(se3_from_pose2(correction_ * *odom_end) * T_base_lidar_);
+    anchored_ = true;
+  }
+  std::optional<SE3> prior;
+  if (prev_sweep_odom_) prior = T_lidar_base * se3_from_pose2(prev_sweep_odom_->inverse() * *odom_end) * T_base_lidar_;
+  prev_sweep_odom_ = *odom_end;
+  const localization::LoamOutput out = loam_->process(sweep, prior);
+  last_loam_ms_ = out.odometry_ms + out.mapping_ms;
+  const Pose2 predicted = correction_ * *odom_end;
+  const Pose2 measured = pose2_from_se3(out.T_world_lidar * T_lidar_base);
+  const bool jump = distance(predicted, measured) > params_.max_correction_jump_m ||
+                    std::abs(angle_diff(predicted.theta, measured.theta)) > params_.max_correction_jump_rad;
+  if (!out.healthy || !measured.is_finite() || jump) {
+    reason_ = !out.healthy ? "LOAM: " + out.reason : (jump ? "LOAM pose jumped away from odometry" : "LOAM pose NaN");
+    ++bad_sweeps_;
+    if (jump) {  // re-anchor LOAM on the odometry prediction rather than trusting either blindly
+      loam_->set_pose(se3_from_pose2(predicted) * T_base_lidar_);
+    }
+    return;
+  }
+  bad_sweeps_ = 0;
+  reason_.clear();
+  correction_ = measured * odom_end->inverse();
+}
+
+bool Localizer::healthy(double now_s) const {
+  if (last_odom_s_ < 0.0 || now_s - last_odom_s_ > params_.odometry_timeout_s) return false;
+  return bad_sweeps_ < params_.unhealthy_after_bad_sweeps;
+}
+
+}  // namespace bipednav::navigation

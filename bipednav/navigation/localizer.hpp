@@ -1,0 +1,65 @@
+#pragma once
+
+#include <deque>
+#include <optional>
+#include <string>
+
+#include "bipednav/common/robot_profile.hpp"
+#include "bipednav/common/sensor_frame.hpp"
+#include "bipednav/localization/loam.hpp"
+
+namespace bipednav::navigation {
+
+struct LocalizerParams {
+  std::string method = "loam";  // loam | odometry
+  localization::LoamParams loam;
+  double sweep_duration_s = 0.1;       // a LiDAR sweep's span (stamp = its start)
+  double max_correction_jump_m = 0.5;  // a LOAM pose this far from the odometry prediction is rejected
+  double max_correction_jump_rad = 0.35;
+  int unhealthy_after_bad_sweeps = 5;  // consecutive rejected/unhealthy sweeps before reporting bad health
+  double odometry_timeout_s = 0.5;
+
+  void validate() const;
+};
+
+// Pose estimation for the navigator: the map -> odom correction from LOAM (section 4.4), applied
+// to the odometry stream between sweeps so the pose is available at every tick (REP-105:
+// T_map_base = T_map_odom * T_odom_base). With method "odometry" the correction stays fixed.
+class Localizer {
+ public:
+  Localizer(LocalizerParams params, const RobotProfile& robot, const Pose2& T_map_base_initial);
+
+  void add_odometry(const Odometry& odom);
+  // One LiDAR sweep in the lidar frame (time offsets since sweep.stamp_s, rings).
+  void add_sweep(const PointCloud& sweep);
+
+  Pose2 T_map_base() const { return correction_ * odom_now_; }
+  Pose2 T_map_odom() const { return correction_; }
+  Twist velocity() const { return velocity_; }
+  bool healthy(double now_s) const;
+  const std::string& reason() const { return reason_; }
+  double last_odometry_s() const { return last_odom_s_; }
+  double last_loam_ms() const { return last_loam_ms_; }
+  // Forces a pose (initial pose / relocalization); LOAM re-anchors at the next sweep.
+  void reset(const Pose2& T_map_base);
+
+ private:
+  std::optional<Pose2> odom_at(double t_s) const;
+
+  LocalizerParams params_;
+  SE3 T_base_lidar_ = SE3::Identity();
+  bool has_lidar_ = false;
+  std::unique_ptr<localization::Loam> loam_;
+  std::deque<Odometry> history_;
+  Pose2 odom_now_;
+  Twist velocity_;
+  Pose2 correction_;  // T_map_odom
+  std::optional<Pose2> prev_sweep_odom_;
+  int bad_sweeps_ = 0;
+  std::string reason_;
+  double last_odom_s_ = -1.0;
+  double last_loam_ms_ = 0.0;
+  bool anchored_ = false;
+};
+
+}  // namespace bipednav::navigation

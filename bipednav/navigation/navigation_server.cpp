@@ -1,0 +1,210 @@
+#include "bipednav/navigation/navigation_server.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace bipednav::navigation {
+
+void ServerParams::validate() const {
+  global.validate();
+  local.validate();
+  goal.validate();
+  progress.validate();
+  oscillation.validate();
+  require(controller_failures_allowed >= 0, "controller_failures_allowed", ">= 0");
+  require(path_check_distance_m > 0.0, "path_check_distance_m", "> 0");
+  require(relaxed_cost_weight_factor > 0.0 && relaxed_cost_weight_factor <= 1.0, "relaxed_cost_weight_factor",
+          "in (0, 1]");
+}
+
+NavigationServer::NavigationServer(ServerParams params, RobotProfile robot, mapping::GlobalCostmap& global,
+                                   mapping::LocalCostmap& local)
+    : params_(std::move(params)),
+      robot_(std::move(robot)),
+      global_(global),
+      local_(local),
+      goal_checker_(params_.goal),
+      progress_(params_.progress),
+      oscillation_(params_.oscillation) {
+  params_.validate();
+  make_global_planner(false);
+  local_planner_ = planning::local::make_local_planner(params_.local_planner, params_.local);
+}
+
+void NavigationServer::make_global_planner(bool relaxed) {
+  planning::GlobalPlannerParams p = params_.global;
+  if (relaxed) p.cost.cost_weight *= params_.relaxed_cost_weight_factor;
+  global_planner_ = planning::make_global_planner(params_.global_planner, p);
+  relaxed_ = relaxed;
+  pending_changes_.clear();
+}
+
+void NavigationServer::add_global_changes(const mapping::ChangeSet& changes) {
+  pending_changes_.insert(pending_changes_.end(), changes.begin(), changes.end());
+}
+
+void NavigationServer::on_new_goal() {
+  if (relaxed_) make_global_planner(false);
+  goal_checker_.reset();
+  local_planner_->reset();
+  ctrl_failures_ = 0;
+}
+
+planning::PlanResult NavigationServer::get_path(const Pose2& goal) {
+  last_plan_ = global_planner_->plan(global_.costmap(), view_.pose, goal, pending_changes_);
+  pending_changes_.clear();
+  ++plans_;
+  return last_plan_;
+}
+
+ActionStep NavigationServer::exe_path(const Path& path, bool first) {
+  if (first) {
+    progress_.reset();
+    oscillation_.reset();
+    ctrl_failures_ = 0;
+  }
+  if (path.empty()) {
+    cmd_ = {};
+    return {ActionStep::State::FAILED, {Outcome::INVALID_PATH, "exe_path got an empty path"}};
+  }
+  if (goal_checker_.reached(view_.pose, path.poses.back())) {
+    cmd_ = {};
+    return {ActionStep::State::SUCCEEDED, {Outcome::SUCCESS, "goal reached"}};
+  }
+  const auto r = local_planner_->compute(view_.pose, view_.velocity, path, local_.costmap(), view_.now_s);
+  last_ctrl_ = r.result;
+  trajectory_ = r.trajectory;
+  cmd_ = r.result.ok() ? r.cmd : Twist{};
+  if (!r.result.ok()) {
+    if (++ctrl_failures_ > params_.controller_failures_allowed) return {ActionStep::State::FAILED, r.result};
+    return {};
+  }
+  ctrl_failures_ = 0;
+  if (!progress_.check(view_.pose, view_.now_s)) {
+    cmd_ = {};
+    return {ActionStep::State::FAILED, {Outcome::ROBOT_STUCK, "no progress within the progress checker's window"}};
+  }
+  if (oscillation_.check(cmd_, view_.pose, view_.now_s)) {
+    cmd_ = {};
+    return {ActionStep::State::FAILED, {Outcome::OSCILLATION, "the commands oscillate without progress"}};
+  }
+  return {};
+}
+
+ActionStep NavigationServer::back_up(double distance_m, double speed_mps, bool first) {
+  if (first) {
+    ++recoveries_;
+    recovery_start_pose_ = view_.pose;
+    recovery_start_s_ = view_.now_s;
+  }
+  if (robot_.max_vel_x_backwards_mps <= 0.0)
+    return {ActionStep::State::FAILED, {Outcome::RECOVERY_FAILURE, "this robot cannot walk backwards"}};
+  // Refuse to back into an obstacle: probe just behind the footprint.
+  const Pose2 probe = view_.pose * Pose2{-(robot_.footprint_radius_m + 0.1), 0.0, 0.0};
+  const auto& lc = local_.costmap();
+  if (auto c = lc.geometry().world_to_cell(probe.x, probe.y); c && lc.cost(*c) >= mapping::kInscribed) {
+    cmd_ = {};
+    return {ActionStep::State::FAILED, {Outcome::RECOVERY_IMPASSABLE, "an obstacle is behind the robot"}};
+  }
+  const double speed = std::min(speed_mps, robot_.max_vel_x_backwards_mps);
+  if (distance(view_.pose, recovery_start_pose_) >= distance_m) {
+    cmd_ = {};
+    return {ActionStep::State::SUCCEEDED, {Outcome::SUCCESS, "backed up"}};
+  }
+  if (view_.now_s - recovery_start_s_ > 2.0 * distance_m / speed + 2.0) {
+    cmd_ = {};
+    return {ActionStep::State::FAILED, {Outcome::RECOVERY_PAT_EXCEEDED, "backing up took too long"}};
+  }
+  cmd_ = {-speed, 0.0, 0.0};
+  return {};
+}
+
+ActionStep NavigationServer::rotate_in_place(double angle_rad, bool first) {
+  if (!robot_.can_rotate_in_place)
+    return {ActionStep::State::FAILED, {Outcome::RECOVERY_FAILURE, "this robot cannot rotate in place"}};
+  if (first) {
+    ++recoveries_;
+    rotated_rad_ = 0.0;
+    last_yaw_ = view_.pose.theta;
+    recovery_start_s_ = view_.now_s;
+  }
+  rotated_rad_ += std::abs(angle_diff(view_.pose.theta, last_yaw_));
+  last_yaw_ = view_.pose.theta;
+  if (rotated_rad_ >= std::abs(angle_rad)) {
+    cmd_ = {};
+    return {ActionStep::State::SUCCEEDED, {Outcome::SUCCESS, "rotated"}};
+  }
+  const double rate = 0.6 * robot_.max_vel_theta_radps;
+  if (view_.now_s - recovery_start_s_ > 2.0 * std::abs(angle_rad) / rate + 2.0) {
+    cmd_ = {};
+    return {ActionStep::State::FAILED, {Outcome::RECOVERY_PAT_EXCEEDED, "rotating took too long"}};
+  }
+  cmd_ = {0.0, 0.0, angle_rad >= 0.0 ? rate : -rate};
+  return {};
+}
+
+ActionStep NavigationServer::wait(double duration_s, bool first) {
+  if (first) {
+    ++recoveries_;
+    recovery_start_s_ = view_.now_s;
+  }
+  cmd_ = {};
+  if (view_.now_s - recovery_start_s_ >= duration_s)
+    return {ActionStep::State::SUCCEEDED, {Outcome::SUCCESS, "waited"}};
+  return {};
+}
+
+Result NavigationServer::clear_costmaps() {
+  ++recoveries_;
+  local_.clear();
+  add_global_changes(global_.clear());
+  local_planner_->reset();
+  return {Outcome::SUCCESS, "costmaps cleared"};
+}
+
+Result NavigationServer::relax_constraints() {
+  ++recoveries_;
+  if (relaxed_) return {Outcome::RECOVERY_FAILURE, "constraints are already relaxed"};
+  make_global_planner(true);
+  return {Outcome::SUCCESS, "planner cost weight relaxed"};
+}
+
+bool NavigationServer::goal_reached(const Pose2& goal) const { return goal_checker_.reached(view_.pose, goal); }
+
+Result NavigationServer::goal_valid(const Pose2& goal) const {
+  if (!goal.is_finite()) return {Outcome::INVALID_GOAL, "the goal is not finite"};
+  const auto& map = global_.costmap();
+  const auto c = map.geometry().world_to_cell(goal.x, goal.y);
+  if (!c) return {Outcome::PLAN_OUT_OF_MAP, "the goal is outside the global map"};
+  const std::uint8_t cost = map.cost(*c);
+  if (cost == mapping::kLethal || cost == mapping::kInscribed)
+    return {Outcome::BLOCKED_GOAL, "the goal lies in or too close to an obstacle"};
+  return {Outcome::SUCCESS, ""};
+}
+
+bool NavigationServer::start_valid() const {
+  const auto& map = global_.costmap();
+  const auto c = map.geometry().world_to_cell(view_.pose.x, view_.pose.y);
+  return c && map.cost(*c) != mapping::kLethal;
+}
+
+bool NavigationServer::path_valid(const Path& path) const {
+  if (path.empty()) return false;
+  const auto& map = global_.costmap();
+  double travelled = 0.0;
+  // Only the stretch ahead of the robot matters; the part behind it may be stale.
+  std::size_t start = 0;
+  double best = 1e300;
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    const double d = distance(path.poses[i], view_.pose);
+    if (d < best) best = d, start = i;
+  }
+  for (std::size_t i = start; i < path.size() && travelled <= params_.path_check_distance_m; ++i) {
+    if (i > start) travelled += distance(path.poses[i - 1], path.poses[i]);
+    const auto c = map.geometry().world_to_cell(path.poses[i].x, path.poses[i].y);
+    if (c && map.cost(*c) == mapping::kLethal) return false;
+  }
+  return true;
+}
+
+}  // namespace bipednav::navigation

@@ -1,0 +1,119 @@
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "bipednav/common/outcome.hpp"
+#include "bipednav/common/path.hpp"
+#include "bipednav/common/robot_profile.hpp"
+#include "bipednav/common/twist.hpp"
+#include "bipednav/control/goal_checker.hpp"
+#include "bipednav/control/oscillation_checker.hpp"
+#include "bipednav/control/progress_checker.hpp"
+#include "bipednav/mapping/global_costmap.hpp"
+#include "bipednav/mapping/local_costmap.hpp"
+#include "bipednav/planning/global/global_planner.hpp"
+#include "bipednav/planning/local/local_planner.hpp"
+
+namespace bipednav::navigation {
+
+struct ServerParams {
+  std::string global_planner = "dstar_lite";  // dstar_lite | astar
+  planning::GlobalPlannerParams global;
+  std::string local_planner = "teb";  // teb | tracker
+  planning::local::LocalPlannerParams local;
+  control::GoalCheckerParams goal;
+  control::ProgressCheckerParams progress;
+  control::OscillationCheckerParams oscillation;
+  int controller_failures_allowed = 10;  // consecutive failed control cycles before exe_path fails
+  double path_check_distance_m = 4.0;    // IsPathValid looks this far along the path
+  double relaxed_cost_weight_factor = 0.3;
+
+  void validate() const;
+};
+
+// What the actions see of the robot this tick (filled in by the Navigator).
+struct RobotView {
+  double now_s = 0.0;
+  Pose2 pose;      // T_map_base
+  Twist velocity;  // base frame
+};
+
+// One step of a long action: RUNNING with a command, or finished with an outcome.
+struct ActionStep {
+  enum class State { RUNNING, SUCCEEDED, FAILED } state = State::RUNNING;
+  Result result;
+};
+
+// The Move Base Flex abstract navigation server (section 3.2.1): get_path, exe_path and the
+// recovery behaviours on the navigator's costmaps, reporting MBF outcome codes. move_base is the
+// behavior tree that sequences them (see Navigator). Holds references to the costmaps the
+// Navigator owns; the command it produces is read with command().
+class NavigationServer {
+ public:
+  NavigationServer(ServerParams params, RobotProfile robot, mapping::GlobalCostmap& global,
+                   mapping::LocalCostmap& local);
+
+  void set_view(const RobotView& view) { view_ = view; }
+  // Cells of the global map that changed since the last get_path (for D* Lite's repair).
+  void add_global_changes(const mapping::ChangeSet& changes);
+
+  // get_path: a global path from the robot to `goal` (outcomes 50-65).
+  planning::PlanResult get_path(const Pose2& goal);
+  // exe_path: one control cycle following `path` (outcomes 100-118); `first` on the first cycle.
+  ActionStep exe_path(const Path& path, bool first);
+  // Recoveries (outcomes 150-158); the long ones are stepped each tick.
+  ActionStep back_up(double distance_m, double speed_mps, bool first);
+  ActionStep rotate_in_place(double angle_rad, bool first);
+  ActionStep wait(double duration_s, bool first);
+  Result clear_costmaps();
+  Result relax_constraints();
+  void stop() { cmd_ = {}; }
+
+  // Conditions.
+  bool goal_reached(const Pose2& goal) const;
+  Result goal_valid(const Pose2& goal) const;  // SUCCESS, PLAN_OUT_OF_MAP, BLOCKED_GOAL
+  bool start_valid() const;
+  bool path_valid(const Path& path) const;
+  bool can_rotate_in_place() const { return robot_.can_rotate_in_place; }
+
+  // A new goal: forget constraint relaxations and the controller's history.
+  void on_new_goal();
+
+  const Twist& command() const { return cmd_; }
+  const Path& local_trajectory() const { return trajectory_; }
+  const planning::PlanResult& last_plan() const { return last_plan_; }
+  std::size_t plans() const { return plans_; }
+  std::size_t recoveries() const { return recoveries_; }
+  const Result& last_controller_result() const { return last_ctrl_; }
+
+ private:
+  void make_global_planner(bool relaxed);
+
+  ServerParams params_;
+  RobotProfile robot_;
+  mapping::GlobalCostmap& global_;
+  mapping::LocalCostmap& local_;
+  std::unique_ptr<planning::GlobalPlanner> global_planner_;
+  std::unique_ptr<planning::local::LocalPlanner> local_planner_;
+  mutable control::GoalChecker goal_checker_;  // latches the position (stateful mode)
+  control::ProgressChecker progress_;
+  control::OscillationChecker oscillation_;
+  RobotView view_;
+  mapping::ChangeSet pending_changes_;
+  Twist cmd_;
+  Path trajectory_;
+  planning::PlanResult last_plan_;
+  Result last_ctrl_;
+  int ctrl_failures_ = 0;
+  bool relaxed_ = false;
+  std::size_t plans_ = 0;
+  std::size_t recoveries_ = 0;
+  // Recovery state.
+  Pose2 recovery_start_pose_;
+  double recovery_start_s_ = 0.0;
+  double rotated_rad_ = 0.0;
+  double last_yaw_ = 0.0;
+};
+
+}  // namespace bipednav::navigation

@@ -1,0 +1,181 @@
+#include "bipednav/navigation/navigator.hpp"
+
+#include <cmath>
+
+#include "bipednav/common/clock.hpp"
+
+namespace bipednav::navigation {
+
+const char* nav_state_name(NavState s) {
+  switch (s) {
+    case NavState::IDLE:
+      return "IDLE";
+    case NavState::ACTIVE:
+      return "ACTIVE";
+    case NavState::SUCCEEDED:
+      return "SUCCEEDED";
+    case NavState::FAILED:
+      return "FAILED";
+  }
+  return "UNKNOWN";
+}
+
+Navigator::Navigator(NavigatorParams params, RobotProfile robot, const mapping::GridGeometry& global_geometry,
+                     const Pose2& initial_pose)
+    : params_(std::move(params)),
+      robot_(std::move(robot)),
+      perception_(params_.perception),
+      localizer_(params_.localization, robot_, initial_pose),
+      local_(params_.local_map),
+      global_(global_geometry, params_.global_map),
+      local_gate_(params_.local_map.rate_hz),
+      global_gate_(params_.global_map.rate_hz),
+      control_gate_(params_.control_rate_hz) {
+  params_.validate();
+  robot_.validate();
+  for (const auto& m : robot_.sensors)
+    if (m.type == "vlp16") lidar_name_ = m.name;
+  server_ = std::make_unique<NavigationServer>(params_.server, robot_, global_, local_);
+  BtFactory factory;
+  register_leaves(factory);
+  tree_ = std::make_unique<BehaviorTree>(load_tree_xml(params_.behavior_tree, factory));
+}
+
+void Navigator::set_goal(const Pose2& goal) {
+  goal_ = goal;
+  tree_->blackboard()->set("goal", goal);
+  server_->on_new_goal();
+  if (status_.state != NavState::ACTIVE) {
+    tree_->halt();
+    status_ = {NavState::ACTIVE, {}, ""};
+  }
+}
+
+void Navigator::cancel() {
+  tree_->halt();
+  server_->stop();
+  cmd_ = {};
+  goal_.reset();
+  status_ = {NavState::IDLE, {Outcome::CTRL_CANCELED, "navigation canceled"}, ""};
+}
+
+Twist Navigator::tick(const SensorFrame& frame) {
+  // Sensors count as alive from the first tick: the first sweep needs a while to complete.
+  if (!started_) last_range_data_s_ = frame.stamp_s;
+  started_ = true;
+  now_s_ = frame.stamp_s;
+  Stopwatch sw;
+  if (frame.odometry) localizer_.add_odometry(*frame.odometry);
+  if (frame.lidar) localizer_.add_sweep(*frame.lidar);
+  timings_.localization_ms = sw.elapsed_ms();
+  perceive(frame);
+  update_maps();
+  if (control_gate_.ready(now_s_)) control();
+  return cmd_;
+}
+
+namespace {
+
+// Splits the base-frame points of one source into a map-frame observation.
+mapping::Observation observation_for(const perception::SensorSource& src, const SE3& T_map_base, bool marking) {
+  mapping::Observation o;
+  o.origin_map = T_map_base * src.origin_base;
+  o.max_range_m = src.max_range_m;
+  o.marking = marking;
+  o.clearing = true;
+  return o;
+}
+
+void append_points(std::vector<mapping::Observation>& obs, const std::vector<perception::SensorSource>& sources,
+                   const PointCloud& cloud, const std::vector<std::uint8_t>& source_of, const SE3& T_map_base,
+                   bool marking) {
+  const std::size_t first = obs.size();
+  for (const auto& s : sources) obs.push_back(observation_for(s, T_map_base, marking));
+  const Eigen::Matrix3f R = T_map_base.linear().cast<float>();
+  const Eigen::Vector3f t = T_map_base.translation().cast<float>();
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    const std::size_t k = first + (i < source_of.size() ? source_of[i] : 0);
+    if (k < obs.size()) obs[k].points_map.push_back(R * cloud.points[i] + t);
+  }
+}
+
+}  // namespace
+
+void Navigator::perceive(const SensorFrame& frame) {
+  if (!frame.lidar && frame.depth.empty()) return;
+  Stopwatch sw;
+  perception_out_ = perception_.process(frame, robot_);
+  timings_.perception_ms = sw.elapsed_ms();
+  last_range_data_s_ = now_s_;
+  const SE3 T_map_base = se3_from_pose2(localizer_.T_map_base());
+  // Obstacles mark and clear; ground returns only clear (so a moved obstacle leaves no trail).
+  append_points(local_obs_, perception_out_.sources, perception_out_.obstacles, perception_out_.obstacle_source,
+                T_map_base, true);
+  append_points(local_obs_, perception_out_.sources, perception_out_.ground, perception_out_.ground_source, T_map_base,
+                false);
+  if (frame.lidar) {
+    lidar_obs_.clear();
+    std::vector<mapping::Observation> all;
+    append_points(all, perception_out_.sources, perception_out_.obstacles, perception_out_.obstacle_source, T_map_base,
+                  true);
+    for (std::size_t i = 0; i < perception_out_.sources.size(); ++i)
+      if (perception_out_.sources[i].name == lidar_name_) lidar_obs_.push_back(std::move(all[i]));
+  }
+}
+
+void Navigator::update_maps() {
+  const Pose2 pose = localizer_.T_map_base();
+  if (local_gate_.ready(now_s_)) {
+    Stopwatch sw;
+    local_.update(pose, local_obs_);
+    local_obs_.clear();
+    timings_.local_map_ms = sw.elapsed_ms();
+  }
+  if (global_gate_.ready(now_s_)) {
+    Stopwatch sw;
+    server_->add_global_changes(global_.update(pose, lidar_obs_, &local_));
+    lidar_obs_.clear();
+    timings_.global_map_ms = sw.elapsed_ms();
+  }
+}
+
+bool Navigator::sensors_alive() const { return now_s_ - last_range_data_s_ <= params_.sensor_timeout_s; }
+
+void Navigator::control() {
+  server_->set_view({now_s_, localizer_.T_map_base(), localizer_.velocity()});
+  if (status_.state != NavState::ACTIVE) {
+    server_->stop();
+    cmd_ = {};
+    return;
+  }
+  Stopwatch sw;
+  const BtStatus s = tree_->tick(now_s_);
+  status_.active_leaf = tree_->active_leaf();
+  if (auto p = tree_->blackboard()->get<Path>("path")) global_path_ = *p;
+  cmd_ = server_->command();
+  if (s == BtStatus::SUCCESS || s == BtStatus::FAILURE) finish(s);
+  timings_.control_ms = sw.elapsed_ms();
+}
+
+void Navigator::finish(BtStatus s) {
+  server_->stop();
+  cmd_ = {};
+  if (s == BtStatus::SUCCESS) {
+    status_.state = NavState::SUCCEEDED;
+    status_.result = {Outcome::SUCCESS, "goal reached"};
+    return;
+  }
+  status_.state = NavState::FAILED;
+  const int code = tree_->blackboard()->get<int>("error_code").value_or(0);
+  if (code != 0) {
+    status_.result = {static_cast<Outcome>(code), last_failure_message_};
+  } else if (!sensors_alive()) {
+    status_.result = {Outcome::CTRL_STOPPED, "sensors went silent"};
+  } else if (!localizer_.healthy(now_s_)) {
+    status_.result = {Outcome::CTRL_STOPPED, "localization unhealthy: " + localizer_.reason()};
+  } else {
+    status_.result = {Outcome::CTRL_FAILURE, "navigation failed"};
+  }
+}
+
+}  // namespace bipednav::navigation

@@ -1,0 +1,110 @@
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bipednav/common/sensor_frame.hpp"
+#include "bipednav/mapping/global_costmap.hpp"
+#include "bipednav/mapping/local_costmap.hpp"
+#include "bipednav/navigation/bt_factory.hpp"
+#include "bipednav/navigation/bt_tree.hpp"
+#include "bipednav/navigation/bt_xml.hpp"
+#include "bipednav/navigation/localizer.hpp"
+#include "bipednav/navigation/navigation_server.hpp"
+#include "bipednav/perception/pipeline.hpp"
+
+namespace bipednav::navigation {
+
+struct NavigatorParams {
+  perception::PerceptionParams perception;
+  LocalizerParams localization;
+  mapping::LocalCostmapParams local_map;    // 10 Hz
+  mapping::GlobalCostmapParams global_map;  // 2 Hz
+  ServerParams server;
+  double control_rate_hz = 10.0;  // behavior tree, TEB; D* Lite at 5 Hz inside the tree
+  double sensor_timeout_s = 0.5;  // SensorsAlive fails when every range sensor is older
+  std::string behavior_tree;      // BT XML file (navigate.xml)
+
+  // Defaults with footprint-dependent values (inscribed radius, velocity limits) from the robot.
+  static NavigatorParams for_robot(const RobotProfile& robot);
+  void validate() const;
+};
+
+enum class NavState { IDLE, ACTIVE, SUCCEEDED, FAILED };
+const char* nav_state_name(NavState s);
+
+struct NavStatus {
+  NavState state = NavState::IDLE;
+  Result result;            // the move_base outcome once finished
+  std::string active_leaf;  // the behavior tree's running leaf
+};
+
+struct NavigatorTimings {
+  double perception_ms = 0.0, localization_ms = 0.0, local_map_ms = 0.0, global_map_ms = 0.0, control_ms = 0.0;
+};
+
+// The navigation pipeline of ARCHITECTURE.md. Each tick reads one step of sensor data and runs
+// perceive -> localize -> map -> plan -> control, every stage at its own rate on the frames'
+// clock. Planning and control are driven by the behavior tree (move_base) through the
+// NavigationServer's get_path / exe_path / recovery actions.
+class Navigator {
+ public:
+  Navigator(NavigatorParams params, RobotProfile robot, const mapping::GridGeometry& global_geometry,
+            const Pose2& initial_pose);
+
+  // One step: returns the velocity command for the walking controller (zero when idle/stopped).
+  Twist tick(const SensorFrame& frame);
+  // move_base: a new goal (preempts the running one).
+  void set_goal(const Pose2& goal);
+  void cancel();
+
+  const NavStatus& status() const { return status_; }
+  Pose2 pose() const { return localizer_.T_map_base(); }
+  Pose2 T_map_odom() const { return localizer_.T_map_odom(); }
+  const mapping::LocalCostmap& local_map() const { return local_; }
+  const mapping::GlobalCostmap& global_map() const { return global_; }
+  const Path& global_path() const { return global_path_; }
+  const Path& local_trajectory() const { return server_->local_trajectory(); }
+  const perception::PerceptionOutput& last_perception() const { return perception_out_; }
+  const std::optional<Pose2>& goal() const { return goal_; }
+  std::size_t replans() const { return server_->plans(); }
+  std::size_t recoveries() const { return server_->recoveries(); }
+  const NavigatorTimings& timings() const { return timings_; }
+  const BehaviorTree& tree() const { return *tree_; }
+  bool localization_healthy() const { return localizer_.healthy(now_s_); }
+  const RobotProfile& robot() const { return robot_; }
+
+ private:
+  void perceive(const SensorFrame& frame);
+  void update_maps();
+  void control();
+  void register_leaves(BtFactory& factory);
+  bool sensors_alive() const;
+  void finish(BtStatus status);
+
+  NavigatorParams params_;
+  RobotProfile robot_;
+  perception::PerceptionPipeline perception_;
+  Localizer localizer_;
+  mapping::LocalCostmap local_;
+  mapping::GlobalCostmap global_;
+  std::unique_ptr<NavigationServer> server_;
+  std::unique_ptr<BehaviorTree> tree_;
+  RateGate local_gate_, global_gate_, control_gate_;
+  perception::PerceptionOutput perception_out_;
+  std::vector<mapping::Observation> local_obs_, lidar_obs_;
+  std::optional<Pose2> goal_;
+  Path global_path_;
+  NavStatus status_;
+  NavigatorTimings timings_;
+  Twist cmd_;
+  double now_s_ = 0.0;
+  double last_range_data_s_ = -1e9;
+  bool started_ = false;
+  std::string lidar_name_;            // the profile's vlp16 mount
+  std::string last_failure_message_;  // reason of the last error_code written by a leaf
+};
+
+}  // namespace bipednav::navigation

@@ -1,0 +1,114 @@
+// The behavior tree's application leaves (bt_navigation_leaves.hpp lists them with their
+// ports), bound to the navigation server and the navigator's health checks.
+#include "bipednav/navigation/bt_navigation_leaves.hpp"
+#include "bipednav/navigation/navigator.hpp"
+
+namespace bipednav::navigation {
+
+namespace {
+
+BtStatus to_status(const ActionStep& step) {
+  switch (step.state) {
+    case ActionStep::State::RUNNING:
+      return BtStatus::RUNNING;
+    case ActionStep::State::SUCCEEDED:
+      return BtStatus::SUCCESS;
+    case ActionStep::State::FAILED:
+      return BtStatus::FAILURE;
+  }
+  return BtStatus::FAILURE;
+}
+
+}  // namespace
+
+void Navigator::register_leaves(BtFactory& f) {
+  NavigationServer& srv = *server_;
+  const auto fail_with = [this](BtNode& self, const Result& r) {
+    self.set_output<int>("error_code", static_cast<int>(code(r.outcome)));
+    last_failure_message_ = r.message;
+  };
+  f.register_simple_condition(
+      "SensorsAlive", [this](BtNode&, double) { return sensors_alive(); }, bt_leaf_ports("SensorsAlive"));
+  f.register_simple_condition(
+      "IsLocalizationHealthy", [this](BtNode&, double) { return localizer_.healthy(now_s_); },
+      bt_leaf_ports("IsLocalizationHealthy"));
+  f.register_simple_condition(
+      "IsStartValid", [&srv](BtNode&, double) { return srv.start_valid(); }, bt_leaf_ports("IsStartValid"));
+  f.register_simple_condition(
+      "IsGoalValid",
+      [&srv, fail_with](BtNode& self, double) {
+        const Result r = srv.goal_valid(self.input<Pose2>("goal"));
+        if (!r.ok()) fail_with(self, r);
+        return r.ok();
+      },
+      bt_leaf_ports("IsGoalValid"));
+  f.register_simple_condition(
+      "GoalReached", [&srv](BtNode& self, double) { return srv.goal_reached(self.input<Pose2>("goal")); },
+      bt_leaf_ports("GoalReached"));
+  f.register_simple_condition(
+      "IsPathValid",
+      [&srv](BtNode& self, double) {
+        const auto p = self.get_input<Path>("path");
+        return p && srv.path_valid(*p);
+      },
+      bt_leaf_ports("IsPathValid"));
+  f.register_simple_condition(
+      "CanRotateInPlace", [&srv](BtNode&, double) { return srv.can_rotate_in_place(); },
+      bt_leaf_ports("CanRotateInPlace"));
+
+  f.register_simple_action(
+      "ComputePathToPose",
+      [&srv, fail_with](BtNode& self, double, bool) {
+        const auto plan = srv.get_path(self.input<Pose2>("goal"));
+        if (!plan.result.ok()) {
+          fail_with(self, plan.result);
+          return BtStatus::FAILURE;
+        }
+        self.set_output<Path>("path", plan.path);
+        self.set_output<int>("error_code", 0);
+        return BtStatus::SUCCESS;
+      },
+      {}, bt_leaf_ports("ComputePathToPose"));
+  f.register_simple_action(
+      "FollowPath",
+      [&srv, fail_with](BtNode& self, double, bool first) {
+        const auto path = self.get_input<Path>("path");
+        const ActionStep step = srv.exe_path(path.value_or(Path{}), first);
+        if (step.state == ActionStep::State::FAILED) fail_with(self, step.result);
+        return to_status(step);
+      },
+      [&srv](BtNode&) { srv.stop(); }, bt_leaf_ports("FollowPath"));
+  f.register_simple_action(
+      "BackUp",
+      [&srv](BtNode& self, double, bool first) {
+        return to_status(srv.back_up(self.input<double>("distance_m"), self.input<double>("speed_mps"), first));
+      },
+      [&srv](BtNode&) { srv.stop(); }, bt_leaf_ports("BackUp"));
+  f.register_simple_action(
+      "RotateInPlace",
+      [&srv](BtNode& self, double, bool first) {
+        return to_status(srv.rotate_in_place(self.input<double>("angle_rad"), first));
+      },
+      [&srv](BtNode&) { srv.stop(); }, bt_leaf_ports("RotateInPlace"));
+  f.register_simple_action(
+      "Wait",
+      [&srv](BtNode& self, double, bool first) { return to_status(srv.wait(self.input<double>("duration_s"), first)); },
+      [&srv](BtNode&) { srv.stop(); }, bt_leaf_ports("Wait"));
+  f.register_simple_action(
+      "ClearCostmaps",
+      [&srv](BtNode&, double, bool) { return srv.clear_costmaps().ok() ? BtStatus::SUCCESS : BtStatus::FAILURE; }, {},
+      bt_leaf_ports("ClearCostmaps"));
+  f.register_simple_action(
+      "RelaxConstraints",
+      [&srv](BtNode&, double, bool) { return srv.relax_constraints().ok() ? BtStatus::SUCCESS : BtStatus::FAILURE; },
+      {}, bt_leaf_ports("RelaxConstraints"));
+  f.register_simple_action(
+      "Stop",
+      [&srv](BtNode&, double, bool) {
+        srv.stop();
+        return BtStatus::SUCCESS;
+      },
+      {}, bt_leaf_ports("Stop"));
+}
+
+}  // namespace bipednav::navigation

@@ -1,0 +1,63 @@
+#include <algorithm>
+#include <cstdlib>
+
+#include "bipednav/navigation/navigator.hpp"
+
+#ifndef BIPEDNAV_CONFIG_DIR
+#define BIPEDNAV_CONFIG_DIR "config"
+#endif
+
+namespace bipednav::navigation {
+
+namespace {
+
+// The config directory: $BIPEDNAV_CONFIG_DIR, else the source tree's config/ (compiled in).
+std::string config_dir() {
+  const char* env = std::getenv("BIPEDNAV_CONFIG_DIR");
+  return env && *env ? env : BIPEDNAV_CONFIG_DIR;
+}
+
+}  // namespace
+
+NavigatorParams NavigatorParams::for_robot(const RobotProfile& robot) {
+  NavigatorParams p;
+  p.local_map = mapping::LocalCostmapParams::for_robot(robot);
+  p.global_map = mapping::GlobalCostmapParams::for_robot(robot);
+  // Obstacles count up to the top of the robot including its sensor mast (a TurtleBot carrying
+  // Digit's sensors at Digit's heights is 0.2 m tall but its mast reaches 1.5 m).
+  double top_m = robot.height_m;
+  for (const auto& s : robot.sensors) top_m = std::max(top_m, s.z_m + 0.1);
+  p.perception.obstacle_height_margin_m = top_m - robot.height_m;
+
+  auto& lim = p.server.local.teb.limits;
+  lim.max_vel_x_mps = robot.max_vel_x_mps;
+  lim.max_vel_x_backwards_mps = robot.max_vel_x_backwards_mps;
+  lim.max_vel_theta_radps = robot.max_vel_theta_radps;
+  lim.acc_lim_x_mps2 = robot.acc_lim_x_mps2;
+  lim.acc_lim_theta_radps2 = robot.acc_lim_theta_radps2;
+  lim.min_obstacle_dist_m = robot.footprint_radius_m + 0.1;
+  auto& tr = p.server.local.tracker;
+  tr.max_vel_x_mps = robot.max_vel_x_mps;
+  tr.max_vel_theta_radps = robot.max_vel_theta_radps;
+  tr.acc_lim_x_mps2 = robot.acc_lim_x_mps2;
+  tr.acc_lim_theta_radps2 = robot.acc_lim_theta_radps2;
+
+  // The progress window covers a full turn on the spot plus a short wait.
+  p.server.progress.movement_time_allowance_s =
+      std::max(p.server.progress.movement_time_allowance_s, 2.0 * 3.1416 / robot.max_vel_theta_radps + 4.0);
+  p.behavior_tree = config_dir() + "/behavior_trees/navigate.xml";
+  return p;
+}
+
+void NavigatorParams::validate() const {
+  perception.validate();
+  localization.validate();
+  local_map.validate();
+  global_map.validate();
+  server.validate();
+  require(control_rate_hz > 0.0 && control_rate_hz <= 100.0, "control_rate_hz", "in (0, 100] Hz");
+  require(sensor_timeout_s > 0.0, "sensor_timeout_s", "> 0");
+  require(!behavior_tree.empty(), "behavior_tree", "the path of a behavior tree XML file");
+}
+
+}  // namespace bipednav::navigation

@@ -1,0 +1,142 @@
+#include "bipednav/runner/scenario_runner.hpp"
+
+#include <cmath>
+
+#include "bipednav/common/clock.hpp"
+#include "bipednav/common/progress.hpp"
+#include "bipednav/io/robot_profile_yaml.hpp"
+
+#ifndef BIPEDNAV_CONFIG_DIR
+#define BIPEDNAV_CONFIG_DIR "config"
+#endif
+
+namespace bipednav::runner {
+
+RobotProfile load_robot(const std::string& name, const std::filesystem::path& config_dir) {
+  std::filesystem::path dir = config_dir;
+  if (dir.empty()) {
+    const char* env = std::getenv("BIPEDNAV_CONFIG_DIR");
+    dir = env && *env ? env : BIPEDNAV_CONFIG_DIR;
+  }
+  const auto file = dir / (name + ".yaml");
+  if (!std::filesystem::exists(file)) throw Error("unknown robot '" + name + "': no profile " + file.string());
+  return io::load_robot_profile(file);
+}
+
+mapping::GridGeometry global_geometry_for(const sim::Scenario& s, double res, double margin_m) {
+  mapping::GridGeometry g;
+  g.resolution_m = res;
+  g.origin_x_m = std::floor((s.bounds.min_x_m - margin_m) / res) * res;
+  g.origin_y_m = std::floor((s.bounds.min_y_m - margin_m) / res) * res;
+  g.width = static_cast<int>(std::ceil((s.bounds.max_x_m + margin_m - g.origin_x_m) / res));
+  g.height = static_cast<int>(std::ceil((s.bounds.max_y_m + margin_m - g.origin_y_m) / res));
+  return g;
+}
+
+namespace {
+
+navigation::NavigatorParams navigator_params(const RobotProfile& robot, const RunOptions& o) {
+  auto p = navigation::NavigatorParams::for_robot(robot);
+  if (!o.localization.empty()) p.localization.method = o.localization;
+  if (!o.local_planner.empty()) p.server.local_planner = o.local_planner;
+  if (!o.global_planner.empty()) p.server.global_planner = o.global_planner;
+  return p;
+}
+
+Snapshot snapshot(double t, const navigation::Navigator& nav, const sim::Simulation& sim) {
+  return {t,
+          sim.true_pose(),
+          nav.global_map().costmap(),
+          nav.local_map().costmap(),
+          nav.global_path(),
+          nav.local_trajectory(),
+          sim.actor_poses()};
+}
+
+// A replan worth a figure panel: the new path leaves the old one by more than 0.5 m somewhere.
+bool path_changed(const Path& before, const Path& after) {
+  if (before.empty() || after.empty()) return !after.empty();
+  double worst = 0.0;
+  for (const auto& p : after.poses) {
+    double best = 1e300;
+    for (const auto& q : before.poses) best = std::min(best, distance(p, q));
+    worst = std::max(worst, best);
+  }
+  return worst > 0.5;
+}
+
+}  // namespace
+
+RunResult run_scenario(const sim::Scenario& scenario, const RunOptions& o) {
+  RunResult out;
+  out.scenario = scenario.name;
+  const RobotProfile robot = load_robot(o.robot.empty() ? scenario.robot : o.robot, o.config_dir);
+  out.robot = robot.name;
+  sim::SimulationParams sp;
+  sp.seed = o.seed.value_or(scenario.seed);
+  sim::Simulation sim(scenario.world, robot, scenario.start, sp);
+  auto params = navigator_params(robot, o);
+  params.server.goal.xy_tolerance_m = scenario.goal_tolerance_m;
+  params.server.goal.yaw_tolerance_rad = scenario.goal_tolerance_rad;
+  navigation::Navigator nav(params, robot, global_geometry_for(scenario, params.global_map.resolution_m),
+                            scenario.start);
+  const double limit = o.time_limit_s.value_or(scenario.time_limit_s);
+  const sim::TimedGoal* active = nullptr;
+  Twist cmd;
+  Pose2 last = sim.true_pose();
+  Path last_path;
+  double next_trace = 0.0;
+  Stopwatch wall;
+  ProgressBar bar("simulating " + scenario.name, static_cast<std::size_t>(limit * 10), o.progress);
+  while (sim.now_s() < limit) {
+    const sim::TimedGoal* g = scenario.goal_at(sim.now_s());
+    if (g && g != active) {
+      active = g;
+      ++out.goals_given;
+      nav.set_goal(g->pose);
+    }
+    const SensorFrame frame = sim.step(cmd);
+    cmd = nav.tick(frame);
+    out.path_length_m += distance(last, sim.true_pose());
+    last = sim.true_pose();
+    if (sim.now_s() + 1e-9 >= next_trace) {
+      next_trace += o.trace_period_s;
+      out.trace.push_back({sim.now_s(), sim.true_pose(), nav.pose(), cmd, nav.status().active_leaf, sim.actor_poses()});
+      bar.update(static_cast<std::size_t>(sim.now_s() * 10));
+    }
+    if (path_changed(last_path, nav.global_path())) {
+      if (out.snapshots.size() < o.max_snapshots && !last_path.empty())
+        out.snapshots.push_back(snapshot(sim.now_s(), nav, sim));
+      last_path = nav.global_path();
+    }
+    const bool more_goals = !scenario.goals.empty() && active != &scenario.goals.back();
+    const auto state = nav.status().state;
+    if (!more_goals && (state == navigation::NavState::SUCCEEDED || state == navigation::NavState::FAILED)) break;
+  }
+  bar.finish();
+  out.wall_s = wall.elapsed_ms() / 1000.0;
+  out.time_s = sim.now_s();
+  out.real_time_factor = out.wall_s > 0 ? out.time_s / out.wall_s : 0.0;
+  out.first_collision = sim.first_collision();
+  out.collisions = out.first_collision ? 1 : 0;
+  out.min_clearance_m = sim.min_clearance_m();
+  out.replans = nav.replans();
+  out.recoveries = nav.recoveries();
+  out.final_state = snapshot(sim.now_s(), nav, sim);
+  out.localization_error_m = distance(nav.pose(), sim.true_pose());
+  const auto& status = nav.status();
+  out.outcome = status.state == navigation::NavState::ACTIVE
+                    ? Result{Outcome::CTRL_PAT_EXCEEDED, "time limit reached before the goal"}
+                    : status.result;
+  if (!scenario.goals.empty()) {
+    const Pose2 goal = scenario.goals.back().pose;
+    out.goal_error_m = distance(goal, sim.true_pose());
+    out.goal_error_rad = std::abs(angle_diff(goal.theta, sim.true_pose().theta));
+  }
+  out.success = status.state == navigation::NavState::SUCCEEDED && out.collisions == 0 &&
+                out.goal_error_m <= 1.25 * scenario.goal_tolerance_m &&
+                out.goal_error_rad <= 1.25 * scenario.goal_tolerance_rad;
+  return out;
+}
+
+}  // namespace bipednav::runner

@@ -1,0 +1,76 @@
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bipednav/navigation/navigator.hpp"
+#include "bipednav/sim/scenario.hpp"
+#include "bipednav/sim/simulation.hpp"
+
+namespace bipednav::runner {
+
+struct RunOptions {
+  std::string robot;                   // overrides the scenario's robot profile (empty: keep)
+  std::optional<std::uint64_t> seed;   // overrides the scenario's seed
+  std::optional<double> time_limit_s;  // overrides the scenario's time limit
+  std::string localization;            // loam | odometry (empty: the navigator's default)
+  std::string local_planner;           // teb | tracker (empty: default)
+  std::string global_planner;          // dstar_lite | astar (empty: default)
+  std::filesystem::path config_dir;    // robot profiles (empty: the compiled-in config/)
+  double trace_period_s = 0.1;         // how often the run is recorded for figures
+  bool progress = false;               // progress bar on stderr
+  std::size_t max_snapshots = 4;       // figure panels at replanning moments
+};
+
+// A recorded moment of the run (for the figure, the replay and the summary).
+struct TraceSample {
+  double t_s = 0.0;
+  Pose2 true_pose, estimated_pose;
+  Twist cmd;
+  std::string active_leaf;
+  std::vector<SE3> actors;
+};
+
+// The state of the maps and plans at a replanning moment (a figure panel).
+struct Snapshot {
+  double t_s = 0.0;
+  Pose2 pose;
+  mapping::Costmap2D global_costmap, local_costmap;
+  Path global_path, local_trajectory;
+  std::vector<SE3> actors;
+};
+
+struct RunResult {
+  std::string scenario, robot;
+  bool success = false;
+  Result outcome;
+  int collisions = 0;
+  std::optional<sim::CollisionEvent> first_collision;
+  double time_s = 0.0;
+  double path_length_m = 0.0;
+  double min_clearance_m = 0.0;
+  double goal_error_m = 0.0, goal_error_rad = 0.0;
+  double localization_error_m = 0.0;  // estimated vs true pose at the end
+  std::size_t replans = 0, recoveries = 0;
+  double real_time_factor = 0.0, wall_s = 0.0;
+  std::size_t goals_given = 0;
+  std::vector<TraceSample> trace;
+  std::vector<Snapshot> snapshots;
+  Snapshot final_state;
+};
+
+// Loads the robot profile config/<name>.yaml.
+RobotProfile load_robot(const std::string& name, const std::filesystem::path& config_dir = {});
+// The global map's grid: the scenario's bounds plus a margin, at the given resolution.
+mapping::GridGeometry global_geometry_for(const sim::Scenario& scenario, double resolution_m, double margin_m = 2.0);
+
+// Runs a scenario closed-loop: the simulator's sensor frames feed the Navigator, its command
+// drives the simulated robot; goals are handed over at their times; the run ends when the last
+// goal succeeded or failed, or at the time limit. Success = the last goal reached (by the
+// navigator, and within tolerance by the true pose) with zero collisions.
+RunResult run_scenario(const sim::Scenario& scenario, const RunOptions& options);
+
+}  // namespace bipednav::runner

@@ -1,0 +1,61 @@
+// End-to-end: the whole navigation loop in the simulator, one seed per scenario and robot.
+#include <gtest/gtest.h>
+
+#include "bipednav/runner/scenario_runner.hpp"
+#include "test_data.hpp"
+
+using namespace bipednav;
+
+namespace {
+
+sim::Scenario scenario(const std::string& name) {
+  return sim::load_scenario(test::source_dir() / "scenarios" / (name + ".yaml"));
+}
+
+void expect_success(const std::string& name, const std::string& robot) {
+  runner::RunOptions o;
+  o.robot = robot;
+  const runner::RunResult r = runner::run_scenario(scenario(name), o);
+  EXPECT_TRUE(r.success) << name << "/" << robot << ": " << outcome_name(r.outcome.outcome) << " " << r.outcome.message
+                         << " after " << r.time_s << " s, goal error " << r.goal_error_m << " m, collisions "
+                         << r.collisions;
+  EXPECT_EQ(r.collisions, 0) << (r.first_collision ? r.first_collision->obstacle : "");
+  EXPECT_GT(r.min_clearance_m, 0.0);
+}
+
+}  // namespace
+
+class ScenarioRun : public ::testing::TestWithParam<std::tuple<std::string, std::string>> {};
+
+TEST_P(ScenarioRun, ReachesEveryGoalWithoutCollision) {
+  expect_success(std::get<0>(GetParam()), std::get<1>(GetParam()));
+}
+
+INSTANTIATE_TEST_SUITE_P(Thesis, ScenarioRun,
+                         ::testing::Combine(::testing::Values("hexagon_static", "hexagon_dynamic", "three_rooms",
+                                                              "digit_lab_static", "digit_lab_dynamic",
+                                                              "turtlebot3_world"),
+                                            ::testing::Values("turtlebot3", "digit")),
+                         [](const auto& info) { return std::get<0>(info.param) + "_" + std::get<1>(info.param); });
+
+TEST(ScenarioRunOutcomes, GoalInsideAnObstacleEndsInBlockedGoal) {
+  sim::Scenario s = scenario("hexagon_static");
+  s.goals = {{0.0, {0.0, 0.0, 0.0}}};  // the centre cylinder
+  s.time_limit_s = 60.0;
+  const runner::RunResult r = runner::run_scenario(s, {});
+  EXPECT_FALSE(r.success);
+  EXPECT_EQ(r.outcome.outcome, Outcome::BLOCKED_GOAL) << outcome_name(r.outcome.outcome) << " " << r.outcome.message;
+  EXPECT_EQ(r.collisions, 0);
+}
+
+TEST(ScenarioRunOutcomes, UnreachableGoalEndsInNoPathFoundWithTheRobotStopped) {
+  sim::Scenario s = scenario("hexagon_static");
+  s.goals = {{0.0, {5.0, 0.0, 0.0}}};  // outside the closed hexagon wall
+  s.time_limit_s = 120.0;
+  const runner::RunResult r = runner::run_scenario(s, {});
+  EXPECT_FALSE(r.success);
+  EXPECT_EQ(r.outcome.outcome, Outcome::NO_PATH_FOUND) << outcome_name(r.outcome.outcome) << " " << r.outcome.message;
+  EXPECT_EQ(r.collisions, 0);
+  ASSERT_FALSE(r.trace.empty());
+  EXPECT_TRUE(r.trace.back().cmd.is_zero());
+}
