@@ -20,6 +20,7 @@ BagRecorder::BagRecorder(const std::filesystem::path& file, const RobotProfile& 
   ros::Time::init();  // rosbag stamps need the time system, no master
   try {
     bag_->open(file.string(), rosbag::bagmode::Write);
+    if (params_.compress) bag_->setCompression(rosbag::compression::LZ4);
   } catch (const std::exception& e) {
     throw FileError(file.string(), "", std::string("cannot open the bag for writing: ") + e.what());
   }
@@ -91,7 +92,7 @@ void BagRecorder::record(const sim::Simulation& sim, const SensorFrame& frame, c
 // A lean copy of the closed loop (goals at their times, step, tick, record): the runner has no
 // per-step hook yet. With one (RunOptions::on_step), this becomes a call to run_scenario.
 BagRunSummary run_scenario_to_bag(const sim::Scenario& scenario, const runner::RunOptions& o,
-                                  const std::filesystem::path& bag_file) {
+                                  const std::filesystem::path& bag_file, const BagRecorderParams& bag_params) {
   const RobotProfile robot = runner::load_robot(o.robot.empty() ? scenario.robot : o.robot, o.config_dir);
   sim::SimulationParams sp;
   sp.seed = o.seed.value_or(scenario.seed);
@@ -104,7 +105,7 @@ BagRunSummary run_scenario_to_bag(const sim::Scenario& scenario, const runner::R
   params.server.goal.yaw_tolerance_rad = scenario.goal_tolerance_rad;
   navigation::Navigator nav(params, robot, runner::global_geometry_for(scenario, params.global_map.resolution_m),
                             scenario.start);
-  BagRecorder recorder(bag_file, robot);
+  BagRecorder recorder(bag_file, robot, bag_params);
   const double limit = o.time_limit_s.value_or(scenario.time_limit_s);
   const sim::TimedGoal* active = nullptr;
   Twist cmd;

@@ -18,7 +18,8 @@ struct BagRecorderParams {
   double map_period_s = 0.5;    // global costmap
   double local_period_s = 0.2;  // local costmap, markers
   double path_period_s = 0.2;   // global plan, local trajectory
-  bool record_depth = true;     // depth clouds are large; the LiDAR is always recorded
+  bool record_depth = false;    // depth clouds are large (~1 MB each, 15 Hz per camera)
+  bool compress = true;         // LZ4 chunks
   std::string map_frame = "map", odom_frame = "odom", base_frame = "base_link";
   void validate() const;
 };
@@ -60,6 +61,6 @@ struct BagRunSummary {
 // Runs a scenario closed-loop like runner::run_scenario and records every step into `bag_file`
 // (the engine of `bipednav_record` and of `bipednav run --bag`).
 BagRunSummary run_scenario_to_bag(const sim::Scenario& scenario, const runner::RunOptions& options,
-                                  const std::filesystem::path& bag_file);
+                                  const std::filesystem::path& bag_file, const BagRecorderParams& params = {});
 
 }  // namespace bipednav::ros1

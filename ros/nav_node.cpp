@@ -67,6 +67,7 @@ class NavNode {
   tf2_ros::TransformListener tf_listener_{tf_buffer_};
   tf2_ros::TransformBroadcaster tf_broadcaster_;
   actionlib::SimpleActionServer<move_base_msgs::MoveBaseAction> server_;
+  double last_tf_s_ = -1.0;
   Every global_gate_{0.5}, local_gate_{0.2}, path_gate_{0.2}, feedback_gate_{0.2};
 };
 
@@ -223,7 +224,10 @@ void NavNode::on_tick(const ros::TimerEvent&) {
   }
   pending_ = SensorFrame{};
   cmd_pub_.publish(to_msg(cmd));
-  tf_broadcaster_.sendTransform(to_transform(nav_->T_map_odom(), p_.map_frame, p_.odom_frame, now));
+  if (now > last_tf_s_) {  // one map -> odom per stamp (tf2 rejects repeated stamps)
+    tf_broadcaster_.sendTransform(to_transform(nav_->T_map_odom(), p_.map_frame, p_.odom_frame, now));
+    last_tf_s_ = now;
+  }
   report_action();
   publish(now);
 }

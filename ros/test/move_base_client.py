@@ -56,6 +56,7 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--goal", type=float, nargs=3, default=[1.7, 0.55, 0.0])
     ap.add_argument("--blocked-goal", type=float, nargs=3, default=[0.0, 0.0, 0.0])
+    ap.add_argument("--far-goal", type=float, nargs=3, default=[-1.65, -0.55, math.pi])
     ap.add_argument("--timeout", type=float, default=150.0)
     args = ap.parse_args()
     rospy.init_node("bipednav_move_base_client", anonymous=True, disable_signals=True)
@@ -72,12 +73,12 @@ def main():
     if state != GoalStatus.ABORTED or "BLOCKED_GOAL" not in text:
         print("FAIL: expected ABORTED with BLOCKED_GOAL in the text", flush=True)
         ok = False
-    # Preemption: client A's goal is replaced by client B's.
+    # Preemption: client A's goal (far from the robot) is replaced by client B's.
     other = actionlib.SimpleActionClient("move_base", MoveBaseAction)
     other.wait_for_server(rospy.Duration(10.0))
-    client.send_goal(make_goal(*args.goal))
+    client.send_goal(make_goal(*args.far_goal))
     time.sleep(2.0)
-    other.send_goal(make_goal(-1.65, -0.55, math.pi))
+    other.send_goal(make_goal(*args.goal))
     state, text = wait_result(client, 30.0, [])
     print("preempt: first goal -> %s '%s'" % (STATE.get(state, state), text), flush=True)
     if state != GoalStatus.PREEMPTED:
