@@ -12,6 +12,7 @@ void ServerParams::validate() const {
   progress.validate();
   oscillation.validate();
   require(controller_failures_allowed >= 0, "controller_failures_allowed", ">= 0");
+  require(blocked_goal_timeout_s >= 0.0, "blocked_goal_timeout_s", ">= 0");
   require(path_check_distance_m > 0.0, "path_check_distance_m", "> 0");
   require(relaxed_cost_weight_factor > 0.0 && relaxed_cost_weight_factor <= 1.0, "relaxed_cost_weight_factor",
           "in (0, 1]");
@@ -66,6 +67,17 @@ ActionStep NavigationServer::exe_path(const Path& path, bool first) {
   if (path.empty()) {
     cmd_ = {};
     return {ActionStep::State::FAILED, {Outcome::INVALID_PATH, "exe_path got an empty path"}};
+  }
+  // A goal that stays inside an obstacle cannot be reached by following the path; a moving
+  // obstacle passing over it only makes the robot wait.
+  if (const Result g = goal_valid(path.poses.back()); g.outcome == Outcome::BLOCKED_GOAL) {
+    if (blocked_since_s_ < 0.0) blocked_since_s_ = view_.now_s;
+    if (view_.now_s - blocked_since_s_ >= params_.blocked_goal_timeout_s) {
+      cmd_ = {};
+      return {ActionStep::State::FAILED, {Outcome::CTRL_BLOCKED_GOAL, g.message}};
+    }
+  } else {
+    blocked_since_s_ = -1.0;
   }
   if (goal_checker_.reached(view_.pose, path.poses.back())) {
     cmd_ = {};
@@ -156,10 +168,11 @@ ActionStep NavigationServer::wait(double duration_s, bool first) {
 
 Result NavigationServer::clear_costmaps() {
   ++recoveries_;
+  // The local map only: the global map keeps what the LiDAR saw of walls and obstacles (its
+  // own ray-trace clearing removes stale cells), so a blocked goal stays known as blocked.
   local_.clear();
-  add_global_changes(global_.clear());
   local_planner_->reset();
-  return {Outcome::SUCCESS, "costmaps cleared"};
+  return {Outcome::SUCCESS, "local costmap cleared"};
 }
 
 Result NavigationServer::relax_constraints() {

@@ -27,6 +27,7 @@ struct ServerParams {
   control::OscillationCheckerParams oscillation;
   int controller_failures_allowed = 10;  // consecutive failed control cycles before exe_path fails
   double path_check_distance_m = 4.0;    // IsPathValid looks this far along the path
+  double blocked_goal_timeout_s = 6.0;   // exe_path gives up on a goal blocked this long
   double relaxed_cost_weight_factor = 0.3;
 
   void validate() const;
@@ -106,6 +107,7 @@ class NavigationServer {
   planning::PlanResult last_plan_;
   Result last_ctrl_;
   int ctrl_failures_ = 0;
+  double blocked_since_s_ = -1.0;
   bool relaxed_ = false;
   std::size_t plans_ = 0;
   std::size_t recoveries_ = 0;

@@ -133,6 +133,7 @@ void Navigator::update_maps() {
   }
   if (global_gate_.ready(now_s_)) {
     Stopwatch sw;
+    map_ready_ = map_ready_ || !lidar_obs_.empty() || now_s_ >= 1.0;
     server_->add_global_changes(global_.update(pose, lidar_obs_, &local_));
     lidar_obs_.clear();
     timings_.global_map_ms = sw.elapsed_ms();
@@ -143,7 +144,8 @@ bool Navigator::sensors_alive() const { return now_s_ - last_range_data_s_ <= pa
 
 void Navigator::control() {
   server_->set_view({now_s_, localizer_.T_map_base(), localizer_.velocity()});
-  if (status_.state != NavState::ACTIVE) {
+  // Plans and goal checks wait for the first map built from the sensors.
+  if (status_.state != NavState::ACTIVE || !map_ready_) {
     server_->stop();
     cmd_ = {};
     return;
@@ -168,7 +170,10 @@ void Navigator::finish(BtStatus s) {
   status_.state = NavState::FAILED;
   const int code = tree_->blackboard()->get<int>("error_code").value_or(0);
   if (code != 0) {
-    status_.result = {static_cast<Outcome>(code), last_failure_message_};
+    status_.result = {static_cast<Outcome>(code),
+                      code == static_cast<int>(bipednav::code(last_failure_.outcome)) ? last_failure_.message : ""};
+  } else if (!last_failure_.ok()) {
+    status_.result = last_failure_;
   } else if (!sensors_alive()) {
     status_.result = {Outcome::CTRL_STOPPED, "sensors went silent"};
   } else if (!localizer_.healthy(now_s_)) {

@@ -103,8 +103,9 @@ class Navigator {
   double now_s_ = 0.0;
   double last_range_data_s_ = -1e9;
   bool started_ = false;
-  std::string lidar_name_;            // the profile's vlp16 mount
-  std::string last_failure_message_;  // reason of the last error_code written by a leaf
+  std::string lidar_name_;  // the profile's vlp16 mount
+  Result last_failure_;     // the last failure a leaf reported (with its error_code)
+  bool map_ready_ = false;  // the global map has seen a LiDAR sweep (or the first seconds passed)
 };
 
 }  // namespace bipednav::navigation

@@ -25,7 +25,7 @@ void Navigator::register_leaves(BtFactory& f) {
   NavigationServer& srv = *server_;
   const auto fail_with = [this](BtNode& self, const Result& r) {
     self.set_output<int>("error_code", static_cast<int>(code(r.outcome)));
-    last_failure_message_ = r.message;
+    last_failure_ = r;
   };
   f.register_simple_condition(
       "SensorsAlive", [this](BtNode&, double) { return sensors_alive(); }, bt_leaf_ports("SensorsAlive"));

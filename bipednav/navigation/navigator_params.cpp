@@ -23,6 +23,12 @@ NavigatorParams NavigatorParams::for_robot(const RobotProfile& robot) {
   NavigatorParams p;
   p.local_map = mapping::LocalCostmapParams::for_robot(robot);
   p.global_map = mapping::GlobalCostmapParams::for_robot(robot);
+  // A walker's base sways sideways while it steps: its centre needs that much more room, and a
+  // gentler cost decay keeps paths in the middle of passages rather than along their edges.
+  const double inscribed_m = robot.footprint_radius_m + robot.sway_amplitude_m;
+  for (auto* m : {&p.local_map.inscribed_radius_m, &p.global_map.inscribed_radius_m}) *m = inscribed_m;
+  for (auto* m : {&p.local_map.inflation_radius_m, &p.global_map.inflation_radius_m}) *m = inscribed_m + 0.45;
+  for (auto* m : {&p.local_map.cost_scaling_factor, &p.global_map.cost_scaling_factor}) *m = 2.0;
   // Obstacles count up to the top of the robot including its sensor mast (a TurtleBot carrying
   // Digit's sensors at Digit's heights is 0.2 m tall but its mast reaches 1.5 m).
   double top_m = robot.height_m;
@@ -35,7 +41,7 @@ NavigatorParams NavigatorParams::for_robot(const RobotProfile& robot) {
   lim.max_vel_theta_radps = robot.max_vel_theta_radps;
   lim.acc_lim_x_mps2 = robot.acc_lim_x_mps2;
   lim.acc_lim_theta_radps2 = robot.acc_lim_theta_radps2;
-  lim.min_obstacle_dist_m = robot.footprint_radius_m + 0.1;
+  lim.min_obstacle_dist_m = inscribed_m + 0.12;
   auto& tr = p.server.local.tracker;
   tr.max_vel_x_mps = robot.max_vel_x_mps;
   tr.max_vel_theta_radps = robot.max_vel_theta_radps;
@@ -45,6 +51,10 @@ NavigatorParams NavigatorParams::for_robot(const RobotProfile& robot) {
   // The progress window covers a full turn on the spot plus a short wait.
   p.server.progress.movement_time_allowance_s =
       std::max(p.server.progress.movement_time_allowance_s, 2.0 * 3.1416 / robot.max_vel_theta_radps + 4.0);
+  // TEB assumes the commanded velocity is tracked at once; a walker's first-order lag (0.3 s on
+  // Digit) makes its band oscillate around obstacles, so walkers default to the path tracker
+  // (with its forward collision check) until TEB models the lag. `run --local-planner teb` overrides.
+  if (robot.kind == "walker") p.server.local_planner = "tracker";
   p.behavior_tree = config_dir() + "/behavior_trees/navigate.xml";
   return p;
 }

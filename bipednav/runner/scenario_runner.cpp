@@ -105,7 +105,8 @@ RunResult run_scenario(const sim::Scenario& scenario, const RunOptions& o) {
       bar.update(static_cast<std::size_t>(sim.now_s() * 10));
     }
     if (path_changed(last_path, nav.global_path())) {
-      if (out.snapshots.size() < o.max_snapshots && !last_path.empty())
+      const bool spaced = out.snapshots.empty() || sim.now_s() - out.snapshots.back().t_s >= o.snapshot_spacing_s;
+      if (out.snapshots.size() < o.max_snapshots && !last_path.empty() && spaced)
         out.snapshots.push_back(snapshot(sim.now_s(), nav, sim));
       last_path = nav.global_path();
     }

@@ -22,7 +22,8 @@ struct RunOptions {
   std::filesystem::path config_dir;    // robot profiles (empty: the compiled-in config/)
   double trace_period_s = 0.1;         // how often the run is recorded for figures
   bool progress = false;               // progress bar on stderr
-  std::size_t max_snapshots = 4;       // figure panels at replanning moments
+  std::size_t max_snapshots = 3;       // figure panels at replanning moments
+  double snapshot_spacing_s = 5.0;     // ... at least this far apart
 };
 
 // A recorded moment of the run (for the figure, the replay and the summary).
