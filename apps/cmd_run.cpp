@@ -10,6 +10,10 @@
 #include "bipednav/sim/sdf_world.hpp"
 #include "bipednav/sim/world_drawing.hpp"
 
+#ifdef BIPEDNAV_WITH_ROSBAG
+#include "ros/bag_recorder.hpp"
+#endif
+
 #ifndef BIPEDNAV_SOURCE_DIR
 #define BIPEDNAV_SOURCE_DIR "."
 #endif
@@ -114,7 +118,7 @@ void print_summary(const runner::RunResult& r) {
 struct RunArgs {
   std::string scenario = "hexagon_static";
   std::string out = "out";
-  std::string world, start = "0,0,0", goal;
+  std::string world, start = "0,0,0", goal, bag;
   runner::RunOptions options;
   std::uint64_t seed = 0;
   double time_limit_s = 0.0;
@@ -127,7 +131,23 @@ void run_command(const RunArgs& a) {
   if (a.seed) o.seed = a.seed;
   if (a.time_limit_s > 0) o.time_limit_s = a.time_limit_s;
   o.progress = true;
+#ifdef BIPEDNAV_WITH_ROSBAG
+  std::shared_ptr<ros1::BagRecorder> bag;
+  if (!a.bag.empty()) {
+    bag = std::make_shared<ros1::BagRecorder>(a.bag, runner::load_robot(o.robot.empty() ? s.robot : o.robot));
+    o.on_step = [bag](const sim::Simulation& sim, const SensorFrame& f, const navigation::Navigator& n,
+                      const Twist& c) { bag->record(sim, f, n, c); };
+  }
+#else
+  if (!a.bag.empty()) throw Error("--bag needs the ROS build (scripts/install-deps --ros, then rebuild)");
+#endif
   const runner::RunResult r = runner::run_scenario(s, o);
+#ifdef BIPEDNAV_WITH_ROSBAG
+  if (bag) {
+    bag->close();
+    std::printf("  recorded %zu messages to %s\n", bag->messages(), a.bag.c_str());
+  }
+#endif
   std::filesystem::create_directories(a.out);
   const auto dir = std::filesystem::path(a.out);
   std::ofstream(dir / "run.json") << to_json(r).dump(2) << "\n";
@@ -188,6 +208,7 @@ void add_run_commands(CLI::App& app, CLI::App& bench) {
   run->add_option("--world", args->world, "A Gazebo .world file instead of a scenario");
   run->add_option("--start", args->start, "With --world: start pose x,y,yaw")->capture_default_str();
   run->add_option("--goal", args->goal, "With --world: goal pose x,y,yaw");
+  run->add_option("--bag", args->bag, "Record the run as a rosbag (ROS build only)");
   run->callback([args] {
     if (!args->world.empty() && args->goal.empty()) throw Error("--world needs --goal x,y,yaw");
     run_command(*args);

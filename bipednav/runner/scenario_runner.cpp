@@ -97,6 +97,7 @@ RunResult run_scenario(const sim::Scenario& scenario, const RunOptions& o) {
     }
     const SensorFrame frame = sim.step(cmd);
     cmd = nav.tick(frame);
+    if (o.on_step) o.on_step(sim, frame, nav, cmd);
     out.path_length_m += distance(last, sim.true_pose());
     last = sim.true_pose();
     if (sim.now_s() + 1e-9 >= next_trace) {

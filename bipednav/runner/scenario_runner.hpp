@@ -24,6 +24,9 @@ struct RunOptions {
   bool progress = false;               // progress bar on stderr
   std::size_t max_snapshots = 3;       // figure panels at replanning moments
   double snapshot_spacing_s = 5.0;     // ... at least this far apart
+  // Called after every step with the simulator, its sensor frame, the navigator and the command
+  // (e.g. a rosbag recorder).
+  std::function<void(const sim::Simulation&, const SensorFrame&, const navigation::Navigator&, const Twist&)> on_step;
 };
 
 // A recorded moment of the run (for the figure, the replay and the summary).
