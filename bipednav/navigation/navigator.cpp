@@ -109,18 +109,17 @@ void Navigator::perceive(const SensorFrame& frame) {
   last_range_data_s_ = now_s_;
   const SE3 T_map_base = se3_from_pose2(localizer_.T_map_base());
   // Obstacles mark and clear; ground returns only clear (so a moved obstacle leaves no trail).
+  const std::size_t first = local_obs_.size();
   append_points(local_obs_, perception_out_.sources, perception_out_.obstacles, perception_out_.obstacle_source,
                 T_map_base, true);
+  if (frame.lidar) {
+    // The global map takes the LiDAR's obstacle observation of this frame, already in the map frame.
+    lidar_obs_.clear();
+    for (std::size_t i = 0; i < perception_out_.sources.size(); ++i)
+      if (perception_out_.sources[i].name == lidar_name_) lidar_obs_.push_back(local_obs_[first + i]);
+  }
   append_points(local_obs_, perception_out_.sources, perception_out_.ground, perception_out_.ground_source, T_map_base,
                 false);
-  if (frame.lidar) {
-    lidar_obs_.clear();
-    std::vector<mapping::Observation> all;
-    append_points(all, perception_out_.sources, perception_out_.obstacles, perception_out_.obstacle_source, T_map_base,
-                  true);
-    for (std::size_t i = 0; i < perception_out_.sources.size(); ++i)
-      if (perception_out_.sources[i].name == lidar_name_) lidar_obs_.push_back(std::move(all[i]));
-  }
 }
 
 void Navigator::update_maps() {
