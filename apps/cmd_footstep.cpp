@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <numeric>
 
+#include "apps/cli_pose.hpp"
 #include "apps/commands.hpp"
 #include "bipednav/common/progress.hpp"
 #include "bipednav/io/heightmap_image.hpp"
@@ -19,15 +20,6 @@ namespace bipednav::app {
 namespace {
 
 using namespace footstep;
-
-Pose2 parse_xyyaw(const std::string& text, const std::string& what) {
-  double v[3] = {0, 0, 0};
-  if (std::sscanf(text.c_str(), "%lf,%lf,%lf", &v[0], &v[1], &v[2]) < 2)
-    throw Error(what + ": expected x,y[,yaw], got '" + text + "'");
-  const Pose2 p{v[0], v[1], v[2]};
-  if (!p.is_finite()) throw Error(what + ": not finite");
-  return p;
-}
 
 // Heights as grey levels (darker = higher, as in the reference's figures) and the feet on top.
 void draw_plan(const std::filesystem::path& file, const mapping::Heightmap& map, const FootstepPlanner& planner,
@@ -77,7 +69,7 @@ void footsteps_command(const FootstepArgs& a) {
   p.heuristic = a.heuristic;
   p.search.time_limit_s = a.time_limit_s;
   const FootstepPlanner planner(p);
-  const Pose2 start = parse_xyyaw(a.start, "--start"), goal = parse_xyyaw(a.goal, "--goal");
+  const Pose2 start = parse_pose(a.start, "--start"), goal = parse_pose(a.goal, "--goal");
   const FootstepPlan plan = planner.plan(map, planner.stance_for_body(start, Foot::kLeft), goal);
   std::printf("%s: %s\n", std::string(outcome_name(plan.result.outcome)).c_str(), plan.result.message.c_str());
   if (plan.result.ok()) {

@@ -5,6 +5,7 @@
 #include <sstream>
 #include <string>
 
+#include "apps/cli_pose.hpp"
 #include "apps/commands.hpp"
 #include "bipednav/common/error.hpp"
 #include "bipednav/io/map_server.hpp"
@@ -17,15 +18,6 @@ namespace bipednav::app {
 namespace {
 
 using planning::local::LocalPlanner;
-
-Pose2 parse_pose(const std::string& s, const std::string& what) {
-  std::stringstream ss(s);
-  Pose2 p;
-  char c1 = 0, c2 = 0;
-  if (!(ss >> p.x >> c1 >> p.y >> c2 >> p.theta) || c1 != ',' || c2 != ',' || !p.is_finite())
-    throw Error(what + ": expected x,y,yaw (metres, radians), got '" + s + "'");
-  return p;
-}
 
 // The rolling local window (size_m square centred on the robot) cut from a larger map; cells
 // beyond the map are unknown.
@@ -76,7 +68,7 @@ void draw_run(const std::string& out, const mapping::Costmap2D& map, const Pose2
 
 void local_plan(const PlanOptions& o) {
   const mapping::Costmap2D map = io::read_map_server(o.map);
-  const Pose2 start = parse_pose(o.start, "--start"), goal = parse_pose(o.goal, "--goal");
+  const Pose2 start = parse_pose(o.start, "--start", true), goal = parse_pose(o.goal, "--goal", true);
   planning::local::LocalPlannerParams params;
   params.teb.homotopy.num_threads = o.threads;
   params.validate();

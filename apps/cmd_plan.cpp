@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/cli_pose.hpp"
 #include "apps/commands.hpp"
 #include "bipednav/common/error.hpp"
 #include "bipednav/io/map_server.hpp"
@@ -25,23 +26,6 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 // "x,y" or "x,y,yaw" (metres, radians).
-Pose2 parse_pose(const std::string& text, const std::string& option) {
-  std::vector<double> v;
-  std::stringstream ss(text);
-  std::string part;
-  while (std::getline(ss, part, ',')) {
-    try {
-      std::size_t used = 0;
-      v.push_back(std::stod(part, &used));
-      if (used != part.size()) throw std::invalid_argument(part);
-    } catch (const std::exception&) {
-      throw Error(option + ": expected x,y or x,y,yaw in metres/radians, got '" + text + "'");
-    }
-  }
-  if (v.size() != 2 && v.size() != 3) throw Error(option + ": expected x,y or x,y,yaw, got '" + text + "'");
-  return {v[0], v[1], v.size() == 3 ? v[2] : 0.0};
-}
-
 json pose_json(const Pose2& p) { return {p.x, p.y, p.theta}; }
 
 struct GridOptions {

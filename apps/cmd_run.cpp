@@ -3,6 +3,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "apps/cli_pose.hpp"
 #include "apps/commands.hpp"
 #include "bipednav/common/progress.hpp"
 #include "bipednav/runner/run_figure.hpp"
@@ -30,31 +31,6 @@ std::filesystem::path resolve_scenario(const std::string& name) {
   const auto p = scenario_dir() / (name + ".yaml");
   if (std::filesystem::exists(p)) return p;
   throw Error("no scenario '" + name + "' (neither a file nor scenarios/" + name + ".yaml)");
-}
-
-Pose2 parse_pose(const std::string& text, const std::string& what) {
-  Pose2 p;
-  double v[3] = {0, 0, 0};
-  int n = 0;
-  std::size_t pos = 0;
-  while (n < 3 && pos <= text.size()) {
-    const std::size_t comma = text.find(',', pos);
-    const std::string tok = text.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos);
-    try {
-      std::size_t used = 0;
-      v[n] = std::stod(tok, &used);
-      if (used != tok.size()) throw std::invalid_argument(tok);
-    } catch (const std::exception&) {
-      throw Error(what + ": expected x,y[,yaw] numbers, got '" + text + "'");
-    }
-    ++n;
-    if (comma == std::string::npos) break;
-    pos = comma + 1;
-  }
-  if (n < 2) throw Error(what + ": expected x,y[,yaw], got '" + text + "'");
-  p = {v[0], v[1], v[2]};
-  if (!p.is_finite()) throw Error(what + ": not finite");
-  return p;
 }
 
 // A scenario around any Gazebo world file.
