@@ -17,6 +17,9 @@
 
 namespace bipednav::navigation {
 
+// Robot profiles and behavior trees: $BIPEDNAV_CONFIG_DIR, else the source tree's config/.
+std::string config_dir();
+
 struct NavigatorParams {
   perception::PerceptionParams perception;
   LocalizerParams localization;

@@ -9,15 +9,10 @@
 
 namespace bipednav::navigation {
 
-namespace {
-
-// The config directory: $BIPEDNAV_CONFIG_DIR, else the source tree's config/ (compiled in).
 std::string config_dir() {
   const char* env = std::getenv("BIPEDNAV_CONFIG_DIR");
   return env && *env ? env : BIPEDNAV_CONFIG_DIR;
 }
-
-}  // namespace
 
 NavigatorParams NavigatorParams::for_robot(const RobotProfile& robot) {
   NavigatorParams p;

@@ -6,18 +6,10 @@
 #include "bipednav/common/progress.hpp"
 #include "bipednav/io/robot_profile_yaml.hpp"
 
-#ifndef BIPEDNAV_CONFIG_DIR
-#define BIPEDNAV_CONFIG_DIR "config"
-#endif
-
 namespace bipednav::runner {
 
 RobotProfile load_robot(const std::string& name, const std::filesystem::path& config_dir) {
-  std::filesystem::path dir = config_dir;
-  if (dir.empty()) {
-    const char* env = std::getenv("BIPEDNAV_CONFIG_DIR");
-    dir = env && *env ? env : BIPEDNAV_CONFIG_DIR;
-  }
+  const std::filesystem::path dir = config_dir.empty() ? std::filesystem::path(navigation::config_dir()) : config_dir;
   const auto file = dir / (name + ".yaml");
   if (!std::filesystem::exists(file)) throw Error("unknown robot '" + name + "': no profile " + file.string());
   return io::load_robot_profile(file);
