@@ -1,5 +1,6 @@
 #include "bipednav/io/movingai.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <fstream>
@@ -90,7 +91,8 @@ MovingAiMap parse_movingai_map(const std::string& text, const std::string& name)
   map.height = header_value(lines, 1, "height", name);
   map.width = header_value(lines, 2, "width", name);
   if (lines.size() < 4 || lines[3] != "map") throw FileError(name, where(3), "expected the line 'map'");
-  map.tiles.reserve(static_cast<std::size_t>(map.width) * map.height);
+  // The header alone must not size the allocation (a huge width/height fails below instead).
+  map.tiles.reserve(std::min(static_cast<std::size_t>(map.width) * map.height, text.size()));
   for (int y = 0; y < map.height; ++y) {
     const std::size_t li = 4 + static_cast<std::size_t>(y);
     if (li >= lines.size())
