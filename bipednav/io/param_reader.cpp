@@ -44,6 +44,11 @@ std::vector<ParamReader> ParamReader::children(const std::string& key) {
 void ParamReader::finish() const {
   if (!node_ || !node_.IsMap()) return;
   for (const auto& kv : node_) {
+    if (kv.first.IsSequence() ||
+        kv.first.IsMap())  // "? [a, b]: 1" (a list or mapping as a key); found by fuzz_param_yaml
+      throw FileError(file_,
+                      "line " + std::to_string(kv.first.Mark().line + 1) + ": " + (path_.empty() ? "<root>" : path_),
+                      "expected a plain key, found a list or mapping as a key");
     const std::string key = kv.first.as<std::string>();
     if (!seen_.count(key)) throw FileError(file_, field_path(key), "unknown parameter");
   }

@@ -1,6 +1,6 @@
-#include <gtest/gtest.h>
-
 #include "bipednav/io/param_reader.hpp"
+
+#include <gtest/gtest.h>
 
 using bipednav::FileError;
 using bipednav::io::ParamReader;
@@ -42,4 +42,24 @@ TEST(ParamReader, UnknownKeyAndMalformedYamlAreRejected) {
   EXPECT_THROW(ParamReader::from_string("a: [1, 2\n", "bad.yaml"), FileError);
   EXPECT_THROW(ParamReader::from_file("/nonexistent/file.yaml"), FileError);
   EXPECT_THROW(ParamReader::from_string("- 1\n- 2\n", "list.yaml"), FileError);
+}
+
+// Found by fuzz/fuzz_param_yaml: a list or mapping used as a key escaped as a yaml-cpp exception.
+TEST(ParamReader, NonScalarKeysAreRejectedWithTheFileAndLine) {
+  for (const char* yaml : {"a: 1\n? [x, y]\n: 2\n", "? {k: v}\n: 2\n"}) {
+    auto r = ParamReader::from_string(yaml, "keys.yaml");
+    double a = 0.0;
+    r.get("a", a);
+    try {
+      r.finish();
+      ADD_FAILURE() << "no FileError for " << yaml;
+    } catch (const FileError& e) {
+      EXPECT_NE(std::string(e.what()).find("keys.yaml:line "), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("a list or mapping as a key"), std::string::npos) << e.what();
+    }
+  }
+  auto nested = ParamReader::from_string("outer:\n  ? [1]\n  : 2\n", "keys.yaml").child("outer");
+  EXPECT_THROW(nested.finish(), FileError);
+  auto null_key = ParamReader::from_string("~: 1\n", "keys.yaml");
+  EXPECT_THROW(null_key.finish(), FileError);
 }
