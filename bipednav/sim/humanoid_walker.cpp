@@ -1,0 +1,133 @@
+#include "bipednav/sim/humanoid_walker.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "bipednav/mapping/heightmap_fusion.hpp"
+
+namespace bipednav::sim {
+
+using footstep::Foot;
+using footstep::Footstep;
+
+void HumanoidWalkerParams::validate() const {
+  body.validate();
+  require(landing_noise_xy_m >= 0.0 && landing_noise_yaw_rad >= 0.0, "landing_noise_xy_m/yaw_rad", ">= 0");
+  require(odometry_noise_xy_m >= 0.0 && odometry_noise_yaw_rad >= 0.0, "odometry_noise_xy_m/yaw_rad", ">= 0");
+  require(collision_tolerance_m >= 0.0, "collision_tolerance_m", ">= 0");
+  require(samples_per_segment >= 1, "samples_per_segment", ">= 1");
+}
+
+Pose2 body_between(const Pose2& a, const Pose2& b) {
+  return {(a.x + b.x) / 2.0, (a.y + b.y) / 2.0, normalize_angle(a.theta + angle_diff(b.theta, a.theta) / 2.0)};
+}
+
+std::vector<BodyPart> upper_body_parts(const footstep::BodyModel& body, const Pose2& a, const Pose2& b,
+                                       double support_z_m) {
+  const Pose2 c = body_between(a, b);
+  std::vector<BodyPart> parts;
+  parts.push_back({"torso", c, body.torso_depth_m, body.torso_width_m, support_z_m + body.torso_bottom_m});
+  parts.push_back({"left_arm", c * Pose2{0.0, body.arm_offset_m, 0.0}, body.arm_depth_m, body.arm_width_m,
+                   support_z_m + body.arm_bottom_m});
+  parts.push_back({"right_arm", c * Pose2{0.0, -body.arm_offset_m, 0.0}, body.arm_depth_m, body.arm_width_m,
+                   support_z_m + body.arm_bottom_m});
+  return parts;
+}
+
+double part_clearance_m(const mapping::Heightmap& truth, const BodyPart& part) {
+  const auto h = mapping::footprint_heights(truth, part.pose, part.length_m, part.width_m);
+  if (h.known_cells == 0) return std::numeric_limits<double>::infinity();
+  return part.bottom_m - h.max_m;
+}
+
+HumanoidWalker::HumanoidWalker(const HumanoidWalkerParams& params, const mapping::Heightmap& truth,
+                               const Pose2& start_body, std::uint64_t seed)
+    : params_(params), truth_(truth), rng_(seed) {
+  params_.validate();
+  if (!start_body.is_finite()) throw Error("HumanoidWalker: non-finite start pose");
+  const double half = params_.body.nominal_separation_m / 2.0;
+  for (Foot f : {Foot::kLeft, Foot::kRight}) {
+    const Pose2 p = start_body * Pose2{0.0, f == Foot::kLeft ? half : -half, 0.0};
+    double spread = 0.0;
+    feet_[static_cast<int>(f)] = {p, sole_height(p, &spread), f};
+    odom_[static_cast<int>(f)] = feet_[static_cast<int>(f)];
+  }
+}
+
+SE3 HumanoidWalker::T_odom_base() const {
+  return se3_from_pose2(body_between(odom_[0].pose, odom_[1].pose), odom_stance().z_m);
+}
+
+double HumanoidWalker::sole_height(const Pose2& sole, double* spread) const {
+  const auto h = mapping::footprint_heights(truth_, sole, params_.body.foot_length_m, params_.body.foot_width_m);
+  if (h.known_cells == 0) {
+    *spread = 0.0;
+    return 0.0;
+  }
+  *spread = h.max_m - h.min_m;
+  return h.max_m;
+}
+
+// Samples the swing sole along a segment while the foot at `fixed` stands,
+// recording the deepest penetration per part and the smallest clearance.
+void HumanoidWalker::sweep(const Segment& seg, const Pose2& fixed, double t0, double dt, StepExecution& out) const {
+  const footstep::BodyModel& b = params_.body;
+  const int n = params_.samples_per_segment;
+  const Pose2 &from = seg.from, &to = seg.to;
+  for (int k = 0; k <= n; ++k) {
+    const double s = static_cast<double>(k) / n;
+    const Pose2 foot{from.x + s * (to.x - from.x), from.y + s * (to.y - from.y),
+                     normalize_angle(from.theta + s * angle_diff(to.theta, from.theta))};
+    std::vector<BodyPart> parts = upper_body_parts(b, fixed, foot, seg.support_z_m);
+    parts.push_back({"swing_foot", foot, b.foot_length_m, b.foot_width_m, seg.sole_z_m});
+    for (const BodyPart& p : parts) {
+      const double c = part_clearance_m(truth_, p);
+      out.min_clearance_m = std::min(out.min_clearance_m, c);
+      if (-c <= params_.collision_tolerance_m) continue;
+      auto it = std::find_if(out.contacts.begin(), out.contacts.end(),
+                             [&](const BodyContact& x) { return x.part == p.name; });
+      if (it == out.contacts.end()) it = out.contacts.insert(out.contacts.end(), BodyContact{0.0, p.name, {}, 0.0});
+      if (-c > it->penetration_m) *it = {t0 + s * dt, p.name, p.pose.position(), -c};
+    }
+  }
+}
+
+StepExecution HumanoidWalker::step(const StepCommand& cmd) {
+  require(cmd.duration_s > 0.0 && cmd.peak_m > 0.0, "StepCommand.duration_s/peak_m", "> 0");
+  if (!cmd.landing_in_stance.is_finite()) throw Error("HumanoidWalker::step: non-finite landing pose");
+  const Footstep st = stance();
+  Footstep& sw = feet_[1 - static_cast<int>(stance_)];
+  const Pose2 noise{rng_.normal(0.0, params_.landing_noise_xy_m), rng_.normal(0.0, params_.landing_noise_xy_m),
+                    rng_.normal(0.0, params_.landing_noise_yaw_rad)};
+  const Pose2 target = st.pose * cmd.landing_in_stance * noise;
+  StepExecution out;
+  out.min_clearance_m = std::numeric_limits<double>::infinity();
+  const double land_z = sole_height(target, &out.landing_spread_m);
+  const double side = stance_ == Foot::kLeft ? -1.0 : 1.0;
+  const Pose2 via = st.pose * Pose2{0.0, side * params_.body.nominal_separation_m, 0.0};
+  // The trailing foot rises and moves to the via point beside the stance foot (the upward phase
+  // of the planner's previous action), then on to the landing pose (this action's downward
+  // phase), and drops onto the terrain.
+  const double half = cmd.duration_s / 2.0;
+  // The body is checked above the sole that supported it in the planner's model of each phase.
+  sweep({sw.pose, via, sw.z_m + std::max(last_peak_m_, cmd.peak_m), sw.z_m}, st.pose, time_s_, half, out);
+  sweep({via, target, std::max(st.z_m, land_z) + cmd.peak_m, st.z_m}, st.pose, time_s_ + half, half, out);
+
+  // Kinematic odometry: the executed step relative to the stance foot, measured with noise.
+  const Pose2 rel = st.pose.inverse() * target;
+  const Pose2 odom_noise{rng_.normal(0.0, params_.odometry_noise_xy_m), rng_.normal(0.0, params_.odometry_noise_xy_m),
+                         rng_.normal(0.0, params_.odometry_noise_yaw_rad)};
+  const Footstep& odom_st = odom_stance();
+  odom_[1 - static_cast<int>(stance_)] = {odom_st.pose * rel * odom_noise, odom_st.z_m + (land_z - st.z_m),
+                                          other(stance_)};
+
+  sw = {target, land_z, other(stance_)};
+  stance_ = other(stance_);
+  last_peak_m_ = cmd.peak_m;
+  time_s_ += cmd.duration_s;
+  out.landed = sw;
+  return out;
+}
+
+}  // namespace bipednav::sim
