@@ -121,6 +121,12 @@ class HeaderParser {
     return v;
   }
 
+  // a * b, failing instead of wrapping around (found by fuzz/fuzz_pcd).
+  std::size_t product(std::size_t a, std::size_t b, const std::string& what) const {
+    if (b != 0 && a > std::numeric_limits<std::size_t>::max() / b) fail(what + " overflows");
+    return a * b;
+  }
+
   void per_field(const std::vector<std::string>& w, std::size_t expected) const {
     if (h_.fields.empty()) fail(w[0] + " before FIELDS: expected FIELDS first");
     if (w.size() - 1 != expected)
@@ -178,10 +184,10 @@ class HeaderParser {
     for (const char* k : {"FIELDS", "SIZE", "TYPE", "WIDTH"})
       if (!has(k) && !(std::string(k) == "FIELDS" && has("COLUMNS")))
         fail(std::string("header has no ") + k + " line (expected before DATA)");
-    if (!has("POINTS")) h_.points = h_.width * h_.height;
-    if (h_.points != h_.width * h_.height)
-      fail("POINTS " + std::to_string(h_.points) +
-           " does not match WIDTH x HEIGHT = " + std::to_string(h_.width * h_.height));
+    const std::size_t wh = product(h_.width, h_.height, "WIDTH x HEIGHT");
+    if (!has("POINTS")) h_.points = wh;
+    if (h_.points != wh)
+      fail("POINTS " + std::to_string(h_.points) + " does not match WIDTH x HEIGHT = " + std::to_string(wh));
     for (auto& f : h_.fields) {
       if (!detail::valid_scalar(f.type, f.size))
         throw FileError(name_, "field '" + f.name + "'",
@@ -189,8 +195,10 @@ class HeaderParser {
                             " (expected F 4/8, U or I 1/2/4/8)");
       if (f.count == 0) throw FileError(name_, "field '" + f.name + "'", "COUNT 0 (expected >= 1)");
       f.offset = h_.point_size;
-      h_.point_size += f.size * f.count;
+      h_.point_size += product(f.size, f.count, "field '" + f.name + "' SIZE x COUNT");
+      if (h_.point_size < f.offset) fail("the point size overflows");
     }
+    product(h_.points, h_.point_size, "POINTS x point size");
     return h_;
   }
 
@@ -335,11 +343,18 @@ void read_compressed(PointCloud& c, const std::vector<Mapped>& m, const PcdHeade
     throw FileError(
         name, "DATA",
         "truncated: expected " + std::to_string(csize) + " bytes of LZF data, found " + std::to_string(avail - 8));
+  // One 3-byte LZF back reference yields at most 264 bytes; more claimed output is corrupt and must
+  // not size an allocation (found by fuzz/fuzz_pcd).
+  if (rsize > 88 * csize)
+    throw FileError(name, "DATA",
+                    "corrupt LZF data: " + std::to_string(csize) + " compressed bytes cannot hold " +
+                        std::to_string(rsize) + " bytes");
   if (expected == 0) return;
   const auto raw = lzf_decompress(data + 8, csize, rsize);
   if (!raw)
     throw FileError(name, "DATA",
                     "corrupt LZF data (expected a valid LZF stream of " + std::to_string(rsize) + " bytes)");
+  prepare(c, m, h.points);
   read_binary(c, m, h, raw->data(), true, name);
 }
 
@@ -349,8 +364,13 @@ PointCloud parse_pcd(std::string_view bytes, const std::string& name) {
   const PcdHeader h = HeaderParser(bytes, name).parse();
   const std::vector<Mapped> m = map_fields(h, name);
   PointCloud c;
-  prepare(c, m, h.points);
+  // The cloud is sized only once the data is known to hold POINTS (found by fuzz/fuzz_pcd).
   if (h.data == "ascii") {
+    if (h.points > bytes.size() - h.data_offset)
+      throw FileError(name, "DATA",
+                      "truncated: expected " + std::to_string(h.points) + " points, found only " +
+                          std::to_string(bytes.size() - h.data_offset) + " bytes of data");
+    prepare(c, m, h.points);
     read_ascii(c, m, h, bytes, name);
   } else if (h.data == "binary") {
     const std::size_t need = h.points * h.point_size, avail = bytes.size() - h.data_offset;
@@ -358,6 +378,7 @@ PointCloud parse_pcd(std::string_view bytes, const std::string& name) {
       throw FileError(name, "DATA",
                       "truncated: expected " + std::to_string(need) + " bytes of binary data (" +
                           std::to_string(h.points) + " points), found " + std::to_string(avail));
+    prepare(c, m, h.points);
     read_binary(c, m, h, reinterpret_cast<const std::uint8_t*>(bytes.data()) + h.data_offset, false, name);
   } else {
     read_compressed(c, m, h, bytes, name);

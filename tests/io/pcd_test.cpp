@@ -154,5 +154,27 @@ TEST(Pcd, MalformedFilesNameFileAndField) {
   EXPECT_THROW(read_pcd("/nonexistent/file.pcd"), FileError);
 }
 
+// Found by fuzz/fuzz_pcd: header sizes alone used to size the cloud (out of memory, or
+// std::length_error) and WIDTH x HEIGHT or POINTS x point size could wrap around.
+TEST(Pcd, HeaderSizesBeyondTheDataAreRejectedBeforeAllocating) {
+  const std::string xyz = "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n";
+  EXPECT_NE(expect_error(xyz + "WIDTH 100000000000\nDATA binary\n").find("bad.pcd:DATA: truncated: expected"),
+            std::string::npos);
+  EXPECT_NE(expect_error(xyz + "WIDTH 100000000000\nDATA ascii\n1 2 3\n").find("bad.pcd:DATA: truncated"),
+            std::string::npos);
+  EXPECT_NE(expect_error(xyz + "WIDTH 2305843009213693952\nDATA binary\n").find("POINTS x point size overflows"),
+            std::string::npos);
+  EXPECT_NE(expect_error(xyz + "WIDTH 4294967296\nHEIGHT 4294967296\nDATA ascii\n").find("WIDTH x HEIGHT overflows"),
+            std::string::npos);
+  EXPECT_NE(expect_error("FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 4611686018427387904\nWIDTH 1\nDATA ascii\n")
+                .find("field 'z' SIZE x COUNT overflows"),
+            std::string::npos);
+  std::string lzf = xyz + "WIDTH 300000000\nDATA binary_compressed\n";
+  const std::uint32_t sizes[2] = {4, 3600000000u};
+  lzf.append(reinterpret_cast<const char*>(sizes), 8);
+  lzf += std::string("\x00\x41\xe0\x05", 4);
+  EXPECT_NE(expect_error(lzf).find("4 compressed bytes cannot hold 3600000000 bytes"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace bipednav::io
