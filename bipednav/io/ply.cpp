@@ -1,6 +1,7 @@
 #include "bipednav/io/ply.hpp"
 
 #include <charconv>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <sstream>
@@ -176,12 +177,16 @@ class BinaryCursor {
         continue;
       }
       const double n = next(pr.count_type, what);
-      if (!(n >= 0.0)) throw FileError(name_, what, "expected a non-negative list length");
+      // Checked before the cast: a float length of 1e30 or inf was undefined (found by fuzz/fuzz_ply).
+      if (!(n >= 0.0) || n != std::floor(n) || n * static_cast<double>(pr.type.size) > static_cast<double>(left()))
+        throw FileError(name_, what, "expected a non-negative whole list length that fits in the file");
       for (std::size_t k = 0; k < static_cast<std::size_t>(n); ++k) next(pr.type, what);
     }
   }
 
  private:
+  std::size_t left() const { return b_.size() - pos_; }
+
   std::string_view b_;
   std::size_t pos_;
   const std::string& name_;
@@ -194,6 +199,7 @@ PointCloud read_binary(const PlyHeader& h, std::string_view bytes, const std::st
     std::vector<double> vals(e.props.size());
     const bool is_vertex = e.name == "vertex";
     const VertexMap m = is_vertex ? map_vertex(e, name) : VertexMap{};
+    if (e.props.empty()) continue;  // no bytes per item: a huge count used to spin (found by fuzz/fuzz_ply)
     for (std::size_t i = 0; i < e.count; ++i) {
       cur.item(e, i, vals);
       if (is_vertex) store_vertex(c, m, vals.data());

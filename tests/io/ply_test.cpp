@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <limits>
 
 #include "bipednav/common/error.hpp"
 
@@ -53,6 +54,32 @@ TEST(Ply, ReadsBinaryLittleEndianAfterAnotherElement) {
   EXPECT_FALSE(c.has_intensity());
   EXPECT_NE(expect_error(s.substr(0, s.size() - 1)).find("bad.ply:element vertex 1, property 'z': truncated"),
             std::string::npos);
+}
+
+// Found by fuzz/fuzz_ply: a float list length of 1e30 was cast to an integer (undefined), and a
+// binary element without properties and a huge count spun for ever.
+TEST(Ply, BadListLengthsAndEmptyItemsDoNotCrashOrHang) {
+  const std::string vertex = "element vertex 1\nproperty float x\nproperty float y\nproperty float z\nend_header\n";
+  std::string s = "ply\nformat binary_little_endian 1.0\nelement cam 1\nproperty list float uchar p\n" + vertex;
+  const auto put = [&](const auto v) { s.append(reinterpret_cast<const char*>(&v), sizeof(v)); };
+  put(1e30f);
+  s += std::string(12, '\0');
+  EXPECT_NE(expect_error(s).find("bad.ply:element cam 0, property 'p': expected a non-negative whole list length"),
+            std::string::npos);
+  const std::string head = s.substr(0, s.find("end_header\n") + 11);
+  for (const float n : {std::numeric_limits<float>::infinity(), 2.5f, 1000.0f}) {
+    s = head;
+    put(n);
+    s += std::string(12, '\0');
+    EXPECT_NE(expect_error(s).find("list length"), std::string::npos) << n;
+  }
+  s = "ply\nformat binary_little_endian 1.0\nelement cam 18446744073709551615\n" + vertex;
+  put(1.0f);
+  put(2.0f);
+  put(3.0f);
+  const PointCloud c = parse_ply(s, "empty_items.ply");
+  ASSERT_EQ(c.size(), 1u);
+  EXPECT_EQ(c.points[0], Eigen::Vector3f(1.0f, 2.0f, 3.0f));
 }
 
 TEST(Ply, MalformedFilesNameFileAndField) {
