@@ -6,10 +6,12 @@
 #include "apps/cli_pose.hpp"
 #include "apps/commands.hpp"
 #include "bipednav/common/progress.hpp"
+#include "bipednav/runner/replay_recorder.hpp"
 #include "bipednav/runner/run_figure.hpp"
 #include "bipednav/runner/scenario_runner.hpp"
 #include "bipednav/sim/sdf_world.hpp"
 #include "bipednav/sim/world_drawing.hpp"
+#include "bipednav/viz/replay_html.hpp"
 
 #ifdef BIPEDNAV_WITH_ROSBAG
 #include "ros/bag_recorder.hpp"
@@ -94,7 +96,7 @@ void print_summary(const runner::RunResult& r) {
 struct RunArgs {
   std::string scenario = "hexagon_static";
   std::string out = "out";
-  std::string world, start = "0,0,0", goal, bag;
+  std::string world, start = "0,0,0", goal, bag, replay;
   runner::RunOptions options;
   std::uint64_t seed = 0;
   double time_limit_s = 0.0;
@@ -117,6 +119,11 @@ void run_command(const RunArgs& a) {
 #else
   if (!a.bag.empty()) throw Error("--bag needs the ROS build (scripts/install-deps --ros, then rebuild)");
 #endif
+  std::unique_ptr<runner::ReplayRecorder> replay;
+  if (!a.replay.empty()) {
+    replay = std::make_unique<runner::ReplayRecorder>(s);
+    replay->attach(o);
+  }
   const runner::RunResult r = runner::run_scenario(s, o);
 #ifdef BIPEDNAV_WITH_ROSBAG
   if (bag) {
@@ -130,6 +137,10 @@ void run_command(const RunArgs& a) {
   runner::write_run_figure(dir / "run.png", s, r);
   print_summary(r);
   std::printf("  wrote %s and %s\n", (dir / "run.json").c_str(), (dir / "run.png").c_str());
+  if (replay) {
+    viz::write_replay_html(a.replay, replay->finish(r));
+    std::printf("  wrote %s (%zu frames)\n", a.replay.c_str(), replay->frames().size());
+  }
 }
 
 void bench_scenarios(int seeds, const std::vector<std::string>& robots, bool json) {
@@ -185,6 +196,7 @@ void add_run_commands(CLI::App& app, CLI::App& bench) {
   run->add_option("--start", args->start, "With --world: start pose x,y,yaw")->capture_default_str();
   run->add_option("--goal", args->goal, "With --world: goal pose x,y,yaw");
   run->add_option("--bag", args->bag, "Record the run as a rosbag (ROS build only)");
+  run->add_option("--replay", args->replay, "Write a self-contained HTML replay of the run to this file");
   run->callback([args] {
     if (!args->world.empty() && args->goal.empty()) throw Error("--world needs --goal x,y,yaw");
     run_command(*args);

@@ -1,0 +1,133 @@
+#include "bipednav/runner/replay_recorder.hpp"
+
+#include <cmath>
+#include <unordered_set>
+
+#include "bipednav/sim/world_drawing.hpp"
+
+namespace bipednav::runner {
+
+namespace {
+
+bool same_cells(const viz::ReplayGrid& a, const viz::ReplayGrid& b) {
+  return a.width == b.width && a.height == b.height && a.origin_x_m == b.origin_x_m && a.origin_y_m == b.origin_y_m &&
+         a.cells == b.cells;
+}
+
+// Appends the grid unless it equals the last one recorded.
+void push_if_changed(std::vector<viz::ReplayGrid>& grids, viz::ReplayGrid grid) {
+  if (!grids.empty() && same_cells(grids.back(), grid)) return;
+  grids.push_back(std::move(grid));
+}
+
+}  // namespace
+
+void ReplayRecorderParams::validate() const {
+  require(std::isfinite(period_s) && period_s > 0.0, "period_s", "> 0 s");
+  require(std::isfinite(global_map_period_s) && global_map_period_s > 0.0, "global_map_period_s", "> 0 s");
+  require(std::isfinite(local_map_period_s) && local_map_period_s > 0.0, "local_map_period_s", "> 0 s");
+  require(std::isfinite(point_cell_m) && point_cell_m > 0.0, "point_cell_m", "> 0 m");
+  require(std::isfinite(min_point_z_m) && std::isfinite(max_point_z_m) && min_point_z_m < max_point_z_m,
+          "min_point_z_m/max_point_z_m", "finite with min < max");
+}
+
+viz::ReplayGrid replay_grid(double t_s, const mapping::Costmap2D& map) {
+  const auto& g = map.geometry();
+  return {t_s, g.width, g.height, g.resolution_m, g.origin_x_m, g.origin_y_m, map.data()};
+}
+
+ReplayRecorder::ReplayRecorder(const sim::Scenario& scenario, const ReplayRecorderParams& params) : params_(params) {
+  params_.validate();
+  data_.title = scenario.name + (scenario.description.empty() ? "" : ": " + scenario.description);
+  for (const auto& geometry : scenario.world.statics)
+    for (auto& outline : sim::footprint(geometry, SE3::Identity())) data_.statics.push_back(std::move(outline));
+  for (const auto& actor : scenario.world.actors) {
+    viz::ReplayActor a{actor.name, {}};
+    for (const auto& part : actor.parts)
+      for (auto& outline : sim::footprint(part, SE3::Identity())) a.outlines.push_back(std::move(outline));
+    data_.actors.push_back(std::move(a));
+  }
+  for (const auto& g : scenario.goals) data_.goals.push_back({g.time_s, g.pose});
+}
+
+void ReplayRecorder::attach(RunOptions& options) {
+  auto previous = std::move(options.on_step);
+  options.on_step = [this, previous](const sim::Simulation& sim, const SensorFrame& frame,
+                                     const navigation::Navigator& nav, const Twist& cmd) {
+    if (previous) previous(sim, frame, nav, cmd);
+    record(sim, frame, nav, cmd);
+  };
+}
+
+std::vector<Eigen::Vector2f> ReplayRecorder::thin(const PointCloud& cloud, const SE3& T_world_sensor) const {
+  std::vector<Eigen::Vector2f> out;
+  std::unordered_set<std::int64_t> cells;
+  for (const auto& p : cloud.points) {
+    const Eigen::Vector3d w = T_world_sensor * p.cast<double>();
+    if (!w.allFinite() || w.z() < params_.min_point_z_m || w.z() > params_.max_point_z_m) continue;
+    const auto cx = static_cast<std::int64_t>(std::floor(w.x() / params_.point_cell_m));
+    const auto cy = static_cast<std::int64_t>(std::floor(w.y() / params_.point_cell_m));
+    if (!cells.insert(cx * 4000037 + cy).second) continue;
+    out.emplace_back(static_cast<float>(w.x()), static_cast<float>(w.y()));
+    if (out.size() >= params_.max_points) break;
+  }
+  return out;
+}
+
+void ReplayRecorder::take_points(const sim::Simulation& sim, const SensorFrame& frame) {
+  const auto& robot = sim.robot();
+  if (frame.lidar && robot.sensor(frame.lidar->frame_id))
+    lidar_ = thin(*frame.lidar, sim.T_world_sensor(frame.lidar->frame_id));
+  for (const auto& d : frame.depth)
+    if (robot.sensor(d.camera)) depth_[d.camera] = thin(d.cloud, sim.T_world_sensor(d.camera));
+}
+
+void ReplayRecorder::take_maps(double t_s, const navigation::Navigator& nav) {
+  if (t_s + 1e-9 >= next_global_s_) {
+    next_global_s_ = t_s + params_.global_map_period_s;
+    push_if_changed(data_.global_maps, replay_grid(t_s, nav.global_map().costmap()));
+  }
+  if (t_s + 1e-9 >= next_local_s_) {
+    next_local_s_ = t_s + params_.local_map_period_s;
+    push_if_changed(data_.local_maps, replay_grid(t_s, nav.local_map().costmap()));
+  }
+}
+
+void ReplayRecorder::record(const sim::Simulation& sim, const SensorFrame& frame, const navigation::Navigator& nav,
+                            const Twist& cmd) {
+  data_.robot_radius_m = sim.robot().footprint_radius_m;
+  take_points(sim, frame);
+  const double t = sim.now_s();
+  const navigation::NavStatus& status = nav.status();
+  const std::string state = navigation::nav_state_name(status.state);
+  if (t + 1e-9 < next_frame_s_ && state == last_state_) return;
+  next_frame_s_ = t + params_.period_s;
+  last_state_ = state;
+  take_maps(t, nav);
+  viz::ReplayFrame f;
+  f.t_s = t;
+  f.true_pose = sim.true_pose();
+  f.estimated_pose = nav.pose();
+  f.cmd = cmd;
+  f.goal = nav.goal();
+  f.global_path = nav.global_path();
+  f.local_trajectory = nav.local_trajectory();
+  for (const SE3& T : sim.actor_poses()) f.actors.push_back(pose2_from_se3(T));
+  f.lidar = lidar_;
+  for (const auto& [camera, points] : depth_) f.depth.insert(f.depth.end(), points.begin(), points.end());
+  f.active_node = status.active_leaf;
+  f.state = state;
+  if (status.state == navigation::NavState::SUCCEEDED || status.state == navigation::NavState::FAILED)
+    f.outcome = std::string(outcome_name(status.result.outcome));
+  data_.frames.push_back(std::move(f));
+}
+
+viz::ReplayData ReplayRecorder::finish(const RunResult& r) const {
+  viz::ReplayData out = data_;
+  out.summary = {r.scenario,        r.robot,   r.success,       std::string(outcome_name(r.outcome.outcome)),
+                 r.outcome.message, r.time_s,  r.path_length_m, r.min_clearance_m,
+                 r.collisions,      r.replans, r.recoveries};
+  return out;
+}
+
+}  // namespace bipednav::runner
