@@ -9,10 +9,18 @@
 
 namespace bipednav::footstep {
 
+// One cell of an inverse heightmap (section V-C): a lattice offset from the stance foot and
+// the lowest height, relative to the stance sole, that any body part reaches over it.
+struct IhmCell {
+  std::int16_t dx = 0;
+  std::int16_t dy = 0;
+  float min_height_m = 0.0f;
+};
+
 // A band of an inverse heightmap's cells with its bounding box and lowest height, so a whole
 // band can be cleared at once when the terrain under its box stays below that height.
 struct IhmLayer {
-  std::vector<struct IhmCell> cells;
+  std::vector<IhmCell> cells;  // complete type first: clang rejects size() on an incomplete one
   int min_dx = 0, max_dx = 0, min_dy = 0, max_dy = 0;
   float min_height_m = 0.0f;
 };
@@ -26,14 +34,6 @@ struct InverseHeightmap {
     for (const auto& l : layers) n += l.cells.size();
     return n;
   }
-};
-
-// One cell of an inverse heightmap (section V-C): a lattice offset from the stance foot and
-// the lowest height, relative to the stance sole, that any body part reaches over it.
-struct IhmCell {
-  std::int16_t dx = 0;
-  std::int16_t dy = 0;
-  float min_height_m = 0.0f;
 };
 
 // An oriented rectangle in the stance foot's frame (metres, radians).
