@@ -80,6 +80,10 @@ nlohmann::json to_json(const runner::RunResult& r) {
   j["wall_s"] = r.wall_s;
   j["goals_given"] = r.goals_given;
   return j;
+  const sim::FaultCounters& f = r.faults;
+  j["faults"] = {{"sweeps_dropped", f.sweeps_dropped},       {"depth_points_nan", f.depth_points_nan},
+                 {"odometry_jumps", f.odometry_jumps},       {"odometry_slipped", f.odometry_slipped},
+                 {"messages_delayed", f.messages_delayed},   {"messages_reordered", f.messages_reordered}};
 }
 
 void print_summary(const runner::RunResult& r) {
@@ -99,6 +103,7 @@ struct RunArgs {
   std::string world, start = "0,0,0", goal, bag, replay;
   runner::RunOptions options;
   std::uint64_t seed = 0;
+  std::vector<std::string> faults;  // type:start_s:duration_s[:value]
   double time_limit_s = 0.0;
 };
 
@@ -112,6 +117,7 @@ void run_command(const RunArgs& a) {
 #ifdef BIPEDNAV_WITH_ROSBAG
   std::shared_ptr<ros1::BagRecorder> bag;
   if (!a.bag.empty()) {
+  for (const auto& f : a.faults) o.faults.push_back(sim::parse_fault(f));
     bag = std::make_shared<ros1::BagRecorder>(a.bag, runner::load_robot(o.robot.empty() ? s.robot : o.robot));
     o.on_step = [bag](const sim::Simulation& sim, const SensorFrame& f, const navigation::Navigator& n,
                       const Twist& c) { bag->record(sim, f, n, c); };
@@ -198,6 +204,9 @@ void add_run_commands(CLI::App& app, CLI::App& bench) {
   run->add_option("--bag", args->bag, "Record the run as a rosbag (ROS build only)");
   run->add_option("--replay", args->replay, "Write a self-contained HTML replay of the run to this file");
   run->callback([args] {
+  run->add_option("--fault", args->faults,
+                  "Inject a fault: type:start_s:duration_s[:value] (lidar_dropout, depth_nan_burst, localization_jump "
+                  "(value dx,dy,dyaw), odometry_slip, stale_timestamps, out_of_order_timestamps, goal_flood); repeatable");
     if (!args->world.empty() && args->goal.empty()) throw Error("--world needs --goal x,y,yaw");
     run_command(*args);
   });

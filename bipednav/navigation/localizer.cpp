@@ -11,6 +11,8 @@ void LocalizerParams::validate() const {
   require(max_correction_jump_rad > 0.0, "localization.max_correction_jump_rad", "> 0");
   require(unhealthy_after_bad_sweeps >= 1, "localization.unhealthy_after_bad_sweeps", ">= 1");
   require(odometry_timeout_s > 0.0, "localization.odometry_timeout_s", "> 0");
+  require(max_odometry_speed_mps > 0.0, "localization.max_odometry_speed_mps", "> 0");
+  require(max_odometry_rate_radps > 0.0, "localization.max_odometry_rate_radps", "> 0");
   loam.validate();
 }
 
@@ -80,14 +82,25 @@ void Localizer::add_sweep(const PointCloud& sweep) {
     anchored_ = true;
   }
   std::optional<SE3> prior;
-  if (prev_sweep_odom_) prior = T_lidar_base * se3_from_pose2(prev_sweep_odom_->inverse() * *odom_end) * T_base_lidar_;
+  bool odometry_jumped = false;
+  if (prev_sweep_odom_) {
+    const Pose2 delta = prev_sweep_odom_->inverse() * *odom_end;
+    odometry_jumped = !plausible_odometry_motion(delta, t_end - prev_sweep_end_s_);
+    if (!odometry_jumped) prior = T_lidar_base * se3_from_pose2(delta) * T_base_lidar_;
+  }
   prev_sweep_odom_ = *odom_end;
+  prev_sweep_end_s_ = t_end;
   const localization::LoamOutput out = loam_->process(sweep, prior);
   last_loam_ms_ = out.odometry_ms + out.mapping_ms;
   const Pose2 predicted = correction_ * *odom_end;
   const Pose2 measured = pose2_from_se3(out.T_world_lidar * T_lidar_base);
-  const bool jump = distance(predicted, measured) > params_.max_correction_jump_m ||
-                    std::abs(angle_diff(predicted.theta, measured.theta)) > params_.max_correction_jump_rad;
+  bool jump = distance(predicted, measured) > params_.max_correction_jump_m ||
+              std::abs(angle_diff(predicted.theta, measured.theta)) > params_.max_correction_jump_rad;
+  if (jump && odometry_jumped && out.healthy && measured.is_finite()) {
+    // The odometry jumped, LOAM did not: the map pose stays LOAM's, the correction absorbs the jump.
+    ++odometry_jumps_;
+    jump = false;
+  }
   if (!out.healthy || !measured.is_finite() || jump) {
     reason_ = !out.healthy ? "LOAM: " + out.reason : (jump ? "LOAM pose jumped away from odometry" : "LOAM pose NaN");
     ++bad_sweeps_;
@@ -99,6 +112,13 @@ void Localizer::add_sweep(const PointCloud& sweep) {
   bad_sweeps_ = 0;
   reason_.clear();
   correction_ = measured * odom_end->inverse();
+}
+
+bool Localizer::plausible_odometry_motion(const Pose2& delta, double dt_s) const {
+  constexpr double kSlack_m = 0.05, kSlack_rad = 0.05;  // odometry noise over one sweep
+  const double dt = std::max(dt_s, 0.0);
+  return std::hypot(delta.x, delta.y) <= params_.max_odometry_speed_mps * dt + kSlack_m &&
+         std::abs(delta.theta) <= params_.max_odometry_rate_radps * dt + kSlack_rad;
 }
 
 bool Localizer::healthy(double now_s) const {

@@ -18,6 +18,10 @@ struct LocalizerParams {
   double max_correction_jump_rad = 0.35;
   int unhealthy_after_bad_sweeps = 5;  // consecutive rejected/unhealthy sweeps before reporting bad health
   double odometry_timeout_s = 0.5;
+  // Odometry moving faster than this between two sweeps has jumped (an estimator reset, a
+  // glitch): LOAM then runs without the odometry prior and its pose is taken as it is.
+  double max_odometry_speed_mps = 1.0;
+  double max_odometry_rate_radps = 2.0;
 
   void validate() const;
 };
@@ -40,11 +44,13 @@ class Localizer {
   const std::string& reason() const { return reason_; }
   double last_odometry_s() const { return last_odom_s_; }
   double last_loam_ms() const { return last_loam_ms_; }
+  std::size_t odometry_jumps() const { return odometry_jumps_; }  // absorbed by re-anchoring on LOAM
   // Forces a pose (initial pose / relocalization); LOAM re-anchors at the next sweep.
   void reset(const Pose2& T_map_base);
 
  private:
   std::optional<Pose2> odom_at(double t_s) const;
+  bool plausible_odometry_motion(const Pose2& delta, double dt_s) const;
 
   LocalizerParams params_;
   SE3 T_base_lidar_ = SE3::Identity();
@@ -55,6 +61,8 @@ class Localizer {
   Twist velocity_;
   Pose2 correction_;  // T_map_odom
   std::optional<Pose2> prev_sweep_odom_;
+  double prev_sweep_end_s_ = 0.0;
+  std::size_t odometry_jumps_ = 0;
   int bad_sweeps_ = 0;
   std::string reason_;
   double last_odom_s_ = -1.0;

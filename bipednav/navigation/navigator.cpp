@@ -6,6 +6,19 @@
 
 namespace bipednav::navigation {
 
+std::string lidar_mount_name(const RobotProfile& robot) {
+  for (const auto& m : robot.sensors)
+    if (m.type == "vlp16") return m.name;
+  return {};
+}
+
+std::vector<std::string> depth_mount_names(const RobotProfile& robot) {
+  std::vector<std::string> out;
+  for (const auto& m : robot.sensors)
+    if (m.type == "d430") out.push_back(m.name);
+  return out;
+}
+
 const char* nav_state_name(NavState s) {
   switch (s) {
     case NavState::IDLE:
@@ -26,6 +39,7 @@ Navigator::Navigator(NavigatorParams params, RobotProfile robot, const mapping::
       robot_(std::move(robot)),
       perception_(params_.perception),
       localizer_(params_.localization, robot_, initial_pose),
+      gate_(params_.sensors, lidar_mount_name(robot_), depth_mount_names(robot_)),
       local_(params_.local_map),
       global_(global_geometry, params_.global_map),
       local_gate_(params_.local_map.rate_hz),
@@ -33,8 +47,7 @@ Navigator::Navigator(NavigatorParams params, RobotProfile robot, const mapping::
       control_gate_(params_.control_rate_hz) {
   params_.validate();
   robot_.validate();
-  for (const auto& m : robot_.sensors)
-    if (m.type == "vlp16") lidar_name_ = m.name;
+  lidar_name_ = lidar_mount_name(robot_);
   server_ = std::make_unique<NavigationServer>(params_.server, robot_, global_, local_);
   BtFactory factory;
   register_leaves(factory);
@@ -59,10 +72,9 @@ void Navigator::cancel() {
   status_ = {NavState::IDLE, {Outcome::CTRL_CANCELED, "navigation canceled"}, ""};
 }
 
-Twist Navigator::tick(const SensorFrame& frame) {
-  // Sensors count as alive from the first tick: the first sweep needs a while to complete.
-  if (!started_) last_range_data_s_ = frame.stamp_s;
-  started_ = true;
+Twist Navigator::tick(const SensorFrame& raw) {
+  const SensorFrame frame = gate_.admit(raw);  // stale, out-of-order and NaN-only data dropped
+  if (frame.stamp_s < now_s_) return cmd_;     // a frame from the past changes nothing
   now_s_ = frame.stamp_s;
   Stopwatch sw;
   if (frame.odometry) localizer_.add_odometry(*frame.odometry);
@@ -106,7 +118,6 @@ void Navigator::perceive(const SensorFrame& frame) {
   Stopwatch sw;
   perception_out_ = perception_.process(frame, robot_);
   timings_.perception_ms = sw.elapsed_ms();
-  last_range_data_s_ = now_s_;
   const SE3 T_map_base = se3_from_pose2(localizer_.T_map_base());
   // Obstacles mark and clear; ground returns only clear (so a moved obstacle leaves no trail).
   const std::size_t first = local_obs_.size();
@@ -139,7 +150,7 @@ void Navigator::update_maps() {
   }
 }
 
-bool Navigator::sensors_alive() const { return now_s_ - last_range_data_s_ <= params_.sensor_timeout_s; }
+bool Navigator::sensors_alive() const { return gate_.all_alive(now_s_); }
 
 void Navigator::control() {
   server_->set_view({now_s_, localizer_.T_map_base(), localizer_.velocity()});
@@ -174,7 +185,9 @@ void Navigator::finish(BtStatus s) {
   } else if (!last_failure_.ok()) {
     status_.result = last_failure_;
   } else if (!sensors_alive()) {
-    status_.result = {Outcome::CTRL_STOPPED, "sensors went silent"};
+    std::string names;
+    for (const auto& n : gate_.silent(now_s_)) names += (names.empty() ? "" : ", ") + n;
+    status_.result = {Outcome::CTRL_STOPPED, "sensors went silent: " + names};
   } else if (!localizer_.healthy(now_s_)) {
     status_.result = {Outcome::CTRL_STOPPED, "localization unhealthy: " + localizer_.reason()};
   } else {

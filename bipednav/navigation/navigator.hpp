@@ -13,6 +13,7 @@
 #include "bipednav/navigation/bt_xml.hpp"
 #include "bipednav/navigation/localizer.hpp"
 #include "bipednav/navigation/navigation_server.hpp"
+#include "bipednav/navigation/sensor_gate.hpp"
 #include "bipednav/perception/pipeline.hpp"
 
 namespace bipednav::navigation {
@@ -27,13 +28,17 @@ struct NavigatorParams {
   mapping::GlobalCostmapParams global_map;  // 2 Hz
   ServerParams server;
   double control_rate_hz = 10.0;  // behavior tree, TEB; D* Lite at 5 Hz inside the tree
-  double sensor_timeout_s = 0.5;  // SensorsAlive fails when every range sensor is older
+  SensorGateParams sensors;       // stale / out-of-order / NaN data; SensorsAlive = no range sensor silent
   std::string behavior_tree;      // BT XML file (navigate.xml)
 
   // Defaults with footprint-dependent values (inscribed radius, velocity limits) from the robot.
   static NavigatorParams for_robot(const RobotProfile& robot);
   void validate() const;
 };
+
+// The profile's LiDAR mount name (empty without one) and its depth camera mount names.
+std::string lidar_mount_name(const RobotProfile& robot);
+std::vector<std::string> depth_mount_names(const RobotProfile& robot);
 
 enum class NavState { IDLE, ACTIVE, SUCCEEDED, FAILED };
 const char* nav_state_name(NavState s);
@@ -77,6 +82,7 @@ class Navigator {
   const NavigatorTimings& timings() const { return timings_; }
   const BehaviorTree& tree() const { return *tree_; }
   bool localization_healthy() const { return localizer_.healthy(now_s_); }
+  const SensorGate& sensor_gate() const { return gate_; }
   const RobotProfile& robot() const { return robot_; }
 
  private:
@@ -91,6 +97,7 @@ class Navigator {
   RobotProfile robot_;
   perception::PerceptionPipeline perception_;
   Localizer localizer_;
+  SensorGate gate_;
   mapping::LocalCostmap local_;
   mapping::GlobalCostmap global_;
   std::unique_ptr<NavigationServer> server_;
@@ -104,8 +111,6 @@ class Navigator {
   NavigatorTimings timings_;
   Twist cmd_;
   double now_s_ = 0.0;
-  double last_range_data_s_ = -1e9;
-  bool started_ = false;
   std::string lidar_name_;  // the profile's vlp16 mount
   Result last_failure_;     // the last failure a leaf reported (with its error_code)
   bool map_ready_ = false;  // the global map has seen a LiDAR sweep (or the first seconds passed)

@@ -30,6 +30,10 @@ NavigatorParams NavigatorParams::for_robot(const RobotProfile& robot) {
   for (const auto& s : robot.sensors) top_m = std::max(top_m, s.z_m + 0.1);
   p.perception.obstacle_height_margin_m = top_m - robot.height_m;
 
+  // Odometry faster than twice the robot's limits has jumped.
+  p.localization.max_odometry_speed_mps = 2.0 * std::max(robot.max_vel_x_mps, robot.max_vel_x_backwards_mps);
+  p.localization.max_odometry_rate_radps = 2.0 * robot.max_vel_theta_radps;
+
   auto& lim = p.server.local.teb.limits;
   lim.max_vel_x_mps = robot.max_vel_x_mps;
   lim.max_vel_x_backwards_mps = robot.max_vel_x_backwards_mps;
@@ -61,7 +65,7 @@ void NavigatorParams::validate() const {
   global_map.validate();
   server.validate();
   require(control_rate_hz > 0.0 && control_rate_hz <= 100.0, "control_rate_hz", "in (0, 100] Hz");
-  require(sensor_timeout_s > 0.0, "sensor_timeout_s", "> 0");
+  sensors.validate();
   require(!behavior_tree.empty(), "behavior_tree", "the path of a behavior tree XML file");
 }
 

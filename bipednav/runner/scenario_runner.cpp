@@ -73,7 +73,11 @@ RunResult run_scenario(const sim::Scenario& scenario, const RunOptions& o) {
   navigation::Navigator nav(params, robot, global_geometry_for(scenario, params.global_map.resolution_m),
                             scenario.start);
   const double limit = o.time_limit_s.value_or(scenario.time_limit_s);
-  const sim::TimedGoal* active = nullptr;
+  std::vector<sim::Fault> faults = scenario.faults;
+  faults.insert(faults.end(), o.faults.begin(), o.faults.end());
+  sim::FaultInjector injector(faults, sp.seed);
+  const std::vector<sim::TimedGoal> goals = sim::goals_with_floods(scenario.goals, faults, scenario.bounds, sp.seed);
+  std::size_t next_goal = 0;
   Twist cmd;
   Pose2 last = sim.true_pose();
   Path last_path;
@@ -81,13 +85,11 @@ RunResult run_scenario(const sim::Scenario& scenario, const RunOptions& o) {
   Stopwatch wall;
   ProgressBar bar("simulating " + scenario.name, static_cast<std::size_t>(limit * 10), o.progress);
   while (sim.now_s() < limit) {
-    const sim::TimedGoal* g = scenario.goal_at(sim.now_s());
-    if (g && g != active) {
-      active = g;
+    for (; next_goal < goals.size() && goals[next_goal].time_s <= sim.now_s(); ++next_goal) {
       ++out.goals_given;
-      nav.set_goal(g->pose);
+      nav.set_goal(goals[next_goal].pose);
     }
-    const SensorFrame frame = sim.step(cmd);
+    const SensorFrame frame = faults.empty() ? sim.step(cmd) : injector.apply(sim.step(cmd));
     cmd = nav.tick(frame);
     if (o.on_step) o.on_step(sim, frame, nav, cmd);
     out.path_length_m += distance(last, sim.true_pose());
@@ -103,7 +105,7 @@ RunResult run_scenario(const sim::Scenario& scenario, const RunOptions& o) {
         out.snapshots.push_back(snapshot(sim.now_s(), nav, sim));
       last_path = nav.global_path();
     }
-    const bool more_goals = !scenario.goals.empty() && active != &scenario.goals.back();
+    const bool more_goals = next_goal < goals.size();
     const auto state = nav.status().state;
     if (!more_goals && (state == navigation::NavState::SUCCEEDED || state == navigation::NavState::FAILED)) break;
   }
@@ -116,6 +118,7 @@ RunResult run_scenario(const sim::Scenario& scenario, const RunOptions& o) {
   out.min_clearance_m = sim.min_clearance_m();
   out.replans = nav.replans();
   out.recoveries = nav.recoveries();
+  out.faults = injector.counters();
   out.final_state = snapshot(sim.now_s(), nav, sim);
   out.localization_error_m = distance(nav.pose(), sim.true_pose());
   const auto& status = nav.status();

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "bipednav/navigation/navigator.hpp"
+#include "bipednav/sim/fault_injection.hpp"
 #include "bipednav/sim/scenario.hpp"
 #include "bipednav/sim/simulation.hpp"
 
@@ -24,6 +25,7 @@ struct RunOptions {
   bool progress = false;               // progress bar on stderr
   std::size_t max_snapshots = 3;       // figure panels at replanning moments
   double snapshot_spacing_s = 5.0;     // ... at least this far apart
+  std::vector<sim::Fault> faults;      // injected in addition to the scenario's own
   // Called after every step with the simulator, its sensor frame, the navigator and the command
   // (e.g. a rosbag recorder).
   std::function<void(const sim::Simulation&, const SensorFrame&, const navigation::Navigator&, const Twist&)> on_step;
@@ -61,6 +63,7 @@ struct RunResult {
   std::size_t replans = 0, recoveries = 0;
   double real_time_factor = 0.0, wall_s = 0.0;
   std::size_t goals_given = 0;
+  sim::FaultCounters faults;  // what the fault injector did
   std::vector<TraceSample> trace;
   std::vector<Snapshot> snapshots;
   Snapshot final_state;
@@ -71,10 +74,10 @@ RobotProfile load_robot(const std::string& name, const std::filesystem::path& co
 // The global map's grid: the scenario's bounds plus a margin, at the given resolution.
 mapping::GridGeometry global_geometry_for(const sim::Scenario& scenario, double resolution_m, double margin_m = 2.0);
 
-// Runs a scenario closed-loop: the simulator's sensor frames feed the Navigator, its command
-// drives the simulated robot; goals are handed over at their times; the run ends when the last
-// goal succeeded or failed, or at the time limit. Success = the last goal reached (by the
-// navigator, and within tolerance by the true pose) with zero collisions.
+// Runs a scenario closed-loop: the simulator's sensor frames feed the Navigator (through the
+// fault injector when the scenario or the options name faults), its command drives the simulated robot; goals are
+// handed over at their times; the run ends when the last goal succeeded or failed, or at the time limit. Success = the
+// last goal reached (by the navigator, and within tolerance by the true pose) with zero collisions.
 RunResult run_scenario(const sim::Scenario& scenario, const RunOptions& options);
 
 }  // namespace bipednav::runner

@@ -176,6 +176,7 @@ void read_goals_and_commands(io::ParamReader& r, Scenario& s) {
     c.finish();
     s.commands.push_back(cmd);
   }
+  for (io::ParamReader& f : r.children("faults")) s.faults.push_back(read_fault(f));
 }
 
 Bounds compute_bounds(io::ParamReader& r, const Scenario& s) {
@@ -211,6 +212,7 @@ void Scenario::validate() const {
   for (std::size_t i = 0; i < goals.size(); ++i)
     require(bounds.contains(goals[i].pose.x, goals[i].pose.y), "goals[" + std::to_string(i) + "].pose",
             "inside the bounds");
+  for (const Fault& f : faults) f.validate();
 }
 
 const TimedGoal* Scenario::goal_at(double t_s) const {

@@ -7,6 +7,7 @@
 
 #include "bipednav/common/pose2.hpp"
 #include "bipednav/common/twist.hpp"
+#include "bipednav/sim/fault.hpp"
 #include "bipednav/sim/world.hpp"
 
 namespace bipednav::sim {
@@ -45,6 +46,7 @@ struct Scenario {
   double goal_tolerance_m = 0.2;
   double goal_tolerance_rad = 0.2;
   Bounds bounds;
+  std::vector<Fault> faults;  // injected on the sensor path and the goal stream (fault.hpp)
 
   void validate() const;
   // The goal in force at time t (the last one given at or before t); nullptr before the first.

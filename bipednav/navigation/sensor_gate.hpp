@@ -1,0 +1,52 @@
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "bipednav/common/sensor_frame.hpp"
+
+namespace bipednav::navigation {
+
+struct SensorGateParams {
+  double max_age_s = 0.35;        // data stamped longer ago than this is stale (a sweep is ~0.1 s old)
+  double min_valid_ratio = 0.05;  // a depth cloud with fewer finite points is a dropout
+  double sensor_timeout_s = 0.5;  // a range sensor without valid data for this long is silent
+
+  void validate() const;
+};
+
+struct SensorGateCounters {
+  std::size_t stale = 0, out_of_order = 0, invalid = 0, frames_out_of_order = 0;
+};
+
+// Admits sensor data into the navigator: drops messages that are stale, stamped before the
+// previous message of the same source, or not finite, and depth clouds that are (almost)
+// all NaN; tracks when each range sensor last delivered valid data.
+class SensorGate {
+ public:
+  // `lidar` names the LiDAR mount (empty: none); `depth_cameras` the depth mounts.
+  SensorGate(SensorGateParams params, const std::string& lidar, const std::vector<std::string>& depth_cameras);
+
+  // The admitted part of `frame` (same stamp). Frames stamped before the previous frame are
+  // dropped whole.
+  SensorFrame admit(const SensorFrame& frame);
+  // Every range sensor delivered valid data within the timeout (all count as fresh at start).
+  bool all_alive(double now_s) const;
+  // The range sensors that are silent now (for messages).
+  std::vector<std::string> silent(double now_s) const;
+  const SensorGateCounters& counters() const { return counters_; }
+
+ private:
+  bool fresh(double stamp_s, double now_s, double& last_s);
+
+  SensorGateParams params_;
+  std::string lidar_;
+  std::map<std::string, double> last_valid_s_;  // per range sensor: admission time of its last valid data
+  std::map<std::string, double> last_stamp_s_;  // per source: the last admitted stamp
+  double last_frame_s_ = -1e300;
+  bool started_ = false;
+  SensorGateCounters counters_;
+};
+
+}  // namespace bipednav::navigation
