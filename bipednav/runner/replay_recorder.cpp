@@ -26,6 +26,7 @@ void ReplayRecorderParams::validate() const {
   require(std::isfinite(period_s) && period_s > 0.0, "period_s", "> 0 s");
   require(std::isfinite(global_map_period_s) && global_map_period_s > 0.0, "global_map_period_s", "> 0 s");
   require(std::isfinite(local_map_period_s) && local_map_period_s > 0.0, "local_map_period_s", "> 0 s");
+  require(std::isfinite(points_period_s) && points_period_s > 0.0, "points_period_s", "> 0 s");
   require(std::isfinite(point_cell_m) && point_cell_m > 0.0, "point_cell_m", "> 0 m");
   require(std::isfinite(min_point_z_m) && std::isfinite(max_point_z_m) && min_point_z_m < max_point_z_m,
           "min_point_z_m/max_point_z_m", "finite with min < max");
@@ -74,12 +75,21 @@ std::vector<Eigen::Vector2f> ReplayRecorder::thin(const PointCloud& cloud, const
   return out;
 }
 
+bool ReplayRecorder::points_due(const std::string& sensor, double t_s) {
+  auto [it, added] = next_points_s_.try_emplace(sensor, t_s);
+  if (t_s + 1e-9 < it->second) return false;
+  it->second = t_s + params_.points_period_s;
+  return true;
+}
+
 void ReplayRecorder::take_points(const sim::Simulation& sim, const SensorFrame& frame) {
   const auto& robot = sim.robot();
-  if (frame.lidar && robot.sensor(frame.lidar->frame_id))
+  const double t = sim.now_s();
+  if (frame.lidar && robot.sensor(frame.lidar->frame_id) && points_due(frame.lidar->frame_id, t))
     lidar_ = thin(*frame.lidar, sim.T_world_sensor(frame.lidar->frame_id));
   for (const auto& d : frame.depth)
-    if (robot.sensor(d.camera)) depth_[d.camera] = thin(d.cloud, sim.T_world_sensor(d.camera));
+    if (robot.sensor(d.camera) && points_due(d.camera, t))
+      depth_[d.camera] = thin(d.cloud, sim.T_world_sensor(d.camera));
 }
 
 void ReplayRecorder::take_maps(double t_s, const navigation::Navigator& nav) {
@@ -100,9 +110,10 @@ void ReplayRecorder::record(const sim::Simulation& sim, const SensorFrame& frame
   const double t = sim.now_s();
   const navigation::NavStatus& status = nav.status();
   const std::string state = navigation::nav_state_name(status.state);
-  if (t + 1e-9 < next_frame_s_ && state == last_state_) return;
+  if (t + 1e-9 < next_frame_s_ && state == last_state_ && status.active_leaf == last_node_) return;
   next_frame_s_ = t + params_.period_s;
   last_state_ = state;
+  last_node_ = status.active_leaf;
   take_maps(t, nav);
   viz::ReplayFrame f;
   f.t_s = t;

@@ -13,6 +13,7 @@ struct ReplayRecorderParams {
   double period_s = 0.1;             // frame sampling period (also on every navigation-state change)
   double global_map_period_s = 0.5;  // the global map's 2 Hz
   double local_map_period_s = 0.2;   // local map snapshots (it updates at 10 Hz)
+  double points_period_s = 0.2;      // per sensor: the LiDAR sweeps at 10 Hz, depth at 15 Hz
   double point_cell_m = 0.05;        // LiDAR/depth points are thinned to one per 2D cell
   double min_point_z_m = 0.05;       // points above the ground ...
   double max_point_z_m = 2.0;        // ... and below this height (world frame)
@@ -38,6 +39,7 @@ class ReplayRecorder {
 
  private:
   void take_points(const sim::Simulation& sim, const SensorFrame& frame);
+  bool points_due(const std::string& sensor, double t_s);
   void take_maps(double t_s, const navigation::Navigator& nav);
   std::vector<Eigen::Vector2f> thin(const PointCloud& cloud, const SE3& T_world_sensor) const;
 
@@ -45,8 +47,9 @@ class ReplayRecorder {
   viz::ReplayData data_;
   std::vector<Eigen::Vector2f> lidar_;                         // the latest sweep
   std::map<std::string, std::vector<Eigen::Vector2f>> depth_;  // the latest cloud per camera
+  std::map<std::string, double> next_points_s_;                // per sensor
   double next_frame_s_ = 0.0, next_global_s_ = 0.0, next_local_s_ = 0.0;
-  std::string last_state_;
+  std::string last_state_, last_node_;
 };
 
 // The costmap as a replay grid (at time t_s).

@@ -4,6 +4,7 @@
 #include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <tuple>
 
 #include "bipednav/common/error.hpp"
 #include "bipednav/viz/byte_codec.hpp"
@@ -97,17 +98,19 @@ json summary_json(const ReplaySummary& s, const Rounder& r) {
           {"recoveries", s.recoveries}};
 }
 
-// Frames carry a path only when it differs from the previous frame's (the page fills forward).
+bool same_path(const Path& a, const Path& b) {
+  if (a.poses.size() != b.poses.size()) return false;
+  for (std::size_t i = 0; i < a.poses.size(); ++i)
+    if (a.poses[i].x != b.poses[i].x || a.poses[i].y != b.poses[i].y) return false;
+  return true;
+}
+
+// Frames carry paths and points only when they differ from the previous frame's (the page
+// fills forward).
 json frames_json(const ReplayData& data, const Rounder& r) {
   json out = json::array();
-  const Path* last_global = nullptr;
-  const Path* last_local = nullptr;
-  const auto changed = [](const Path* last, const Path& now) {
-    if (!last || last->poses.size() != now.poses.size()) return true;
-    for (std::size_t i = 0; i < now.poses.size(); ++i)
-      if (last->poses[i].x != now.poses[i].x || last->poses[i].y != now.poses[i].y) return true;
-    return false;
-  };
+  const ReplayFrame* last = nullptr;
+  std::string last_lidar, last_depth;
   for (const auto& f : data.frames) {
     require(f.actors.size() == data.actors.size(), "ReplayFrame.actors", "one pose per ReplayData actor");
     json j = {{"t", std::round(f.t_s * 1000.0) / 1000.0},
@@ -115,18 +118,22 @@ json frames_json(const ReplayData& data, const Rounder& r) {
               {"est", pose_json(f.estimated_pose, r)},
               {"cmd", json::array({r(f.cmd.linear_x), round_angle(f.cmd.angular_z)})},
               {"goal", f.goal ? pose_json(*f.goal, r) : json(nullptr)},
-              {"lidar", points_packed(f.lidar, r)},
-              {"depth", points_packed(f.depth, r)},
               {"node", f.active_node},
               {"state", f.state},
               {"outcome", f.outcome}};
     json actors = json::array();
     for (const auto& a : f.actors) actors.push_back(pose_json(a, r));
     j["actors"] = std::move(actors);
-    if (changed(last_global, f.global_path)) j["gp"] = path_json(f.global_path, r);
-    if (changed(last_local, f.local_trajectory)) j["lt"] = path_json(f.local_trajectory, r);
-    last_global = &f.global_path;
-    last_local = &f.local_trajectory;
+    if (!last || !same_path(last->global_path, f.global_path)) j["gp"] = path_json(f.global_path, r);
+    if (!last || !same_path(last->local_trajectory, f.local_trajectory)) j["lt"] = path_json(f.local_trajectory, r);
+    for (auto [key, points, previous] :
+         {std::tuple{"lidar", &f.lidar, &last_lidar}, {"depth", &f.depth, &last_depth}}) {
+      std::string packed = points_packed(*points, r);
+      if (last && packed == *previous) continue;
+      j[key] = packed;
+      *previous = std::move(packed);
+    }
+    last = &f;
     out.push_back(std::move(j));
   }
   return out;

@@ -103,13 +103,14 @@ TEST(ReplayHtml, JsonHasFramesPathsOnlyWhenChangedAndPackedPayloads) {
   EXPECT_DOUBLE_EQ(f1["est"][0].get<double>(), 0.51);
   EXPECT_EQ(f1["node"], "FollowPath");
   EXPECT_EQ(f1["actors"][0][1].get<double>(), 2.0);
-  // The global path changes every frame, the local trajectory only in the first.
+  // The global path changes every frame, the local trajectory and the points only in the first.
   EXPECT_TRUE(f1.contains("gp"));
   EXPECT_EQ(f1["gp"][0].get<double>(), 0.5);
   EXPECT_TRUE(j["frames"][0].contains("lt"));
   EXPECT_FALSE(f1.contains("lt"));
-  // Points: int16 pairs of centimetres; NaN and out-of-range points are dropped.
-  const auto pts = unpack_bytes(f1["lidar"].get<std::string>());
+  // Points: int16 pairs of centimetres, only when they changed; NaN and out-of-range points are dropped.
+  EXPECT_FALSE(f1.contains("lidar"));
+  const auto pts = unpack_bytes(j["frames"][0]["lidar"].get<std::string>());
   ASSERT_EQ(pts.size(), 4u);
   EXPECT_EQ(static_cast<std::int16_t>(pts[0] | pts[1] << 8), 123);
   EXPECT_EQ(static_cast<std::int16_t>(pts[2] | pts[3] << 8), -250);
