@@ -13,6 +13,7 @@
 #include "bipednav/io/heightmap_image.hpp"
 #include "bipednav/planning/footstep/footstep_planner.hpp"
 #include "bipednav/planning/footstep/terrain_generator.hpp"
+#include "bipednav/runner/footstep_drawing.hpp"
 #include "bipednav/viz/canvas.hpp"
 
 namespace bipednav::app {
@@ -21,38 +22,13 @@ namespace {
 
 using namespace footstep;
 
-// Heights as grey levels (darker = higher, as in the reference's figures) and the feet on top.
+// The heightmap with the planned feet on top (runner/footstep_drawing.hpp).
 void draw_plan(const std::filesystem::path& file, const mapping::Heightmap& map, const FootstepPlanner& planner,
                const FootstepPlan& plan, const Pose2& goal) {
-  const auto& g = map.geometry();
-  float lo = 1e9f, hi = -1e9f;
-  for (float h : map.heights())
-    if (std::isfinite(h)) lo = std::min(lo, h), hi = std::max(hi, h);
-  mapping::Costmap2D shade(g, mapping::kUnknown);
-  for (std::size_t i = 0; i < g.size(); ++i) {
-    const float h = map.heights()[i];
-    if (std::isfinite(h)) shade.data()[i] = hi > lo ? static_cast<std::uint8_t>(1 + 250.0 * (h - lo) / (hi - lo)) : 1;
-  }
-  viz::CanvasParams cp{g.origin_x_m, g.origin_y_m, g.origin_x_m + g.size_x_m(), g.origin_y_m + g.size_y_m(),
-                       std::clamp(800.0 / std::max(g.size_x_m(), g.size_y_m()), 20.0, 400.0)};
-  viz::Canvas c(cp);
-  viz::CostColors grey;
-  grey.inflated = {0.0, 0.0, 0.0, 0.9};
-  grey.unknown = {0.9, 0.7, 0.7, 1.0};
-  c.grid(shade, grey);
-  const auto& b = planner.lattice().actions().body;
-  for (std::size_t i = 0; i < plan.steps.size(); ++i) {
-    const Footstep& f = plan.steps[i];
-    std::vector<Eigen::Vector2d> corners;
-    for (auto [sx, sy] : {std::pair{1, 1}, {-1, 1}, {-1, -1}, {1, -1}})
-      corners.push_back(f.pose.transform({sx * b.foot_length_m / 2, sy * b.foot_width_m / 2}));
-    const bool special = i > 0 && plan.actions[i - 1] != "" &&
-                         (plan.actions[i - 1].rfind("step_", 0) == 0 || plan.actions[i - 1] == "t_step");
-    const viz::Color col = f.foot == Foot::kLeft ? viz::colors::kBlue : viz::colors::kRed;
-    c.polygon(corners, {col.r, col.g, col.b, 0.35}, special ? viz::colors::kOrange : col, special ? 3.0 : 1.5);
-  }
-  c.circle(goal.position(), 0.05, viz::colors::kNone, viz::colors::kGreen, 3.0);
-  c.arrow(goal, 0.15, viz::colors::kGreen, 2.0);
+  viz::Canvas c(runner::canvas_for(map.geometry()));
+  runner::draw_heightmap(c, map);
+  runner::draw_footsteps(c, planner.lattice().actions().body, plan.steps, plan.actions);
+  runner::draw_goal(c, goal);
   c.write_png(file);
 }
 

@@ -15,13 +15,13 @@ namespace bipednav::sim {
 
 // A Nao-sized humanoid that walks by footsteps in the simulator (second reference, section VI).
 struct HumanoidWalkerParams {
-  footstep::BodyModel body;              // the body the whole-body check sweeps (the planner's model)
-  double landing_noise_xy_m = 0.004;     // execution noise of the swing foot's landing (sigma)
-  double landing_noise_yaw_rad = 0.01;   // ... of its heading (sigma)
-  double odometry_noise_xy_m = 0.004;    // kinematic odometry error per step (sigma)
-  double odometry_noise_yaw_rad = 0.01;  // ... per step (sigma)
-  double collision_tolerance_m = 0.005;  // penetrations up to this depth are contact, not collision
-  int samples_per_segment = 8;           // swing trajectory samples per horizontal segment
+  footstep::BodyModel body;               // the body the whole-body check sweeps (the planner's model)
+  double landing_noise_xy_m = 0.004;      // execution noise of the swing foot's landing (sigma)
+  double landing_noise_yaw_rad = 0.01;    // ... of its heading (sigma)
+  double odometry_noise_xy_m = 0.002;     // kinematic odometry error per step (sigma)
+  double odometry_noise_yaw_rad = 0.005;  // ... per step (sigma)
+  double collision_tolerance_m = 0.005;   // penetrations up to this depth are contact, not collision
+  int samples_per_segment = 8;            // swing trajectory samples per horizontal segment
 
   void validate() const;
 };

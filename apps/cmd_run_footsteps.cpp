@@ -1,0 +1,80 @@
+// `bipednav run` with a humanoid robot: footstep navigation instead of velocity commands.
+#include "apps/cmd_run_footsteps.hpp"
+
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+
+#include "bipednav/runner/footstep_runner.hpp"
+
+namespace bipednav::app {
+
+bool runs_by_footsteps(const sim::Scenario& scenario, const std::string& robot_override) {
+  return runner::is_footstep_robot(runner::load_robot(robot_override.empty() ? scenario.robot : robot_override));
+}
+
+namespace {
+
+nlohmann::json footstep_json(const runner::FootstepRunResult& f) {
+  const runner::RunResult& r = f.summary;
+  std::map<std::string, int> actions;
+  for (const auto& s : f.steps) ++actions[s.action];
+  nlohmann::json contacts = nlohmann::json::array();
+  for (const auto& c : f.contacts)
+    contacts.push_back({{"time_s", c.time_s},
+                        {"part", c.part},
+                        {"x_m", c.point.x()},
+                        {"y_m", c.point.y()},
+                        {"depth_m", c.penetration_m}});
+  return {{"scenario", r.scenario},
+          {"robot", r.robot},
+          {"mode", "footsteps"},
+          {"success", r.success},
+          {"outcome", std::string(outcome_name(r.outcome.outcome))},
+          {"outcome_code", code(r.outcome.outcome)},
+          {"message", r.outcome.message},
+          {"collisions", r.collisions},
+          {"contacts", contacts},
+          {"time_s", r.time_s},
+          {"path_length_m", r.path_length_m},
+          {"min_clearance_m", r.min_clearance_m},
+          {"goal_error_m", r.goal_error_m},
+          {"goal_error_rad", r.goal_error_rad},
+          {"localization_error_m", r.localization_error_m},
+          {"replans", r.replans},
+          {"real_time_factor", r.real_time_factor},
+          {"wall_s", r.wall_s},
+          {"steps", f.steps.size()},
+          {"actions", actions},
+          {"max_body_z_m", f.max_body_z_m},
+          {"views", f.views},
+          {"gicp_corrections", f.corrections},
+          {"rough_landings", f.rough_landings}};
+}
+
+}  // namespace
+
+void run_footsteps_command(sim::Scenario scenario, const std::string& robot_override, const std::filesystem::path& out,
+                           std::uint64_t seed, double time_limit_s) {
+  if (!robot_override.empty()) scenario.robot = robot_override;
+  runner::FootstepRunOptions o;
+  if (seed) o.seed = seed;
+  if (time_limit_s > 0) o.time_limit_s = time_limit_s;
+  o.progress = true;
+  const runner::FootstepRunResult f = runner::run_footstep_scenario(scenario, o);
+  std::filesystem::create_directories(out);
+  std::ofstream(out / "run.json") << footstep_json(f).dump(2) << "\n";
+  runner::write_footstep_figure(out / "run.png", f);
+  const runner::RunResult& r = f.summary;
+  std::printf("%s with %s (footsteps): %s (%s: %s)\n", r.scenario.c_str(), r.robot.c_str(),
+              r.success ? "SUCCESS" : "FAILED", std::string(outcome_name(r.outcome.outcome)).c_str(),
+              r.outcome.message.c_str());
+  std::printf("  %zu steps, %.1f s walked, path %.2f m, collisions %d, min clearance %.3f m\n", f.steps.size(),
+              r.time_s, r.path_length_m, r.collisions, r.min_clearance_m);
+  std::printf("  goal error %.3f m / %.3f rad, localization error %.3f m, replans %zu, real-time factor %.1fx\n",
+              r.goal_error_m, r.goal_error_rad, r.localization_error_m, r.replans, r.real_time_factor);
+  std::printf("  wrote %s and %s\n", (out / "run.json").c_str(), (out / "run.png").c_str());
+}
+
+}  // namespace bipednav::app

@@ -1,0 +1,171 @@
+#include "bipednav/navigation/footstep_navigator.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <optional>
+
+namespace bipednav::navigation {
+
+using footstep::Footstep;
+using footstep::FootstepPlan;
+
+void FootstepNavigatorParams::validate() const {
+  planner.validate();
+  fusion.validate();
+  odometry.validate();
+  require(gicp_voxel_m > 0.0, "gicp_voxel_m", "> 0");
+  require(replan_deviation_m > 0.0, "replan_deviation_m", "> 0");
+  require(replan_deviation_rad > 0.0, "replan_deviation_rad", "> 0");
+  require(max_plans >= 1, "max_plans", ">= 1");
+}
+
+footstep::FootstepPlannerParams FootstepNavigatorParams::default_planner() {
+  footstep::FootstepPlannerParams p;
+  p.robot = "nao";
+  p.goal_tolerance_m = 0.05;
+  p.goal_tolerance_rad = 0.2;
+  p.search.initial_epsilon = 3.0;
+  p.search.target_epsilon = 3.0;
+  p.search.time_limit_s = 0.0;
+  p.search.max_expansions = 1'000'000;
+  return p;
+}
+
+localization::CorrectedOdometryParams FootstepNavigatorParams::default_odometry() {
+  localization::CorrectedOdometryParams p;
+  p.gicp.max_correspondence_m = 0.1;
+  p.max_correction_step_m = 0.03;
+  p.max_correction_step_rad = 0.03;
+  return p;
+}
+
+FootstepNavigator::FootstepNavigator(const FootstepNavigatorParams& params, const mapping::GridGeometry& map_geometry)
+    : params_(params),
+      planner_((params.validate(), params.planner)),
+      fusion_(map_geometry, params.fusion),
+      odometry_(params.odometry, SE3::Identity()),  // merged clouds are given in the base frame
+      voxel_(
+          perception::VoxelGridParams{Eigen::Vector3d(params.gicp_voxel_m, params.gicp_voxel_m, params.gicp_voxel_m)}) {
+}
+
+void FootstepNavigator::set_goal(const Pose2& goal_map) {
+  if (!goal_map.is_finite()) throw Error("FootstepNavigator::set_goal: non-finite goal");
+  goal_ = goal_map;
+  has_goal_ = true;
+  plan_ = {};
+  cursor_ = 0;
+}
+
+namespace {
+
+void append_transformed(const PointCloud& in, const SE3& T, std::vector<Eigen::Vector3f>& out) {
+  const Eigen::Matrix3f R = T.rotation().cast<float>();
+  const Eigen::Vector3f t = T.translation().cast<float>();
+  for (const auto& p : in.points)
+    if (p.allFinite()) out.push_back(R * p + t);
+}
+
+}  // namespace
+
+void FootstepNavigator::observe(const std::vector<DepthView>& views, const SE3& T_odom_base) {
+  if (params_.gicp_correction) {
+    PointCloud merged;  // base frame
+    for (const DepthView& v : views) append_transformed(voxel_.filter(v.cloud_sensor), v.T_base_sensor, merged.points);
+    corrections_ += odometry_.update(T_odom_base, voxel_.filter(merged)).corrected;
+  }
+  for (const DepthView& v : views) {
+    const SE3 T_map_sensor = T_map_odom() * T_odom_base * v.T_base_sensor;
+    std::vector<Eigen::Vector3f> points;
+    points.reserve(v.cloud_sensor.size());
+    append_transformed(v.cloud_sensor, T_map_sensor, points);
+    fusion_.update(points, T_map_sensor.translation());
+  }
+  map_changed_ = true;
+}
+
+Footstep FootstepNavigator::to_map(const Footstep& odom) const {
+  const SE3 T = T_map_odom() * se3_from_pose2(odom.pose, odom.z_m);
+  return {pose2_from_se3(T), T.translation().z(), odom.foot};
+}
+
+FootstepPlan FootstepNavigator::remaining() const {
+  FootstepPlan rest;
+  rest.steps.assign(plan_.steps.begin() + static_cast<std::ptrdiff_t>(cursor_), plan_.steps.end());
+  rest.actions.assign(plan_.actions.begin() + static_cast<std::ptrdiff_t>(cursor_), plan_.actions.end());
+  return rest;
+}
+
+bool FootstepNavigator::close_to_plan(const Footstep& stance) const {
+  const Footstep& planned = plan_.steps[cursor_];
+  return planned.foot == stance.foot && distance(planned.pose, stance.pose) <= params_.replan_deviation_m &&
+         std::abs(angle_diff(planned.pose.theta, stance.pose.theta)) <= params_.replan_deviation_rad;
+}
+
+bool FootstepNavigator::needs_replan(const Footstep& stance) {
+  if (plan_.steps.empty() || cursor_ + 1 >= plan_.steps.size() || !close_to_plan(stance)) return true;
+  if (!map_changed_) return false;
+  map_changed_ = false;
+  return !planner_.still_valid(fusion_.map(), remaining());
+}
+
+Result FootstepNavigator::replan(const Footstep& stance) {
+  if (plans_ >= params_.max_plans)
+    return {Outcome::PLAN_FAILURE, "gave up after " + std::to_string(plans_) + " footstep plans"};
+  ++plans_;
+  map_changed_ = false;
+  // Where the plan put the stance foot, when the estimate is within the deviation thresholds of
+  // it: the fallback start when the estimate itself is a dead end (a heel estimated a centimetre
+  // closer to a riser than it is leaves no safe action).
+  std::optional<Footstep> planned;
+  if (!plan_.steps.empty() && cursor_ < plan_.steps.size() && close_to_plan(stance)) planned = plan_.steps[cursor_];
+  plan_ = planner_.plan(fusion_.map(), stance, goal_);
+  if (!plan_.result.ok() && planned && plan_.result.outcome != Outcome::BLOCKED_GOAL) {
+    FootstepPlan retry = planner_.plan(fusion_.map(), *planned, goal_);
+    if (retry.result.ok()) plan_ = std::move(retry);
+  }
+  cursor_ = 0;
+  if (!plan_.result.ok()) {
+    char where[160];
+    std::snprintf(where, sizeof where, " (from the %s foot at %.3f, %.3f, %.3f rad, z %.3f m)", foot_name(stance.foot),
+                  stance.pose.x, stance.pose.y, stance.pose.theta, stance.z_m);
+    plan_.result.message += where;
+  }
+  return plan_.result;
+}
+
+StepDecision FootstepNavigator::next(const Footstep& odom_stance) {
+  StepDecision d;
+  if (!has_goal_) {
+    d.done = true;
+    d.result = {Outcome::INVALID_GOAL, "no goal given"};
+    return d;
+  }
+  const Footstep stance = to_map(odom_stance);
+  const double half = planner_.lattice().actions().body.nominal_separation_m / 2.0;
+  // The body centre as the planner defines it: half a separation from the stance foot.
+  const Pose2 body = stance.pose * Pose2{0.0, stance.foot == footstep::Foot::kLeft ? -half : half, 0.0};
+  const bool finished = !plan_.steps.empty() && cursor_ + 1 >= plan_.steps.size();
+  if (finished && distance(body, goal_) <= params_.planner.goal_tolerance_m + params_.replan_deviation_m &&
+      std::abs(angle_diff(body.theta, goal_.theta)) <= params_.planner.goal_tolerance_rad) {
+    d.done = true;
+    d.result = {Outcome::SUCCESS, "goal reached after " + std::to_string(plans_) + " plans"};
+    return d;
+  }
+  if (needs_replan(stance)) {
+    d.replanned = true;
+    d.result = replan(stance);
+    if (!d.result.ok() || plan_.actions.empty()) {
+      d.done = true;
+      if (d.result.ok()) d.result = {Outcome::SUCCESS, "already at the goal"};
+      return d;
+    }
+  }
+  d.target = plan_.steps[cursor_ + 1];
+  for (const auto& a : planner_.lattice().actions().actions)
+    if (a.name == plan_.actions[cursor_]) d.action = &a;
+  if (!d.action) throw Error("FootstepNavigator: plan names an unknown action '" + plan_.actions[cursor_] + "'");
+  ++cursor_;
+  return d;
+}
+
+}  // namespace bipednav::navigation

@@ -1,0 +1,96 @@
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "bipednav/common/outcome.hpp"
+#include "bipednav/localization/corrected_odometry.hpp"
+#include "bipednav/mapping/heightmap_fusion.hpp"
+#include "bipednav/perception/voxel_grid.hpp"
+#include "bipednav/planning/footstep/footstep_planner.hpp"
+
+namespace bipednav::navigation {
+
+// Footstep navigation among 3D obstacles (second reference): GICP-corrected kinematic odometry,
+// a Kalman heightmap in the odometry frame, ARA* footstep plans, replanning when new map data
+// invalidates the plan or the robot deviates from it.
+struct FootstepNavigatorParams {
+  footstep::FootstepPlannerParams planner = default_planner();
+  mapping::HeightmapFusionParams fusion;
+  localization::CorrectedOdometryParams odometry = default_odometry();
+  bool gicp_correction = true;         // false: plain kinematic odometry
+  double gicp_voxel_m = 0.03;          // clouds are downsampled to this before GICP
+  double replan_deviation_m = 0.03;    // replan when the stance foot is this far from the plan
+  double replan_deviation_rad = 0.15;  // ... or turned this far
+  std::size_t max_plans = 60;          // give up (PLAN_FAILURE) after this many plans
+
+  void validate() const;
+  // Deterministic planning in the loop: the first ARA* solution with epsilon 2 and no time
+  // limit, capped by expansions (a run is reproducible bit for bit).
+  static footstep::FootstepPlannerParams default_planner();
+  // GICP between the views of consecutive stances: the kinematic odometry is good to a few
+  // centimetres per step, so matches are sought within 0.1 m and a correction may move by at
+  // most 3 cm / 0.03 rad per update (wall-only scenes leave directions poorly constrained).
+  static localization::CorrectedOdometryParams default_odometry();
+};
+
+// What to do next: a step (the landing foot in the map frame and its action), or the end of the
+// navigation with its outcome (SUCCESS, NO_PATH_FOUND, BLOCKED_GOAL, PLAN_OUT_OF_MAP, ...).
+// One depth image: the cloud in its sensor frame and where the sensor was on the base.
+struct DepthView {
+  PointCloud cloud_sensor;
+  SE3 T_base_sensor = SE3::Identity();
+};
+
+struct StepDecision {
+  bool done = false;
+  Result result;
+  footstep::Footstep target;
+  const footstep::FootstepAction* action = nullptr;
+  bool replanned = false;
+};
+
+class FootstepNavigator {
+ public:
+  // `map_geometry` is the heightmap's grid in the map (corrected odometry) frame.
+  FootstepNavigator(const FootstepNavigatorParams& params, const mapping::GridGeometry& map_geometry);
+
+  void set_goal(const Pose2& goal_map);
+  // The views taken from one stance (the head turned left and right) with the base's odometry
+  // pose: one merged cloud corrects the odometry against the previous stance's (eq. 1), then
+  // each view updates the Kalman heightmap (eq. 2-3) in the corrected frame.
+  void observe(const std::vector<DepthView>& views, const SE3& T_odom_base);
+  // The next step from the odometry pose of the stance (supporting) foot.
+  StepDecision next(const footstep::Footstep& odom_stance);
+
+  // Odometry frame -> map frame: the x, y, yaw part of the GICP correction (height, roll and
+  // pitch of the kinematic odometry come from the leg kinematics and the IMU, which do not drift;
+  // GICP on scenes of mostly planar walls leaves them poorly constrained).
+  footstep::Footstep to_map(const footstep::Footstep& odom) const;
+  SE3 T_map_odom() const { return se3_from_pose2(pose2_from_se3(odometry_.correction())); }
+  const mapping::Heightmap& map() const { return fusion_.map(); }
+  const footstep::FootstepPlan& plan() const { return plan_; }
+  std::size_t plans() const { return plans_; }
+  std::size_t corrections() const { return corrections_; }
+  const footstep::FootstepPlanner& planner() const { return planner_; }
+
+ private:
+  bool close_to_plan(const footstep::Footstep& stance) const;  // plan_.steps[cursor_] must exist
+  bool needs_replan(const footstep::Footstep& stance);
+  Result replan(const footstep::Footstep& stance);
+  footstep::FootstepPlan remaining() const;
+
+  FootstepNavigatorParams params_;
+  footstep::FootstepPlanner planner_;
+  mapping::HeightmapFusion fusion_;
+  localization::CorrectedOdometry odometry_;
+  perception::VoxelGrid voxel_;
+  Pose2 goal_;
+  bool has_goal_ = false, map_changed_ = false;
+  footstep::FootstepPlan plan_;
+  std::size_t cursor_ = 0;  // plan_.steps[cursor_] is the current stance foot
+  std::size_t plans_ = 0, corrections_ = 0;
+};
+
+}  // namespace bipednav::navigation

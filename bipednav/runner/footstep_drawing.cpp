@@ -1,0 +1,51 @@
+#include "bipednav/runner/footstep_drawing.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "bipednav/mapping/costmap2d.hpp"
+
+namespace bipednav::runner {
+
+viz::CanvasParams canvas_for(const mapping::GridGeometry& g) {
+  return {g.origin_x_m, g.origin_y_m, g.origin_x_m + g.size_x_m(), g.origin_y_m + g.size_y_m(),
+          std::clamp(800.0 / std::max(g.size_x_m(), g.size_y_m()), 20.0, 400.0)};
+}
+
+void draw_heightmap(viz::Canvas& c, const mapping::Heightmap& map) {
+  const auto& g = map.geometry();
+  float lo = 1e9f, hi = -1e9f;
+  for (float h : map.heights())
+    if (std::isfinite(h)) lo = std::min(lo, h), hi = std::max(hi, h);
+  mapping::Costmap2D shade(g, mapping::kUnknown);
+  for (std::size_t i = 0; i < g.size(); ++i) {
+    const float h = map.heights()[i];
+    if (std::isfinite(h)) shade.data()[i] = hi > lo ? static_cast<std::uint8_t>(1 + 250.0 * (h - lo) / (hi - lo)) : 1;
+  }
+  viz::CostColors grey;
+  grey.inflated = {0.0, 0.0, 0.0, 0.9};
+  grey.unknown = {0.9, 0.7, 0.7, 1.0};
+  c.grid(shade, grey);
+}
+
+void draw_footsteps(viz::Canvas& c, const footstep::BodyModel& body, const std::vector<footstep::Footstep>& steps,
+                    const std::vector<std::string>& actions, double fill_alpha, double line_px) {
+  for (std::size_t i = 0; i < steps.size(); ++i) {
+    const footstep::Footstep& f = steps[i];
+    std::vector<Eigen::Vector2d> corners;
+    for (auto [sx, sy] : {std::pair{1, 1}, {-1, 1}, {-1, -1}, {1, -1}})
+      corners.push_back(f.pose.transform({sx * body.foot_length_m / 2, sy * body.foot_width_m / 2}));
+    const std::string* action = i > 0 && i - 1 < actions.size() ? &actions[i - 1] : nullptr;
+    const bool special = action && (action->rfind("step_", 0) == 0 || *action == "t_step");
+    const viz::Color col = f.foot == footstep::Foot::kLeft ? viz::colors::kBlue : viz::colors::kRed;
+    c.polygon(corners, {col.r, col.g, col.b, fill_alpha}, special ? viz::colors::kOrange : col,
+              special ? 2.0 * line_px : line_px);
+  }
+}
+
+void draw_goal(viz::Canvas& c, const Pose2& goal) {
+  c.circle(goal.position(), 0.05, viz::colors::kNone, viz::colors::kGreen, 3.0);
+  c.arrow(goal, 0.15, viz::colors::kGreen, 2.0);
+}
+
+}  // namespace bipednav::runner

@@ -1,0 +1,67 @@
+// End-to-end: the humanoid footstep loop (head depth views, GICP-corrected odometry, Kalman
+// heightmap, ARA* footsteps, the walker with its whole-body check) on the three Nao scenarios.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "bipednav/runner/footstep_runner.hpp"
+#include "test_data.hpp"
+
+using namespace bipednav;
+
+namespace {
+
+runner::FootstepRunResult run(const std::string& name) {
+  const auto s = sim::load_scenario(test::source_dir() / "scenarios" / (name + ".yaml"));
+  return runner::run_footstep_scenario(s, {});
+}
+
+int count(const runner::FootstepRunResult& r, const std::string& action) {
+  int n = 0;
+  for (const auto& s : r.steps) n += s.action == action;
+  return n;
+}
+
+void expect_reached(const runner::FootstepRunResult& f) {
+  const runner::RunResult& r = f.summary;
+  EXPECT_TRUE(r.success) << r.scenario << ": " << outcome_name(r.outcome.outcome) << " " << r.outcome.message
+                         << " after " << f.steps.size() << " steps, goal error " << r.goal_error_m << " m";
+  EXPECT_EQ(r.collisions, 0) << (f.contacts.empty() ? "" : f.contacts.front().part);
+  EXPECT_LE(r.goal_error_m, 0.125);
+}
+
+}  // namespace
+
+TEST(FootstepRun, BarCourseIsCrossedWithAStepOver) {
+  const auto r = run("nao_bar_course");
+  expect_reached(r);
+  EXPECT_GE(count(r, "step_over"), 1);
+  // The step-over is the step that crosses the bar (x = 1.3 m).
+  bool crossed = false;
+  for (std::size_t i = 1; i < r.steps.size(); ++i)
+    crossed |= r.steps[i].action == "step_over" && r.steps[i].foot.pose.x > 1.32;
+  EXPECT_TRUE(crossed);
+}
+
+TEST(FootstepRun, StairsAreClimbedAndDescended) {
+  const auto r = run("nao_stairs");
+  expect_reached(r);
+  EXPECT_GE(count(r, "step_onto"), 2);
+  EXPECT_GE(count(r, "step_down"), 2);
+  EXPECT_NEAR(r.max_body_z_m, 0.10, 0.005);  // the platform's height
+}
+
+TEST(FootstepRun, NarrowPassageIsWalkedSideways) {
+  const auto r = run("nao_narrow_passage");
+  expect_reached(r);
+  // While the body centre is inside the 0.3 m deep gap (x in [1.25, 1.55]) the robot is turned
+  // well away from the passage direction (x): facing forwards its arms (0.29 m) do not fit.
+  int inside = 0;
+  for (const auto& s : r.steps) {
+    if (s.body.x < 1.28 || s.body.x > 1.52) continue;
+    ++inside;
+    EXPECT_NEAR(std::abs(s.body.theta), std::numbers::pi / 2, 0.45) << "at x = " << s.body.x;
+  }
+  EXPECT_GE(inside, 2);
+}
