@@ -65,6 +65,17 @@ GrayImage read_pgm(const std::filesystem::path& path) {
     throw FileError(f, "width/height", "expected a size between 1 and 4e8 pixels");
   if (maxval < 1 || maxval > 65535) throw FileError(f, "maxval", "expected 1..65535");
   const std::size_t n = std::size_t(img.width) * img.height;
+  // The header alone must not size the buffers (a 30-byte file asked for 800 MB; found by
+  // fuzz/fuzz_map_server): P5 needs 1 or 2 bytes a pixel, P2 at least 2 characters.
+  const std::streamoff start = in.tellg();
+  in.seekg(0, std::ios::end);
+  const std::streamoff left = in.tellg() - start;
+  in.seekg(start);
+  const std::size_t least = n * (magic == "P2" || maxval > 255 ? 2 : 1);
+  if (start >= 0 && left >= 0 && static_cast<std::size_t>(left) + (magic == "P2" ? 1 : 0) < least)
+    throw FileError(f, "pixels",
+                    "expected " + std::to_string(least) + " bytes of pixel data, got " + std::to_string(left) +
+                        " (truncated file?)");
   img.pixels.resize(n);
   const auto to8 = [&](unsigned v) {
     return static_cast<std::uint8_t>(std::lround(255.0 * std::min<unsigned>(v, maxval) / maxval));

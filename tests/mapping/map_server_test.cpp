@@ -141,3 +141,25 @@ TEST(MapServer, MalformedFilesNameFileAndField) {
   msg = bad("s.yaml", "image: [a\n");
   EXPECT_NE(msg.find("s.yaml"), std::string::npos);
 }
+
+// Found by fuzz/fuzz_map_server: a header of 20000 x 20000 pixels in a 30-byte file used to
+// allocate the pixel buffers (800 MB) before finding the data missing.
+TEST(MapServer, PgmSizeIsCheckedAgainstTheFileBeforeAllocating) {
+  const fs::path dir = temp_dir("huge");
+  const auto error = [&](const std::string& pgm) {
+    write_text(dir / "h.pgm", pgm);
+    try {
+      bipednav::io::read_pgm(dir / "h.pgm");
+    } catch (const bipednav::FileError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(error("P5\n20000 20000\n255\n").find("h.pgm:pixels: expected 400000000 bytes of pixel data, got 0"),
+            std::string::npos);
+  EXPECT_NE(error("P2\n20000 20000\n255\n0 1\n").find("h.pgm:pixels: expected 800000000 bytes of pixel data, got 4"),
+            std::string::npos);
+  EXPECT_NE(error("P5\n2 1\n65535\n\x01\x02\x03").find("expected 4 bytes of pixel data, got 3"), std::string::npos);
+  write_text(dir / "ok.pgm", "P2\n3 1\n255\n0 255 0");  // 2 n - 1 characters is enough
+  EXPECT_EQ(bipednav::io::read_pgm(dir / "ok.pgm").pixels, (std::vector<std::uint8_t>{0, 255, 0}));
+}
