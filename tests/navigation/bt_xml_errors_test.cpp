@@ -111,6 +111,17 @@ TEST(BtXmlErrors, SubTreeIdsAndRecursion) {
       ":4", "recursive SubTree 'A' (A -> B -> A)");
 }
 
+// Found by fuzz/fuzz_bt_xml: 40 trees each using the next one twice expanded to 2^40 nodes.
+TEST(BtXmlErrors, ExponentialSubTreeExpansionIsRejected) {
+  std::ostringstream xml;
+  xml << "<root BTCPP_format=\"4\" main_tree_to_execute=\"T0\">\n";
+  for (int i = 0; i < 39; ++i)
+    xml << "<BehaviorTree ID=\"T" << i << "\"><Sequence><SubTree ID=\"T" << i + 1 << "\"/><SubTree ID=\"T" << i + 1
+        << "\"/></Sequence></BehaviorTree>\n";
+  xml << "<BehaviorTree ID=\"T39\"><AlwaysSuccess/></BehaviorTree>\n</root>\n";
+  expect_error(xml.str(), "<xml string>:", "tree expands to more than 100000 nodes");
+}
+
 TEST(BtXmlErrors, FilesAreNamedInMessages) {
   const auto dir = std::filesystem::temp_directory_path() / "bipednav_bt_xml_errors";
   std::filesystem::create_directories(dir);
