@@ -103,6 +103,8 @@ struct Loop {
       const sim::StepExecution e =
           walker.step({stance.pose.inverse() * d.target.pose, d.action->duration_s, d.action->peak_m, d.action->name});
       record(e, *d.action, d.replanned);
+      for (const sim::BodyContact& c : e.contacts)  // a sole on an edge: the robot falls
+        if (c.part == "landing_foot") return {Outcome::COLLISION, "the foot came down on an edge (fall)"};
       bar.update(static_cast<std::size_t>(walker.time_s()));
     }
     return {Outcome::CTRL_PAT_EXCEEDED, "time limit reached before the goal"};

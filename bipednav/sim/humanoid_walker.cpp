@@ -16,6 +16,9 @@ void HumanoidWalkerParams::validate() const {
   require(landing_noise_xy_m >= 0.0 && landing_noise_yaw_rad >= 0.0, "landing_noise_xy_m/yaw_rad", ">= 0");
   require(odometry_noise_xy_m >= 0.0 && odometry_noise_yaw_rad >= 0.0, "odometry_noise_xy_m/yaw_rad", ">= 0");
   require(collision_tolerance_m >= 0.0, "collision_tolerance_m", ">= 0");
+  require(min_support_ratio >= 0.0 && min_support_ratio <= 1.0, "min_support_ratio", "in [0, 1]");
+  require(support_band_m >= 0.0, "support_band_m", ">= 0");
+  require(sole_edge_tolerance_m >= 0.0, "sole_edge_tolerance_m", ">= 0");
   require(samples_per_segment >= 1, "samples_per_segment", ">= 1");
 }
 
@@ -59,13 +62,39 @@ SE3 HumanoidWalker::T_odom_base() const {
   return se3_from_pose2(body_between(odom_[0].pose, odom_[1].pose), odom_stance().z_m);
 }
 
-double HumanoidWalker::sole_height(const Pose2& sole, double* spread) const {
-  const auto h = mapping::footprint_heights(truth_, sole, params_.body.foot_length_m, params_.body.foot_width_m);
+double support_ratio(const mapping::Heightmap& map, const Pose2& sole, double length_m, double width_m, double top_m,
+                     double band_m) {
+  const mapping::GridGeometry& g = map.geometry();
+  const double c = std::cos(sole.theta), s = std::sin(sole.theta), hl = length_m / 2.0, hw = width_m / 2.0;
+  const double r = std::hypot(hl, hw);
+  const auto lo = g.world_to_cell_unbounded(sole.x - r, sole.y - r),
+             hi = g.world_to_cell_unbounded(sole.x + r, sole.y + r);
+  if (!lo || !hi) return 0.0;
+  int cells = 0, supported = 0;
+  for (int y = std::max(lo->y, 0); y <= std::min(hi->y, g.height - 1); ++y) {
+    for (int x = std::max(lo->x, 0); x <= std::min(hi->x, g.width - 1); ++x) {
+      const Eigen::Vector2d d = g.cell_center(x, y) - sole.position();
+      if (std::abs(c * d.x() + s * d.y()) > hl || std::abs(-s * d.x() + c * d.y()) > hw || !map.known(x, y)) continue;
+      ++cells;
+      supported += map.height(x, y) >= top_m - band_m;
+    }
+  }
+  return cells ? static_cast<double>(supported) / cells : 1.0;
+}
+
+double HumanoidWalker::sole_height(const Pose2& sole, double* spread, double* support) const {
+  // The sole's rim (sole_edge_tolerance_m) may overhang an edge: it touches, it does not rest.
+  const double shrink = 2.0 * params_.sole_edge_tolerance_m;
+  const double l = std::max(params_.body.foot_length_m - shrink, 0.0),
+               w = std::max(params_.body.foot_width_m - shrink, 0.0);
+  const auto h = mapping::footprint_heights(truth_, sole, l, w);
   if (h.known_cells == 0) {
     *spread = 0.0;
+    if (support) *support = 1.0;
     return 0.0;
   }
   *spread = h.max_m - h.min_m;
+  if (support) *support = support_ratio(truth_, sole, l, w, h.max_m, params_.support_band_m);
   return h.max_m;
 }
 
@@ -103,7 +132,7 @@ StepExecution HumanoidWalker::step(const StepCommand& cmd) {
   const Pose2 target = st.pose * cmd.landing_in_stance * noise;
   StepExecution out;
   out.min_clearance_m = std::numeric_limits<double>::infinity();
-  const double land_z = sole_height(target, &out.landing_spread_m);
+  const double land_z = sole_height(target, &out.landing_spread_m, &out.support_ratio);
   const double side = stance_ == Foot::kLeft ? -1.0 : 1.0;
   const Pose2 via = st.pose * Pose2{0.0, side * params_.body.nominal_separation_m, 0.0};
   // The trailing foot rises and moves to the via point beside the stance foot (the upward phase
@@ -112,7 +141,9 @@ StepExecution HumanoidWalker::step(const StepCommand& cmd) {
   const double half = cmd.duration_s / 2.0;
   // The body is checked above the sole that supported it in the planner's model of each phase.
   sweep({sw.pose, via, sw.z_m + std::max(last_peak_m_, cmd.peak_m), sw.z_m}, st.pose, time_s_, half, out);
-  sweep({via, target, std::max(st.z_m, land_z) + cmd.peak_m, st.z_m}, st.pose, time_s_ + half, half, out);
+  sweep({via, target, st.z_m + cmd.peak_m, st.z_m}, st.pose, time_s_ + half, half, out);
+  if (out.support_ratio < params_.min_support_ratio)  // the sole came down on an edge: the robot falls
+    out.contacts.push_back({time_s_ + cmd.duration_s, "landing_foot", target.position(), out.landing_spread_m});
 
   // Kinematic odometry: the executed step relative to the stance foot, measured with noise.
   const Pose2 rel = st.pose.inverse() * target;

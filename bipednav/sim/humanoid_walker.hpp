@@ -16,11 +16,14 @@ namespace bipednav::sim {
 // A Nao-sized humanoid that walks by footsteps in the simulator (second reference, section VI).
 struct HumanoidWalkerParams {
   footstep::BodyModel body;               // the body the whole-body check sweeps (the planner's model)
-  double landing_noise_xy_m = 0.004;      // execution noise of the swing foot's landing (sigma)
+  double landing_noise_xy_m = 0.003;      // execution noise of the swing foot's landing (sigma)
   double landing_noise_yaw_rad = 0.01;    // ... of its heading (sigma)
   double odometry_noise_xy_m = 0.002;     // kinematic odometry error per step (sigma)
   double odometry_noise_yaw_rad = 0.005;  // ... per step (sigma)
   double collision_tolerance_m = 0.005;   // penetrations up to this depth are contact, not collision
+  double min_support_ratio = 0.7;         // a landed sole less supported than this falls (a collision)
+  double support_band_m = 0.015;          // cells this close below the sole's top support it
+  double sole_edge_tolerance_m = 0.01;    // a sole overhanging an edge by less than this stands
   int samples_per_segment = 8;            // swing trajectory samples per horizontal segment
 
   void validate() const;
@@ -28,7 +31,7 @@ struct HumanoidWalkerParams {
 
 // A step command relative to the stance foot: where the swing foot should land, in the stance
 // sole's frame (the walking controller's interface), how long the step takes and how high the
-// swing foot is lifted above the higher of the stance and landing soles.
+// swing foot is lifted above the stance sole (the planner's swept volume, inverse_heightmap.cpp).
 struct StepCommand {
   Pose2 landing_in_stance;
   double duration_s = 0.5;
@@ -39,7 +42,7 @@ struct StepCommand {
 // A body part meeting the world during a step (ground truth).
 struct BodyContact {
   double time_s = 0.0;
-  std::string part;  // swing_foot, torso, left_arm, right_arm
+  std::string part;  // swing_foot, landing_foot, torso, left_arm, right_arm
   Eigen::Vector2d point{0, 0};
   double penetration_m = 0.0;
 };
@@ -49,6 +52,7 @@ struct StepExecution {
   std::vector<BodyContact> contacts;  // deeper than collision_tolerance_m
   double min_clearance_m = 0.0;       // lowest gap between a swinging/moving part and the terrain
   double landing_spread_m = 0.0;      // max - min terrain height under the landed sole
+  double support_ratio = 1.0;         // fraction of the landed sole resting on its top surface
 };
 
 // An oriented box footprint with its bottom height, for the ground-truth body check.
@@ -94,7 +98,7 @@ class HumanoidWalker {
   const HumanoidWalkerParams& params() const { return params_; }
 
  private:
-  double sole_height(const Pose2& sole, double* spread) const;
+  double sole_height(const Pose2& sole, double* spread, double* support = nullptr) const;
   struct Segment {
     Pose2 from, to;
     double sole_z_m, support_z_m;

@@ -84,6 +84,21 @@ TEST(HumanoidWalker, ArmsHitANarrowGapFacingForwards) {
   EXPECT_TRUE(side.step({{0.0, -0.16, 0.0}, 0.5, 0.04, "side_out"}).contacts.empty());
 }
 
+TEST(HumanoidWalker, SoleHalfOnAnEdgeFallsButASmallOverhangStands) {
+  // A 10 cm platform starting at x = 0.30: a sole centred at x = 0.30 rests half on it (a fall);
+  // centred at x = 0.375 only its heel overhangs by 0.5 cm, within the rim tolerance.
+  const auto map = terrain_with_box(0.65, 0.0, 0.7, 1.0, 0.1);
+  HumanoidWalker half(noiseless(), map, {0.0, 0.0, 0.0}, 1);
+  const StepExecution fall = half.step({{0.30, -0.10, 0.0}, 5.0, 0.12, "step_onto"});
+  ASSERT_FALSE(fall.contacts.empty());
+  EXPECT_EQ(fall.contacts.back().part, "landing_foot");
+  EXPECT_NEAR(fall.support_ratio, 0.5, 0.1);
+  HumanoidWalker edge(noiseless(), map, {0.2, 0.0, 0.0}, 1);
+  const StepExecution ok = edge.step({{0.175, -0.10, 0.0}, 5.0, 0.12, "step_onto"});
+  EXPECT_TRUE(ok.contacts.empty());
+  EXPECT_NEAR(ok.landed.z_m, 0.1, 1e-4);
+}
+
 TEST(HumanoidWalker, RejectsBadInput) {
   const auto flat = terrain_with_box(0, 0, 0, 0, 0);
   HumanoidWalkerParams p;
