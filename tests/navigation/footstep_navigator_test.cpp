@@ -1,0 +1,82 @@
+#include "bipednav/navigation/footstep_navigator.hpp"
+
+#include <gtest/gtest.h>
+
+namespace bipednav::navigation {
+namespace {
+
+mapping::GridGeometry grid() { return {200, 100, 0.01, -0.5, -0.5}; }
+
+FootstepNavigatorParams params() {
+  FootstepNavigatorParams p;
+  p.gicp_correction = false;
+  return p;
+}
+
+// Executes every decision perfectly (the landed foot is the target) until the navigator stops.
+std::pair<StepDecision, int> walk(FootstepNavigator& nav, footstep::Footstep stance, int max_steps = 200) {
+  for (int i = 0; i < max_steps; ++i) {
+    const StepDecision d = nav.next(stance);
+    if (d.done) return {d, i};
+    EXPECT_NE(d.action, nullptr);
+    EXPECT_NE(d.target.foot, stance.foot);
+    stance = d.target;
+  }
+  return {StepDecision{}, max_steps};
+}
+
+// A horizontal grid of points at height z over [x0, x1] x [y0, y1] (a flat top seen from above).
+DepthView slab(double x0, double x1, double y0, double y1, double z) {
+  DepthView v;
+  v.T_base_sensor = make_se3(0, 0, 1.0, 0, 0, 0);
+  for (double x = x0; x <= x1; x += 0.005)
+    for (double y = y0; y <= y1; y += 0.005)
+      v.cloud_sensor.points.emplace_back(static_cast<float>(x), static_cast<float>(y), static_cast<float>(z - 1.0));
+  return v;
+}
+
+TEST(FootstepNavigator, WithoutAGoalThereIsNothingToDo) {
+  FootstepNavigator nav(params(), grid());
+  const StepDecision d = nav.next({{0, 0.05, 0}, 0.0, footstep::Foot::kLeft});
+  EXPECT_TRUE(d.done);
+  EXPECT_EQ(d.result.outcome, Outcome::INVALID_GOAL);
+}
+
+TEST(FootstepNavigator, UnknownGroundIsFreeAndTheGoalIsReached) {
+  FootstepNavigator nav(params(), grid());
+  nav.set_goal({0.6, 0.0, 0.0});
+  const auto [d, steps] = walk(nav, nav.planner().stance_for_body({0, 0, 0}, footstep::Foot::kLeft));
+  EXPECT_EQ(d.result.outcome, Outcome::SUCCESS) << d.result.message;
+  EXPECT_GE(steps, 6);  // 0.6 m at <= 0.08 m per step and foot
+  EXPECT_EQ(nav.plans(), 1u);
+}
+
+TEST(FootstepNavigator, AnObservedWallForcesAReplanAroundIt) {
+  FootstepNavigator nav(params(), grid());
+  nav.set_goal({1.0, 0.0, 0.0});
+  footstep::Footstep stance = nav.planner().stance_for_body({0, 0, 0}, footstep::Foot::kLeft);
+  StepDecision d = nav.next(stance);
+  ASSERT_FALSE(d.done);
+  stance = d.target;
+  // A 30 cm high, 10 cm deep wall across the straight line, open above y = 0.25.
+  nav.observe({slab(0.5, 0.6, -0.5, 0.2, 0.3)}, SE3::Identity());
+  d = nav.next(stance);
+  EXPECT_TRUE(d.replanned);
+  bool above = false;
+  for (const auto& f : nav.plan().steps) above |= f.pose.x > 0.45 && f.pose.x < 0.65 && f.pose.y > 0.25;
+  EXPECT_TRUE(above);
+  const auto [end, steps] = walk(nav, d.target);
+  EXPECT_EQ(end.result.outcome, Outcome::SUCCESS) << end.result.message;
+}
+
+TEST(FootstepNavigator, AGoalOnAnObstacleIsBlocked) {
+  FootstepNavigator nav(params(), grid());
+  nav.observe({slab(0.9, 1.1, -0.2, 0.2, 0.3), slab(0.85, 0.9, -0.2, 0.2, 0.0)}, SE3::Identity());
+  nav.set_goal({0.9, 0.0, 0.0});  // half on the block, half on the floor: no flat stance
+  const StepDecision d = nav.next(nav.planner().stance_for_body({0, 0, 0}, footstep::Foot::kLeft));
+  EXPECT_TRUE(d.done);
+  EXPECT_EQ(d.result.outcome, Outcome::BLOCKED_GOAL) << d.result.message;
+}
+
+}  // namespace
+}  // namespace bipednav::navigation
