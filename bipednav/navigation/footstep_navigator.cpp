@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <optional>
 
+#include "bipednav/navigation/obstacle_margin.hpp"
+
 namespace bipednav::navigation {
 
 using footstep::Footstep;
@@ -17,17 +19,19 @@ void FootstepNavigatorParams::validate() const {
   require(replan_deviation_m > 0.0, "replan_deviation_m", "> 0");
   require(replan_deviation_rad > 0.0, "replan_deviation_rad", "> 0");
   require(max_plans >= 1, "max_plans", ">= 1");
+  require(obstacle_margin_m >= 0.0, "obstacle_margin_m", ">= 0");
+  require(obstacle_step_m > 0.0, "obstacle_step_m", "> 0");
 }
 
 footstep::FootstepPlannerParams FootstepNavigatorParams::default_planner() {
   footstep::FootstepPlannerParams p;
   p.robot = "nao";
   p.goal_tolerance_m = 0.05;
-  p.goal_tolerance_rad = 0.2;
+  p.goal_tolerance_rad = 0.15;
   p.search.initial_epsilon = 3.0;
   p.search.target_epsilon = 3.0;
   p.search.time_limit_s = 0.0;
-  p.search.max_expansions = 1'000'000;
+  p.search.max_expansions = 2'000'000;
   return p;
 }
 
@@ -81,6 +85,15 @@ void FootstepNavigator::observe(const std::vector<DepthView>& views, const SE3& 
     fusion_.update(points, T_map_sensor.translation());
   }
   map_changed_ = true;
+  planning_map_stale_ = true;
+}
+
+const mapping::Heightmap& FootstepNavigator::planning_map() {
+  if (planning_map_stale_) {
+    planning_map_ = inflate_obstacles(fusion_.map(), params_.obstacle_margin_m, params_.obstacle_step_m);
+    planning_map_stale_ = false;
+  }
+  return planning_map_;
 }
 
 Footstep FootstepNavigator::to_map(const Footstep& odom) const {
@@ -105,7 +118,7 @@ bool FootstepNavigator::needs_replan(const Footstep& stance) {
   if (plan_.steps.empty() || cursor_ + 1 >= plan_.steps.size() || !close_to_plan(stance)) return true;
   if (!map_changed_) return false;
   map_changed_ = false;
-  return !planner_.still_valid(fusion_.map(), remaining());
+  return !planner_.still_valid(planning_map(), remaining());
 }
 
 Result FootstepNavigator::replan(const Footstep& stance) {
@@ -118,9 +131,9 @@ Result FootstepNavigator::replan(const Footstep& stance) {
   // closer to a riser than it is leaves no safe action).
   std::optional<Footstep> planned;
   if (!plan_.steps.empty() && cursor_ < plan_.steps.size() && close_to_plan(stance)) planned = plan_.steps[cursor_];
-  plan_ = planner_.plan(fusion_.map(), stance, goal_);
+  plan_ = planner_.plan(planning_map(), stance, goal_);
   if (!plan_.result.ok() && planned && plan_.result.outcome != Outcome::BLOCKED_GOAL) {
-    FootstepPlan retry = planner_.plan(fusion_.map(), *planned, goal_);
+    FootstepPlan retry = planner_.plan(planning_map(), *planned, goal_);
     if (retry.result.ok()) plan_ = std::move(retry);
   }
   cursor_ = 0;

@@ -23,6 +23,8 @@ struct FootstepNavigatorParams {
   double gicp_voxel_m = 0.03;          // clouds are downsampled to this before GICP
   double replan_deviation_m = 0.03;    // replan when the stance foot is this far from the plan
   double replan_deviation_rad = 0.15;  // ... or turned this far
+  double obstacle_margin_m = 0.03;     // walls and blocks grow by this for the planner (obstacle_margin.hpp)
+  double obstacle_step_m = 0.08;       // ... where the terrain rises by more than this (Nao steps onto 7 cm)
   std::size_t max_plans = 60;          // give up (PLAN_FAILURE) after this many plans
 
   void validate() const;
@@ -80,6 +82,7 @@ class FootstepNavigator {
   bool needs_replan(const footstep::Footstep& stance);
   Result replan(const footstep::Footstep& stance);
   footstep::FootstepPlan remaining() const;
+  const mapping::Heightmap& planning_map();  // the heightmap with the obstacle margin
 
   FootstepNavigatorParams params_;
   footstep::FootstepPlanner planner_;
@@ -87,7 +90,8 @@ class FootstepNavigator {
   localization::CorrectedOdometry odometry_;
   perception::VoxelGrid voxel_;
   Pose2 goal_;
-  bool has_goal_ = false, map_changed_ = false;
+  bool has_goal_ = false, map_changed_ = false, planning_map_stale_ = true;
+  mapping::Heightmap planning_map_;
   footstep::FootstepPlan plan_;
   std::size_t cursor_ = 0;  // plan_.steps[cursor_] is the current stance foot
   std::size_t plans_ = 0, corrections_ = 0;

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "bipednav/navigation/obstacle_margin.hpp"
+
 namespace bipednav::navigation {
 namespace {
 
@@ -76,6 +78,26 @@ TEST(FootstepNavigator, AGoalOnAnObstacleIsBlocked) {
   const StepDecision d = nav.next(nav.planner().stance_for_body({0, 0, 0}, footstep::Foot::kLeft));
   EXPECT_TRUE(d.done);
   EXPECT_EQ(d.result.outcome, Outcome::BLOCKED_GOAL) << d.result.message;
+}
+
+}  // namespace
+}  // namespace bipednav::navigation
+
+namespace bipednav::navigation {
+namespace {
+
+TEST(InflateObstacles, WallsGrowBarsDoNot) {
+  mapping::Heightmap map({20, 5, 0.01, 0.0, 0.0});
+  for (int y = 0; y < 5; ++y)
+    for (int x = 0; x < 20; ++x) map.set(x, y, x == 5 ? 0.05f : (x >= 14 ? 0.5f : 0.0f), 1e-4f);
+  map.clear(10, 2);  // unknown cells next to a wall are inflated too
+  const mapping::Heightmap out = inflate_obstacles(map, 0.03, 0.08);
+  EXPECT_FLOAT_EQ(out.height(4, 2), 0.0f);  // the 5 cm bar is not an obstacle edge
+  EXPECT_FLOAT_EQ(out.height(5, 2), 0.05f);
+  EXPECT_FALSE(out.known(10, 2));            // 4 cells from the wall: stays unknown
+  EXPECT_FLOAT_EQ(out.height(11, 2), 0.5f);  // within 3 cm of the wall's face
+  EXPECT_FLOAT_EQ(out.height(10, 1), 0.0f);
+  EXPECT_THROW(inflate_obstacles(map, -0.01, 0.08), ParamError);
 }
 
 }  // namespace
