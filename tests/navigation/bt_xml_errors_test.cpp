@@ -119,7 +119,7 @@ TEST(BtXmlErrors, ExponentialSubTreeExpansionIsRejected) {
     xml << "<BehaviorTree ID=\"T" << i << "\"><Sequence><SubTree ID=\"T" << i + 1 << "\"/><SubTree ID=\"T" << i + 1
         << "\"/></Sequence></BehaviorTree>\n";
   xml << "<BehaviorTree ID=\"T39\"><AlwaysSuccess/></BehaviorTree>\n</root>\n";
-  expect_error(xml.str(), "<xml string>:", "tree expands to more than 100000 nodes");
+  expect_error(xml.str(), "<xml string>:", "tree expands to more than 10000 nodes");
 }
 
 TEST(BtXmlErrors, FilesAreNamedInMessages) {
