@@ -80,11 +80,11 @@ nlohmann::json to_json(const runner::RunResult& r) {
   j["real_time_factor"] = r.real_time_factor;
   j["wall_s"] = r.wall_s;
   j["goals_given"] = r.goals_given;
-  return j;
   const sim::FaultCounters& f = r.faults;
   j["faults"] = {{"sweeps_dropped", f.sweeps_dropped},       {"depth_points_nan", f.depth_points_nan},
                  {"odometry_jumps", f.odometry_jumps},       {"odometry_slipped", f.odometry_slipped},
                  {"messages_delayed", f.messages_delayed},   {"messages_reordered", f.messages_reordered}};
+  return j;
 }
 
 void print_summary(const runner::RunResult& r) {
@@ -103,8 +103,8 @@ struct RunArgs {
   std::string out = "out";
   std::string world, start = "0,0,0", goal, bag, replay;
   runner::RunOptions options;
-  std::uint64_t seed = 0;
   std::vector<std::string> faults;  // type:start_s:duration_s[:value]
+  std::uint64_t seed = 0;
   double time_limit_s = 0.0;
 };
 
@@ -117,10 +117,10 @@ void run_command(const RunArgs& a) {
   if (a.seed) o.seed = a.seed;
   if (a.time_limit_s > 0) o.time_limit_s = a.time_limit_s;
   o.progress = true;
+  for (const auto& f : a.faults) o.faults.push_back(sim::parse_fault(f));
 #ifdef BIPEDNAV_WITH_ROSBAG
   std::shared_ptr<ros1::BagRecorder> bag;
   if (!a.bag.empty()) {
-  for (const auto& f : a.faults) o.faults.push_back(sim::parse_fault(f));
     bag = std::make_shared<ros1::BagRecorder>(a.bag, runner::load_robot(o.robot.empty() ? s.robot : o.robot));
     o.on_step = [bag](const sim::Simulation& sim, const SensorFrame& f, const navigation::Navigator& n,
                       const Twist& c) { bag->record(sim, f, n, c); };
@@ -204,12 +204,12 @@ void add_run_commands(CLI::App& app, CLI::App& bench) {
   run->add_option("--world", args->world, "A Gazebo .world file instead of a scenario");
   run->add_option("--start", args->start, "With --world: start pose x,y,yaw")->capture_default_str();
   run->add_option("--goal", args->goal, "With --world: goal pose x,y,yaw");
-  run->add_option("--bag", args->bag, "Record the run as a rosbag (ROS build only)");
-  run->add_option("--replay", args->replay, "Write a self-contained HTML replay of the run to this file");
-  run->callback([args] {
   run->add_option("--fault", args->faults,
                   "Inject a fault: type:start_s:duration_s[:value] (lidar_dropout, depth_nan_burst, localization_jump "
                   "(value dx,dy,dyaw), odometry_slip, stale_timestamps, out_of_order_timestamps, goal_flood); repeatable");
+  run->add_option("--bag", args->bag, "Record the run as a rosbag (ROS build only)");
+  run->add_option("--replay", args->replay, "Write a self-contained HTML replay of the run to this file");
+  run->callback([args] {
     if (!args->world.empty() && args->goal.empty()) throw Error("--world needs --goal x,y,yaw");
     run_command(*args);
   });
