@@ -100,6 +100,7 @@ struct OdometryOptions {
   double duration_s = 0.0;  // 0: until the route is done (or the scenario's time limit)
   double speed_mps = 0.0;   // 0: the robot's maximum
   bool no_prior = false;
+  bool planar = false;  // LOAM keeps the LiDAR's height, roll and pitch (LoamParams::planar_motion)
   bool json_out = false;
 };
 
@@ -171,6 +172,7 @@ void run_odometry(const OdometryOptions& o) {
     const SE3 T_world_base = se3_from_pose2(sim.true_pose());
     if (!loam) {
       localization::LoamParams lp;
+      lp.planar_motion = o.planar;
       lp.T_world_lidar_initial = T_world_base * T_base_lidar;
       loam.emplace(lp);
       odom_anchor = odom;
@@ -201,6 +203,7 @@ void run_odometry(const OdometryOptions& o) {
                   {"sweeps", truth.size()},
                   {"route_completed", next >= route.size()},
                   {"motion_prior", !o.no_prior},
+                  {"planar_motion", o.planar},
                   {"unhealthy_sweeps", unhealthy},
                   {"degenerate_sweeps", degenerate},
                   {"loam", drift_json(dl)},
@@ -364,6 +367,7 @@ void add_localization_commands(CLI::App& app, CLI::App& bench) {
   d->add_option("--speed", odo->speed_mps, "Forward speed in m/s (default: the robot's maximum)");
   d->add_option("--config-dir", odo->config_dir, "Directory of robot profiles (default: <scenario>/../config)");
   d->add_flag("--no-prior", odo->no_prior, "Do not give LOAM the odometry as a motion prior");
+  d->add_flag("--planar", odo->planar, "LOAM keeps the LiDAR's height, roll and pitch (flat floor)");
   d->add_flag("--json", odo->json_out, "Print one JSON object");
   d->callback([odo] { run_odometry(*odo); });
 

@@ -15,6 +15,16 @@ void append_reason(LoamOutput& out, const std::string& r) { out.reason += (out.r
 
 }  // namespace
 
+SE3 project_to_plane(const SE3& T, const SE3& anchor) {
+  const double anchor_yaw = matrix_to_rpy(anchor.linear())(2);
+  const Eigen::Matrix3d tilt = rpy_to_matrix(0.0, 0.0, -anchor_yaw) * anchor.linear();
+  const Eigen::Matrix3d R = T.linear() * tilt.transpose();
+  SE3 out = SE3::Identity();
+  out.linear() = rpy_to_matrix(0.0, 0.0, std::atan2(R(1, 0), R(0, 0))) * tilt;
+  out.translation() = Eigen::Vector3d(T.translation().x(), T.translation().y(), anchor.translation().z());
+  return out;
+}
+
 void LoamParams::validate() const {
   features.validate();
   odometry.validate();
@@ -38,6 +48,11 @@ void Loam::reset() {
   T_odom_lidar_ = SE3::Identity();
   T_world_odom_ = p_.T_world_lidar_initial;
   last_good_ = p_.T_world_lidar_initial;
+  anchor_ = p_.T_world_lidar_initial;
+}
+
+SE3 Loam::level(const SE3& T_world_lidar) const {
+  return p_.planar_motion ? project_to_plane(T_world_lidar, anchor_) : T_world_lidar;
 }
 
 void Loam::set_pose(const SE3& T_world_lidar) {
@@ -45,6 +60,7 @@ void Loam::set_pose(const SE3& T_world_lidar) {
   mapping_.reset();
   T_world_odom_ = T_world_lidar * T_odom_lidar_.inverse();
   last_good_ = T_world_lidar;
+  anchor_ = T_world_lidar;
 }
 
 SE3 Loam::odometry_step(const LoamFeatures& f, const SE3& guess, bool prior_given, LoamOutput& out) {
@@ -76,7 +92,7 @@ void Loam::mapping_step(LoamOutput& out) {
       mapping_.process(odometry_.reference_edges(), odometry_.reference_planars(), T_world_odom_ * T_odom_lidar_);
   out.mapped = true;
   if (m.matched && finite(m.T_world_lidar)) {
-    T_world_odom_ = m.T_world_lidar * T_odom_lidar_.inverse();
+    T_world_odom_ = level(m.T_world_lidar) * T_odom_lidar_.inverse();
     if (m.degenerate_dims > 0) {
       out.degenerate = true;
       append_reason(out, "mapping degenerate in " + std::to_string(m.degenerate_dims) + " direction(s)");
@@ -126,7 +142,10 @@ LoamOutput Loam::process(const PointCloud& sweep, const std::optional<SE3>& moti
   } else {
     odometry_.reset();  // the next sweep has nothing to match: it starts over from the prior
   }
-  if (sweeps_ > 0) T_odom_lidar_ = T_odom_lidar_ * motion;
+  if (sweeps_ > 0) {
+    T_odom_lidar_ = T_odom_lidar_ * motion;
+    if (p_.planar_motion) T_odom_lidar_ = T_world_odom_.inverse() * level(T_world_odom_ * T_odom_lidar_);
+  }
   last_motion_ = motion;
   out.T_prev_lidar = motion;
   out.deskewed = deskew_to_end(clean, motion, p_.odometry.scan_period_s);

@@ -20,6 +20,12 @@ struct LoamParams {
   // rates: those are weakly observed (a torso VLP-16 barely sees the floor) and a rate kept from
   // one noisy sweep would otherwise make the height drift at a constant speed.
   bool planar_constant_velocity = true;
+  // A robot on a flat floor: the LiDAR's height, roll and pitch stay those of the anchor pose
+  // (T_world_lidar_initial or set_pose), so every odometry and mapping result is projected onto
+  // x, y and yaw. Height and tilt are the directions a torso-mounted VLP-16 observes worst (it
+  // sees the floor only far away); left free they drift and pull x/y with them (LeGO-LOAM
+  // constrains them from the ground for the same reason).
+  bool planar_motion = false;
   SE3 T_world_lidar_initial = SE3::Identity();  // anchors the first sweep in the world (map) frame
   void validate() const;
 };
@@ -58,6 +64,7 @@ class Loam {
   SE3 odometry_step(const LoamFeatures& f, const SE3& guess, bool prior_given, LoamOutput& out);
   void mapping_step(LoamOutput& out);
   SE3 constant_velocity_guess() const;
+  SE3 level(const SE3& T_world_lidar) const;  // the planar projection (identity without planar_motion)
 
   LoamParams p_;
   LoamOdometry odometry_;
@@ -68,6 +75,10 @@ class Loam {
   SE3 T_odom_lidar_ = SE3::Identity();  // accumulated odometry
   SE3 T_world_odom_ = SE3::Identity();  // correction from the last mapping step
   SE3 last_good_ = SE3::Identity();
+  SE3 anchor_ = SE3::Identity();  // height, roll and pitch for planar_motion
 };
+
+// `T` with the height, roll and pitch of `anchor` (x, y and the yaw of `T` about the anchor's tilt kept).
+SE3 project_to_plane(const SE3& T, const SE3& anchor);
 
 }  // namespace bipednav::localization
