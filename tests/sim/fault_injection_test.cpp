@@ -48,7 +48,9 @@ TEST(FaultInjection, LidarDropoutRemovesSweepsOnlyDuringTheFault) {
 TEST(FaultInjection, DepthNanBurstTurnsTheGivenShareOfPointsIntoNan) {
   Fault all = fault(FaultType::DEPTH_NAN_BURST, 0.0, 1.0);
   FaultInjector inj({all}, 1);
-  for (const auto& p : inj.apply(frame_at(0.5)).depth[0].cloud.points) EXPECT_TRUE(std::isnan(p.x()));
+  // Bound first: a range-for over a member of apply()'s temporary read freed memory (ASan).
+  const SensorFrame nan_frame = inj.apply(frame_at(0.5));
+  for (const auto& p : nan_frame.depth[0].cloud.points) EXPECT_TRUE(std::isnan(p.x()));
   Fault half = all;
   half.nan_fraction = 0.5;
   FaultInjector inj2({half}, 1);
