@@ -1,6 +1,8 @@
 #include "bipednav/runner/replay_recorder.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <unordered_set>
 
 #include "bipednav/sim/world_drawing.hpp"
@@ -8,6 +10,8 @@
 namespace bipednav::runner {
 
 namespace {
+
+constexpr double kPoseHistoryS = 0.5;  // longer than a LiDAR sweep
 
 bool same_cells(const viz::ReplayGrid& a, const viz::ReplayGrid& b) {
   return a.width == b.width && a.height == b.height && a.origin_x_m == b.origin_x_m && a.origin_y_m == b.origin_y_m &&
@@ -60,11 +64,27 @@ void ReplayRecorder::attach(RunOptions& options) {
   };
 }
 
-std::vector<Eigen::Vector2f> ReplayRecorder::thin(const PointCloud& cloud, const SE3& T_world_sensor) const {
+Pose2 ReplayRecorder::pose_at(double t_s) const {
+  auto it = std::upper_bound(poses_.begin(), poses_.end(), t_s,
+                             [](double t, const std::pair<double, Pose2>& p) { return t < p.first; });
+  if (it == poses_.begin()) return poses_.front().second;
+  return std::prev(it)->second;
+}
+
+// Points taken at their own time (a sweep's columns fire over 0.1 s while the robot moves), placed
+// in the world by the true pose at that time, between min_point_z_m and max_point_z_m, one per cell.
+std::vector<Eigen::Vector2f> ReplayRecorder::thin(const PointCloud& cloud, const SE3& T_base_sensor) const {
   std::vector<Eigen::Vector2f> out;
   std::unordered_set<std::int64_t> cells;
-  for (const auto& p : cloud.points) {
-    const Eigen::Vector3d w = T_world_sensor * p.cast<double>();
+  float pose_offset_s = std::numeric_limits<float>::quiet_NaN();
+  SE3 T_world_sensor = SE3::Identity();
+  for (std::size_t i = 0; i < cloud.points.size(); ++i) {
+    const float offset_s = cloud.has_time() ? cloud.time_offsets_s[i] : 0.0f;
+    if (!(offset_s == pose_offset_s)) {
+      pose_offset_s = offset_s;
+      T_world_sensor = se3_from_pose2(pose_at(cloud.stamp_s + offset_s)) * T_base_sensor;
+    }
+    const Eigen::Vector3d w = T_world_sensor * cloud.points[i].cast<double>();
     if (!w.allFinite() || w.z() < params_.min_point_z_m || w.z() > params_.max_point_z_m) continue;
     const auto cx = static_cast<std::int64_t>(std::floor(w.x() / params_.point_cell_m));
     const auto cy = static_cast<std::int64_t>(std::floor(w.y() / params_.point_cell_m));
@@ -85,11 +105,14 @@ bool ReplayRecorder::points_due(const std::string& sensor, double t_s) {
 void ReplayRecorder::take_points(const sim::Simulation& sim, const SensorFrame& frame) {
   const auto& robot = sim.robot();
   const double t = sim.now_s();
-  if (frame.lidar && robot.sensor(frame.lidar->frame_id) && points_due(frame.lidar->frame_id, t))
-    lidar_ = thin(*frame.lidar, sim.T_world_sensor(frame.lidar->frame_id));
-  for (const auto& d : frame.depth)
-    if (robot.sensor(d.camera) && points_due(d.camera, t))
-      depth_[d.camera] = thin(d.cloud, sim.T_world_sensor(d.camera));
+  poses_.emplace_back(t, sim.true_pose());
+  while (poses_.front().first < t - kPoseHistoryS) poses_.pop_front();
+  const SensorMount* lidar = frame.lidar ? robot.sensor(frame.lidar->frame_id) : nullptr;
+  if (lidar && points_due(lidar->name, t)) lidar_ = thin(*frame.lidar, lidar->T_base_sensor());
+  for (const auto& d : frame.depth) {
+    const SensorMount* camera = robot.sensor(d.camera);
+    if (camera && points_due(d.camera, t)) depth_[d.camera] = thin(d.cloud, camera->T_base_sensor());
+  }
 }
 
 void ReplayRecorder::take_maps(double t_s, const navigation::Navigator& nav) {

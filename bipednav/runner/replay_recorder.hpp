@@ -1,5 +1,6 @@
 #pragma once
 
+#include <deque>
 #include <map>
 #include <string>
 #include <vector>
@@ -41,10 +42,12 @@ class ReplayRecorder {
   void take_points(const sim::Simulation& sim, const SensorFrame& frame);
   bool points_due(const std::string& sensor, double t_s);
   void take_maps(double t_s, const navigation::Navigator& nav);
-  std::vector<Eigen::Vector2f> thin(const PointCloud& cloud, const SE3& T_world_sensor) const;
+  std::vector<Eigen::Vector2f> thin(const PointCloud& cloud, const SE3& T_base_sensor) const;
+  Pose2 pose_at(double t_s) const;  // the recorded true pose at or just before t_s
 
   ReplayRecorderParams params_;
   viz::ReplayData data_;
+  std::deque<std::pair<double, Pose2>> poses_;                 // recent true poses, to place points
   std::vector<Eigen::Vector2f> lidar_;                         // the latest sweep
   std::map<std::string, std::vector<Eigen::Vector2f>> depth_;  // the latest cloud per camera
   std::map<std::string, double> next_points_s_;                // per sensor
