@@ -1,10 +1,12 @@
 #include "bipednav/sim/depth_camera.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
 
 #include "bipednav/common/error.hpp"
+#include "bipednav/sim/simd4.hpp"
 
 namespace bipednav::sim {
 
@@ -22,16 +24,38 @@ void DepthCameraParams::validate() const {
 DepthCamera::DepthCamera(const DepthCameraParams& params, std::string frame_id, std::uint64_t seed)
     : params_(params), frame_id_(std::move(frame_id)), noise_(seed) {
   params_.validate();
+  constexpr int W = RayPacket::kWidth;
   const int w = params_.width, h = params_.height;
-  ray_of_pixel_.resize(static_cast<std::size_t>(w) * h);
+  const std::size_t lanes = static_cast<std::size_t>((w + 3) / 4) * static_cast<std::size_t>((h + 3) / 4) * W;
+  for (auto* v : {&ray_x_, &ray_y_, &ray_z_}) v->reserve(lanes);
+  pixel_.reserve(lanes);
+  float min_x = 1.0f;
   for (int tv = 0; tv < h; tv += 4)
-    for (int tu = 0; tu < w; tu += 4)
+    for (int tu = 0; tu < w; tu += 4) {
+      const std::size_t first = pixel_.size();
       for (int v = tv; v < std::min(tv + 4, h); ++v)
         for (int u = tu; u < std::min(tu + 4, w); ++u) {
-          ray_of_pixel_[v * w + u] = static_cast<int>(rays_.size());
-          rays_.push_back(pixel_ray(u, v));
+          const Eigen::Vector3f r = pixel_ray(u, v);
+          ray_x_.push_back(r.x());
+          ray_y_.push_back(r.y());
+          ray_z_.push_back(r.z());
+          pixel_.push_back(v * w + u);
+          min_x = std::min(min_x, r.x());
         }
-  ranges_.resize(rays_.size());
+      tile_count_.push_back(static_cast<int>(pixel_.size() - first));
+      while (pixel_.size() - first < W) {
+        for (auto* vec : {&ray_x_, &ray_y_, &ray_z_}) vec->push_back((*vec)[first]);
+        pixel_.push_back(pixel_[first]);
+      }
+    }
+  const double fx = 0.5 * w / std::tan(0.5 * params_.hfov_rad);
+  const double fy = 0.5 * h / std::tan(0.5 * params_.vfov_rad);
+  for (int u = 0; u < w; ++u) slope_u_.push_back(static_cast<float>(-(u + 0.5 - 0.5 * w) / fx));
+  for (int v = 0; v < h; ++v) slope_v_.push_back(static_cast<float>(-(v + 0.5 - 0.5 * h) / fy));
+  // A ray can reach depth max_range_m at range max_range_m / cos(angle to the axis).
+  max_cast_m_ = static_cast<float>(params_.max_range_m / min_x) * 1.01f;
+  depth_.resize(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
+  noise_row_.resize(static_cast<std::size_t>(w));
 }
 
 Eigen::Vector3f DepthCamera::pixel_ray(int u, int v) const {
@@ -50,25 +74,66 @@ PointCloud DepthCamera::capture(const SE3& T_world_camera, const RayCaster& cast
 }
 
 PointCloud DepthCamera::capture_at(double stamp_s, const SE3& T_world_camera, const RayCaster& caster) {
-  // A ray can reach depth max_range_m at range max_range_m / cos(angle to the axis).
-  const float max_cast = static_cast<float>(params_.max_range_m / rays_.front().x()) * 1.01f;
-  caster.cast_batch(T_world_camera.translation().cast<float>(), T_world_camera.linear().cast<float>(), rays_, max_cast,
-                    ranges_, true);
+  constexpr int W = RayPacket::kWidth;
+  const Eigen::Matrix3f R = T_world_camera.linear().cast<float>();
+  const Eigen::Vector3f o = T_world_camera.translation().cast<float>();
+  RayPacket packet;
+  for (int i = 0; i < W; ++i) {
+    packet.org_x[i] = o.x();
+    packet.org_y[i] = o.y();
+    packet.org_z[i] = o.z();
+  }
+  // Cast tile by tile; keep the depth (distance along the optical axis) per pixel.
+  alignas(64) float ranges[W];
+  float* depth = depth_.data();
+  for (std::size_t t = 0; t < tile_count_.size(); ++t) {
+    const std::size_t base = t * W;
+    const float* rx = &ray_x_[base];
+    const float* ry = &ray_y_[base];
+    const float* rz = &ray_z_[base];
+    for (int i = 0; i < W; ++i) {
+      packet.dir_x[i] = R(0, 0) * rx[i] + R(0, 1) * ry[i] + R(0, 2) * rz[i];
+      packet.dir_y[i] = R(1, 0) * rx[i] + R(1, 1) * ry[i] + R(1, 2) * rz[i];
+      packet.dir_z[i] = R(2, 0) * rx[i] + R(2, 1) * ry[i] + R(2, 2) * rz[i];
+    }
+    packet.count = tile_count_[t];
+    caster.cast_packet(packet, max_cast_m_, ranges, true);
+    const int* pix = &pixel_[base];
+    for (int i = 0; i < packet.count; ++i) depth[pix[i]] = ranges[i] * rx[i];  // +inf without a hit
+  }
 
+  // Noise and points row by row (noise drawn in pixel order).
   PointCloud cloud;
   cloud.frame_id = frame_id_;
   cloud.stamp_s = stamp_s;
-  cloud.points.resize(rays_.size());
+  const auto w = static_cast<std::size_t>(params_.width);
+  cloud.points.resize(depth_.size());
+  Eigen::Vector3f* out = cloud.points.data();
   const float nan = std::numeric_limits<float>::quiet_NaN();
   const auto z_min = static_cast<float>(params_.min_range_m), z_max = static_cast<float>(params_.max_range_m);
   const auto k = static_cast<float>(params_.noise_coeff_per_m);
-  for (std::size_t p = 0; p < cloud.points.size(); ++p) {
-    const int i = ray_of_pixel_[p];
-    const float z = ranges_[i] * rays_[i].x();  // depth; +inf (no hit) fails the test below
-    const float z_noisy = z + k * z * z * noise_();
-    cloud.points[p] = z >= z_min && z <= z_max && z_noisy > 0.0f
-                          ? Eigen::Vector3f(rays_[i] * (ranges_[i] * z_noisy / z))
-                          : Eigen::Vector3f(nan, nan, nan);
+  const float* su = slope_u_.data();
+  float* noise = noise_row_.data();
+  using namespace simd4;
+  for (std::size_t v = 0; v < slope_v_.size(); ++v) {
+    noise_.fill(noise_row_);
+    const float sv = slope_v_[v];
+    const float* z_row = depth + v * w;
+    Eigen::Vector3f* out_row = out + v * w;
+    std::size_t u = 0;
+    for (; u + 4 <= w; u += 4) {
+      const F4 z = load(z_row + u);
+      const F4 z_noisy = z + splat(k) * z * z * load(noise + u);
+      const I4 ok = (z >= z_min) & (z <= z_max) & (z_noisy > 0.0f);
+      const F4 x = select(ok, z_noisy, splat(nan)), y = x * load(su + u), zz = x * sv;
+      for (int i = 0; i < 4; ++i) out_row[u + static_cast<std::size_t>(i)] = Eigen::Vector3f(x[i], y[i], zz[i]);
+    }
+    for (; u < w; ++u) {
+      const float z = z_row[u];
+      const float z_noisy = z + k * z * z * noise[u];
+      const float x = z >= z_min && z <= z_max && z_noisy > 0.0f ? z_noisy : nan;
+      out_row[u] = Eigen::Vector3f(x, x * su[u], x * sv);
+    }
   }
   return cloud;
 }

@@ -52,9 +52,16 @@ class DepthCamera {
   std::string frame_id_;
   GaussianNoise noise_;
   std::uint64_t count_ = 0;
-  std::vector<int> ray_of_pixel_;      // rays are cast in 4 x 4 pixel tiles for packet coherence
-  std::vector<Eigen::Vector3f> rays_;  // unit rays in tile order, camera frame
-  std::vector<float> ranges_;          // in tile order
+  // Rays are cast in 4 x 4 pixel tiles, one coherent RayPacket per tile. Per lane, tile-major
+  // with RayPacket::kWidth lanes per tile (unused lanes of edge tiles repeat lane 0):
+  std::vector<float> ray_x_, ray_y_, ray_z_;  // unit ray in the camera frame
+  std::vector<int> pixel_;                    // row-major pixel index
+  std::vector<int> tile_count_;               // used lanes per tile
+  // A pixel's point is depth * (1, slope_u_[u], slope_v_[v]).
+  std::vector<float> slope_u_, slope_v_;
+  float max_cast_m_ = 0.0f;       // range at which the outermost ray reaches max_range_m in depth
+  std::vector<float> depth_;      // scratch: depth per pixel (row-major), +inf without a hit
+  std::vector<float> noise_row_;  // scratch: one row of noise samples
 };
 
 }  // namespace bipednav::sim

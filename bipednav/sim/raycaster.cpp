@@ -5,11 +5,13 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <optional>
 #include <string>
 
 #include "bipednav/common/error.hpp"
+#include "bipednav/sim/simd4.hpp"
 
 namespace bipednav::sim {
 namespace {
@@ -92,6 +94,40 @@ struct RayCaster::Impl {
     return t0 <= t1;
   }
   std::size_t static_triangles = 0;
+
+  // Conservative: false only if no segment [0, tfar] of the packet's rays can meet an actor.
+  // A box around all segments is tested first; if it overlaps the actors' bounds, every ray
+  // gets the slab test. All 16 lanes are tested (inactive lanes repeat ray 0).
+  bool may_reach_movers(const RTCRay16& r) const {
+    using namespace simd4;
+    constexpr int W = RayPacket::kWidth;
+    const float* org[3] = {r.org_x, r.org_y, r.org_z};
+    const float* dir[3] = {r.dir_x, r.dir_y, r.dir_z};
+    for (int k = 0; k < 3; ++k) {
+      F4 lo = load(org[k]), hi = lo;
+      for (int b = 0; b < W; b += 4) {
+        const F4 o = load(org[k] + b), e = o + load(r.tfar + b) * load(dir[k] + b);
+        lo = min(lo, min(o, e));
+        hi = max(hi, max(o, e));
+      }
+      const float l = hmin(lo), h = hmax(hi);
+      // A margin for rounding in the end points (relative to the coordinates' size).
+      const float margin = 1e-4f * (1.0f + std::abs(l) + std::abs(h));
+      if (h + margin < movers_bounds.min()[k] || l - margin > movers_bounds.max()[k]) return false;
+    }
+    for (int b = 0; b < W; b += 4) {
+      F4 t0 = splat(0.0f), t1 = load(r.tfar + b);
+      for (int k = 0; k < 3; ++k) {
+        const F4 o = load(org[k] + b), inv = splat(1.0f) / load(dir[k] + b);
+        const F4 a = (splat(movers_bounds.min()[k]) - o) * inv, c = (splat(movers_bounds.max()[k]) - o) * inv;
+        // NaN (origin on a slab face, parallel ray) keeps the bound.
+        t0 = select(min(a, c) > t0, min(a, c), t0);
+        t1 = select(max(a, c) < t1, max(a, c), t1);
+      }
+      if (any(t0 <= t1)) return true;
+    }
+    return false;
+  }
 
   // Distance to the nearest horizontal plane along the ray, +inf if none is ahead.
   float plane_hit(float oz, float dz) const {
@@ -211,55 +247,95 @@ float RayCaster::cast(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir,
   return plane <= max_range_m ? plane : kInf;
 }
 
-void RayCaster::cast_batch(const Eigen::Vector3f& origin, const Eigen::Matrix3f& R,
-                           std::span<const Eigen::Vector3f> unit_dirs, float max_range_m, std::span<float> ranges,
-                           bool coherent) const {
-  if (ranges.size() != unit_dirs.size()) throw Error("RayCaster::cast_batch: ranges and dirs differ in size");
+void RayCaster::cast_packet(const RayPacket& p, float max_range_m, float* ranges, bool coherent) const {
+  using namespace simd4;
+  constexpr int W = RayPacket::kWidth;
+  static_assert(W % 4 == 0);
+  // Fields that are the same for every packet; Embree writes only tfar and the hit.
+  struct Constants {
+    alignas(64) int valid[W + 1][W];  // valid[n]: lanes [0, n) active
+    alignas(64) unsigned id[W];
+    Constants() {
+      for (int n = 0; n <= W; ++n)
+        for (int i = 0; i < W; ++i) valid[n][i] = i < n ? -1 : 0;
+      for (int i = 0; i < W; ++i) id[i] = static_cast<unsigned>(i);
+    }
+  };
+  static const Constants constants;
+  const Impl& d = *impl_;
+  const int n = std::clamp(p.count, 0, W);
+  if (n == 0) return;
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   if (coherent) ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   alignas(64) RTCRayHit16 rh;
-  alignas(64) int valid[16];
-  float plane[16];
-  Eigen::Vector3f dirs[16];
-  // Embree only writes tfar and the hit, so the fields common to all rays are set once.
-  for (int i = 0; i < 16; ++i) {
-    rh.ray.org_x[i] = origin.x();
-    rh.ray.org_y[i] = origin.y();
-    rh.ray.org_z[i] = origin.z();
-    rh.ray.tnear[i] = 0.0f;
-    rh.ray.time[i] = 0.0f;
-    rh.ray.mask[i] = 0xFFFFFFFFu;
-    rh.ray.flags[i] = 0;
-    rh.ray.id[i] = static_cast<unsigned>(i);
+  std::memcpy(rh.ray.org_x, p.org_x, sizeof(p.org_x));
+  std::memcpy(rh.ray.org_y, p.org_y, sizeof(p.org_y));
+  std::memcpy(rh.ray.org_z, p.org_z, sizeof(p.org_z));
+  std::memcpy(rh.ray.dir_x, p.dir_x, sizeof(p.dir_x));
+  std::memcpy(rh.ray.dir_y, p.dir_y, sizeof(p.dir_y));
+  std::memcpy(rh.ray.dir_z, p.dir_z, sizeof(p.dir_z));
+  for (int i = n; i < W; ++i) {  // inactive lanes repeat ray 0: every lane holds a well-defined ray
+    rh.ray.org_x[i] = p.org_x[0];
+    rh.ray.org_y[i] = p.org_y[0];
+    rh.ray.org_z[i] = p.org_z[0];
+    rh.ray.dir_x[i] = p.dir_x[0];
+    rh.ray.dir_y[i] = p.dir_y[0];
+    rh.ray.dir_z[i] = p.dir_z[0];
   }
-  for (std::size_t base = 0; base < unit_dirs.size(); base += 16) {
-    const std::size_t n = std::min<std::size_t>(16, unit_dirs.size() - base);
-    for (std::size_t i = 0; i < 16; ++i) {
-      const bool on = i < n;
-      const Eigen::Vector3f u = R * unit_dirs[base + (on ? i : 0)];
-      dirs[i] = u;
-      valid[i] = on ? -1 : 0;
-      rh.ray.dir_x[i] = u.x();
-      rh.ray.dir_y[i] = u.y();
-      rh.ray.dir_z[i] = u.z();
-      plane[i] = impl_->plane_hit(origin.z(), u.z());
-      rh.ray.tfar[i] = std::min(max_range_m, plane[i]);
-      rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
-      rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+  std::memcpy(rh.ray.id, constants.id, sizeof(rh.ray.id));
+  std::memset(rh.ray.tnear, 0, sizeof(rh.ray.tnear));
+  std::memset(rh.ray.time, 0, sizeof(rh.ray.time));
+  std::memset(rh.ray.flags, 0, sizeof(rh.ray.flags));
+  std::memset(rh.ray.mask, 0xFF, sizeof(rh.ray.mask));
+  static_assert(RTC_INVALID_GEOMETRY_ID == 0xFFFFFFFFu);
+  std::memset(rh.hit.geomID, 0xFF, sizeof(rh.hit.geomID));
+  std::memset(rh.hit.instID[0], 0xFF, sizeof(rh.hit.instID[0]));
+  // The analytic horizontal planes cut tfar.
+  alignas(64) float plane[W];
+  const F4 inf = splat(kInf), max_range = splat(max_range_m);
+  for (int b = 0; b < W; b += 4) {
+    const F4 oz = load(rh.ray.org_z + b), dz = load(rh.ray.dir_z + b);
+    F4 best = inf;
+    for (const float z : d.plane_z) {
+      const F4 t = (splat(z) - oz) / dz;
+      best = select((t >= 0.0f) & (t < best), t, best);
     }
-    rtcIntersect16(valid, impl_->statics, &ctx, &rh);
-    if (impl_->movers) {
-      bool any = false;
-      for (std::size_t i = 0; i < n && !any; ++i) any = impl_->may_hit_movers(origin, dirs[i], rh.ray.tfar[i]);
-      if (any) rtcIntersect16(valid, impl_->movers, &ctx, &rh);
+    store(plane + b, best);
+    store(rh.ray.tfar + b, min(max_range, best));
+  }
+  rtcIntersect16(constants.valid[n], d.statics, &ctx, &rh);
+  if (d.movers && d.may_reach_movers(rh.ray)) rtcIntersect16(constants.valid[n], d.movers, &ctx, &rh);
+  alignas(64) float out[W];
+  for (int b = 0; b < W; b += 4) {
+    I4 geom;
+    std::memcpy(&geom, rh.hit.geomID + b, sizeof geom);
+    const F4 pl = load(plane + b);
+    const F4 miss = select(pl <= max_range, pl, inf);
+    store(out + b, select(geom != static_cast<std::int32_t>(RTC_INVALID_GEOMETRY_ID), load(rh.ray.tfar + b), miss));
+  }
+  std::memcpy(ranges, out, sizeof(float) * static_cast<std::size_t>(n));
+}
+
+void RayCaster::cast_batch(const Eigen::Vector3f& origin, const Eigen::Matrix3f& R,
+                           std::span<const Eigen::Vector3f> unit_dirs, float max_range_m, std::span<float> ranges,
+                           bool coherent) const {
+  if (ranges.size() != unit_dirs.size()) throw Error("RayCaster::cast_batch: ranges and dirs differ in size");
+  RayPacket p;
+  for (int i = 0; i < RayPacket::kWidth; ++i) {
+    p.org_x[i] = origin.x();
+    p.org_y[i] = origin.y();
+    p.org_z[i] = origin.z();
+  }
+  for (std::size_t base = 0; base < unit_dirs.size(); base += RayPacket::kWidth) {
+    p.count = static_cast<int>(std::min<std::size_t>(RayPacket::kWidth, unit_dirs.size() - base));
+    for (int i = 0; i < p.count; ++i) {
+      const Eigen::Vector3f u = R * unit_dirs[base + static_cast<std::size_t>(i)];
+      p.dir_x[i] = u.x();
+      p.dir_y[i] = u.y();
+      p.dir_z[i] = u.z();
     }
-    for (std::size_t i = 0; i < n; ++i) {
-      if (rh.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID)
-        ranges[base + i] = rh.ray.tfar[i];
-      else
-        ranges[base + i] = plane[i] <= max_range_m ? plane[i] : kInf;
-    }
+    cast_packet(p, max_range_m, &ranges[base], coherent);
   }
 }
 

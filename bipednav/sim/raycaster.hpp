@@ -10,6 +10,20 @@
 
 namespace bipednav::sim {
 
+// Up to 16 rays cast together as one Embree packet, in structure-of-arrays layout. Every ray
+// has its own origin (e.g. LiDAR columns fired at different times). Rays [0, count) are cast;
+// the other lanes are ignored (need not be set).
+struct RayPacket {
+  static constexpr int kWidth = 16;
+  alignas(64) float org_x[kWidth];
+  alignas(64) float org_y[kWidth];
+  alignas(64) float org_z[kWidth];
+  alignas(64) float dir_x[kWidth];  // unit length
+  alignas(64) float dir_y[kWidth];
+  alignas(64) float dir_z[kWidth];
+  int count = 0;
+};
+
 struct RayCasterParams {
   int threads = 1;  // Embree worker threads (BVH builds); 1 keeps a simulation on one core
   TessellationParams tessellation;
@@ -41,7 +55,7 @@ class RayCaster {
   float cast(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir, float max_range_m) const;
 
   // Casts rays from one origin along unit directions (world frame), 16 at a time
-  // (rtcIntersect16); ranges[i] is the hit distance or +infinity. `coherent` hints that
+  // (cast_packet); ranges[i] is the hit distance or +infinity. `coherent` hints that
   // neighbouring rays are similar (camera tiles).
   void cast_batch(const Eigen::Vector3f& origin, std::span<const Eigen::Vector3f> unit_dirs, float max_range_m,
                   std::span<float> ranges, bool coherent = false) const {
@@ -51,6 +65,10 @@ class RayCaster {
   void cast_batch(const Eigen::Vector3f& origin, const Eigen::Matrix3f& R_world_sensor,
                   std::span<const Eigen::Vector3f> unit_dirs_sensor, float max_range_m, std::span<float> ranges,
                   bool coherent = false) const;
+
+  // Casts one packet; ranges[i] (i < p.count) is the hit distance or +infinity. `coherent`
+  // hints that the rays are similar (neighbouring pixels, neighbouring LiDAR columns).
+  void cast_packet(const RayPacket& p, float max_range_m, float* ranges, bool coherent = false) const;
 
   std::size_t static_triangle_count() const;
   std::size_t actor_count() const;

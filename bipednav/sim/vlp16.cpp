@@ -34,7 +34,7 @@ Vlp16::Vlp16(const Vlp16Params& params, std::string frame_id, std::uint64_t seed
                           static_cast<float>(std::cos(el) * std::sin(az)), static_cast<float>(std::sin(el)));
     }
   }
-  ranges_.resize(params_.rings);
+  ranges_.resize(static_cast<std::size_t>(params_.rings) * RayPacket::kWidth);
 }
 
 double Vlp16::ring_elevation_rad(int ring) const {
@@ -52,21 +52,46 @@ double Vlp16::column_time_s(std::uint64_t sweep, int column) const {
   return ticks / (params_.rate_hz * params_.columns);
 }
 
-void Vlp16::fire_column(int column, double t_s, const RayCaster& caster, const SE3& T_world_sensor) {
-  const Eigen::Matrix3f R = T_world_sensor.linear().cast<float>();
-  const Eigen::Vector3f origin = T_world_sensor.translation().cast<float>();
-  const std::span<const Eigen::Vector3f> beams(&beams_[static_cast<std::size_t>(column) * params_.rings],
-                                               params_.rings);
-  caster.cast_batch(origin, R, beams, static_cast<float>(params_.max_range_m), ranges_);
-  const float dt = static_cast<float>(t_s - current_.stamp_s);
-  for (int r = 0; r < params_.rings; ++r) {
-    const float range = ranges_[r];
-    if (!(range >= params_.min_range_m && range <= params_.max_range_m)) continue;
-    const float noisy = range + static_cast<float>(params_.range_noise_stddev_m) * noise_();
-    current_.points.push_back(beam(column, r) * noisy);
-    current_.time_offsets_s.push_back(dt);
-    current_.rings.push_back(static_cast<std::uint16_t>(r));
+void Vlp16::fire_columns(int first, int n, const RayCaster& caster, const PoseAt& T_world_sensor_at) {
+  constexpr int W = RayPacket::kWidth;
+  const int rings = params_.rings;
+  // Every column has its own firing time and sensor pose; a packet holds one ring of up to 16
+  // neighbouring columns (0.2 deg apart: coherent rays, each from its own origin).
+  Eigen::Matrix3f R[W];
+  RayPacket packet;
+  float dt[W];
+  for (int k = 0; k < n; ++k) {
+    const double t = column_time_s(sweep_, first + k);
+    const SE3 T = T_world_sensor_at(t);
+    R[k] = T.linear().cast<float>();
+    const Eigen::Vector3f o = T.translation().cast<float>();
+    packet.org_x[k] = o.x();
+    packet.org_y[k] = o.y();
+    packet.org_z[k] = o.z();
+    dt[k] = static_cast<float>(t - current_.stamp_s);
   }
+  packet.count = n;
+  const auto max_range = static_cast<float>(params_.max_range_m);
+  for (int r = 0; r < rings; ++r) {
+    for (int k = 0; k < n; ++k) {
+      const Eigen::Vector3f u = R[k] * beam(first + k, r);
+      packet.dir_x[k] = u.x();
+      packet.dir_y[k] = u.y();
+      packet.dir_z[k] = u.z();
+    }
+    caster.cast_packet(packet, max_range, &ranges_[static_cast<std::size_t>(r) * W], true);
+  }
+  // Output in firing order: column by column, rings bottom to top.
+  const auto sigma = static_cast<float>(params_.range_noise_stddev_m);
+  for (int k = 0; k < n; ++k)
+    for (int r = 0; r < rings; ++r) {
+      const float range = ranges_[static_cast<std::size_t>(r) * W + k];
+      if (!(range >= params_.min_range_m && range <= params_.max_range_m)) continue;
+      const float noisy = range + sigma * noise_();
+      current_.points.push_back(beam(first + k, r) * noisy);
+      current_.time_offsets_s.push_back(dt[k]);
+      current_.rings.push_back(static_cast<std::uint16_t>(r));
+    }
 }
 
 std::optional<PointCloud> Vlp16::fire_until(double t_end_s, const RayCaster& caster, const PoseAt& T_world_sensor_at) {
@@ -82,8 +107,14 @@ std::optional<PointCloud> Vlp16::fire_until(double t_end_s, const RayCaster& cas
       current_.time_offsets_s.reserve(beams_.size());
       current_.rings.reserve(beams_.size());
     }
-    fire_column(next_column_, t, caster, T_world_sensor_at(t));
-    if (++next_column_ == params_.columns) {
+    // The columns of this sweep due before t_end_s, up to one packet width.
+    int n = 1;
+    while (n < RayPacket::kWidth && next_column_ + n < params_.columns &&
+           column_time_s(sweep_, next_column_ + n) < t_end_s)
+      ++n;
+    fire_columns(next_column_, n, caster, T_world_sensor_at);
+    next_column_ += n;
+    if (next_column_ == params_.columns) {
       next_column_ = 0;
       ++sweep_;
       done = std::move(current_);

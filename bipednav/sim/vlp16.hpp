@@ -57,13 +57,15 @@ class Vlp16 {
   const Vlp16Params& params() const { return params_; }
 
  private:
-  void fire_column(int column, double t_s, const RayCaster& caster, const SE3& T_world_sensor);
+  // Fires columns [first, first + n) (n <= RayPacket::kWidth) at their own times and poses:
+  // one packet per ring, one lane per column.
+  void fire_columns(int first, int n, const RayCaster& caster, const PoseAt& T_world_sensor_at);
 
   Vlp16Params params_;
   std::string frame_id_;
   GaussianNoise noise_;
   std::vector<Eigen::Vector3f> beams_;  // column-major, sensor frame
-  std::vector<float> ranges_;
+  std::vector<float> ranges_;           // ring-major, RayPacket::kWidth columns per ring
   std::uint64_t sweep_ = 0;
   int next_column_ = 0;
   PointCloud current_;
