@@ -1,6 +1,7 @@
 // bipednav vs PCL on the same clouds: voxel grid (pcl::VoxelGrid) and RANSAC plane fitting
 // (pcl::SACSegmentation, SACMODEL_PLANE, SAC_RANSAC, same threshold and success probability).
-// Prints one JSON object with the median thread CPU times, the output quality and the speed ratios.
+// Prints one JSON object with the median thread CPU times (the two libraries alternate rep by rep),
+// the output quality and the speed ratios.
 // Usage: bipednav_bench_pcl [DATA_DIR] [REPS]   (DATA_DIR holds pcl/*.pcd; default: tests/data)
 #include <pcl/ModelCoefficients.h>
 #include <pcl/filters/voxel_grid.h>
@@ -35,15 +36,22 @@ double thread_cpu_ms() {
   return 1e3 * static_cast<double>(ts.tv_sec) + 1e-6 * static_cast<double>(ts.tv_nsec);
 }
 
-double median_ms(int reps, const std::function<void(int)>& f) {
-  std::vector<double> t;
+// Median times of `ours` and `theirs`, run alternately (rep r of each back to back), so a busy
+// machine slows both alike.
+std::pair<double, double> median_ms(int reps, const std::function<void(int)>& ours,
+                                    const std::function<void(int)>& theirs) {
+  std::vector<double> a, b;
   for (int r = 0; r < reps; ++r) {
-    const double t0 = thread_cpu_ms();
-    f(r);
-    t.push_back(thread_cpu_ms() - t0);
+    double t0 = thread_cpu_ms();
+    ours(r);
+    a.push_back(thread_cpu_ms() - t0);
+    t0 = thread_cpu_ms();
+    theirs(r);
+    b.push_back(thread_cpu_ms() - t0);
   }
-  std::sort(t.begin(), t.end());
-  return t[t.size() / 2];
+  std::sort(a.begin(), a.end());
+  std::sort(b.begin(), b.end());
+  return {a[a.size() / 2], b[b.size() / 2]};
 }
 
 pcl::PointCloud<pcl::PointXYZ>::Ptr to_pcl(const PointCloud& c) {
@@ -59,15 +67,16 @@ nlohmann::json voxel(const PointCloud& c, double leaf, int reps) {
   std::size_t ours = 0, theirs = 0;
   perception::VoxelGridParams v;
   v.leaf_size_m.setConstant(leaf);
-  const double ours_ms = median_ms(reps, [&](int) { ours = perception::voxel_downsample(c, v).size(); });
-  const double pcl_ms = median_ms(reps, [&](int) {
-    pcl::VoxelGrid<pcl::PointXYZ> g;
-    g.setInputCloud(pc);
-    g.setLeafSize(static_cast<float>(leaf), static_cast<float>(leaf), static_cast<float>(leaf));
-    pcl::PointCloud<pcl::PointXYZ> out;
-    g.filter(out);
-    theirs = out.size();
-  });
+  const auto [ours_ms, pcl_ms] = median_ms(
+      reps, [&](int) { ours = perception::voxel_downsample(c, v).size(); },
+      [&](int) {
+        pcl::VoxelGrid<pcl::PointXYZ> g;
+        g.setInputCloud(pc);
+        g.setLeafSize(static_cast<float>(leaf), static_cast<float>(leaf), static_cast<float>(leaf));
+        pcl::PointCloud<pcl::PointXYZ> out;
+        g.filter(out);
+        theirs = out.size();
+      });
   return {{"points", c.size()},
           {"leaf_m", leaf},
           {"bipednav_ms", ours_ms},
@@ -94,25 +103,27 @@ nlohmann::json ransac(const PointCloud& c, double t, int reps) {
   p.success_probability = 0.99;
   p.max_iterations = 1000;
   std::vector<std::size_t> q_ours, q_pcl;
-  const double ours_ms = median_ms(reps, [&](int r) {
-    bipednav::Rng rng(static_cast<std::uint64_t>(r) + 1);
-    q_ours.push_back(count_within(c, perception::fit_plane_ransac(c.points, p, rng).plane, t));
-  });
-  const double pcl_ms = median_ms(reps, [&](int) {
-    pcl::SACSegmentation<pcl::PointXYZ> seg;
-    seg.setOptimizeCoefficients(true);
-    seg.setModelType(pcl::SACMODEL_PLANE);
-    seg.setMethodType(pcl::SAC_RANSAC);
-    seg.setDistanceThreshold(t);
-    seg.setProbability(0.99);
-    seg.setMaxIterations(1000);
-    seg.setInputCloud(pc);
-    pcl::PointIndices inliers;
-    pcl::ModelCoefficients coeff;
-    seg.segment(inliers, coeff);
-    const auto& v = coeff.values;
-    q_pcl.push_back(v.size() == 4 ? count_within(c, Eigen::Vector4d(v[0], v[1], v[2], v[3]), t) : 0);
-  });
+  const auto [ours_ms, pcl_ms] = median_ms(
+      reps,
+      [&](int r) {
+        bipednav::Rng rng(static_cast<std::uint64_t>(r) + 1);
+        q_ours.push_back(count_within(c, perception::fit_plane_ransac(c.points, p, rng).plane, t));
+      },
+      [&](int) {
+        pcl::SACSegmentation<pcl::PointXYZ> seg;
+        seg.setOptimizeCoefficients(true);
+        seg.setModelType(pcl::SACMODEL_PLANE);
+        seg.setMethodType(pcl::SAC_RANSAC);
+        seg.setDistanceThreshold(t);
+        seg.setProbability(0.99);
+        seg.setMaxIterations(1000);
+        seg.setInputCloud(pc);
+        pcl::PointIndices inliers;
+        pcl::ModelCoefficients coeff;
+        seg.segment(inliers, coeff);
+        const auto& v = coeff.values;
+        q_pcl.push_back(v.size() == 4 ? count_within(c, Eigen::Vector4d(v[0], v[1], v[2], v[3]), t) : 0);
+      });
   std::sort(q_ours.begin(), q_ours.end());
   std::sort(q_pcl.begin(), q_pcl.end());
   const bool equal_quality = q_ours[q_ours.size() / 2] >= 0.99 * q_pcl[q_pcl.size() / 2];
