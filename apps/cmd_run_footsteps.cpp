@@ -50,6 +50,7 @@ nlohmann::json footstep_json(const runner::FootstepRunResult& f) {
           {"max_body_z_m", f.max_body_z_m},
           {"views", f.views},
           {"gicp_corrections", f.corrections},
+          {"recovery_steps", f.recoveries},
           {"rough_landings", f.rough_landings}};
 }
 

@@ -1,5 +1,6 @@
 #include "bipednav/navigation/footstep_navigator.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <optional>
@@ -28,6 +29,11 @@ footstep::FootstepPlannerParams FootstepNavigatorParams::default_planner() {
   p.robot = "nao";
   p.goal_tolerance_m = 0.05;
   p.goal_tolerance_rad = 0.15;
+  // No landing margin (FootstepPlannerParams::landing_margin_m): step_onto and step_over leave
+  // 2 cm between the stance toe and the landing heel, so a margin that covers the loop's
+  // centimetre-level execution error would leave them no foothold; 1 cm did not help over seeds
+  // 1-10 of nao_stairs. The loop recovers instead (max_recovery_steps).
+  p.landing_margin_m = 0.0;
   p.search.initial_epsilon = 3.0;
   p.search.target_epsilon = 3.0;
   p.search.time_limit_s = 0.0;
@@ -146,6 +152,39 @@ Result FootstepNavigator::replan(const Footstep& stance) {
   return plan_.result;
 }
 
+bool FootstepNavigator::recover(const Footstep& stance) {
+  // A plan that fails from a stance also fails from every step the graph could take from it, so
+  // the recovery is not planned: one corrective planar step is taken, the head looks again and
+  // the next decision replans from where the foot really landed (a centimetre or two elsewhere,
+  // seen anew). Steps that move the feet away from what blocks them come first.
+  static constexpr const char* kOrder[] = {"back_4",   "in_place",    "back_turn_out", "turn_in",
+                                           "turn_out", "fwd_turn_in", "side_out",      "fwd_turn_out",
+                                           "fwd_4",    "diag_out",    "long_out",      "fwd_8"};
+  // The obstacle margin is a planning buffer that execution error may already have put the
+  // stance inside (sideways in a narrow gap, an arm within 3 cm of a wall): then the corrective
+  // step is checked against the map as measured, without the margin.
+  auto safe = planner_.safe_steps(planning_map(), stance);
+  if (safe.empty()) safe = planner_.safe_steps(fusion_.map(), stance);
+  const std::pair<std::string, Footstep>* step = nullptr;
+  for (const char* name : kOrder) {
+    for (const auto& s : safe)
+      if (!step && s.first == name) step = &s;
+  }
+  for (const auto& s : safe) {  // other action sets: their first planar action
+    for (const auto& a : planner_.lattice().actions().actions)
+      if (!step && a.name == s.first && a.kind == footstep::ActionKind::kPlanar) step = &s;
+  }
+  if (!step) return false;
+  plan_ = {};
+  plan_.steps = {stance, step->second};
+  plan_.actions = {step->first};
+  plan_.result = {Outcome::SUCCESS, "recovery step '" + step->first + "', then a replan from where it lands"};
+  cursor_ = 0;
+  ++recoveries_;
+  ++recoveries_in_row_;
+  return true;
+}
+
 StepDecision FootstepNavigator::next(const Footstep& odom_stance) {
   StepDecision d;
   if (!has_goal_) {
@@ -167,6 +206,12 @@ StepDecision FootstepNavigator::next(const Footstep& odom_stance) {
   if (needs_replan(stance)) {
     d.replanned = true;
     d.result = replan(stance);
+    if (d.result.ok()) {
+      recoveries_in_row_ = 0;
+    } else if (d.result.outcome == Outcome::NO_PATH_FOUND && recoveries_in_row_ < params_.max_recovery_steps &&
+               recover(stance)) {
+      d.result = plan_.result;
+    }
     if (!d.result.ok() || plan_.actions.empty()) {
       d.done = true;
       if (d.result.ok()) d.result = {Outcome::SUCCESS, "already at the goal"};

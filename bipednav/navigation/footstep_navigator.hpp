@@ -26,6 +26,10 @@ struct FootstepNavigatorParams {
   double obstacle_margin_m = 0.03;     // walls and blocks grow by this for the planner (obstacle_margin.hpp)
   double obstacle_step_m = 0.08;       // ... where the terrain rises by more than this (Nao steps onto 7 cm)
   std::size_t max_plans = 60;          // give up (PLAN_FAILURE) after this many plans
+  // When no plan reaches the goal from the stance (execution error left a foot next to a riser
+  // or a wall), take up to this many corrective planar steps in a row (back, in place, turn,
+  // aside: the first that is safe) and replan from where the foot really lands.
+  std::size_t max_recovery_steps = 3;
 
   void validate() const;
   // Deterministic planning in the loop: the first ARA* solution with epsilon 2 and no time
@@ -75,12 +79,16 @@ class FootstepNavigator {
   const footstep::FootstepPlan& plan() const { return plan_; }
   std::size_t plans() const { return plans_; }
   std::size_t corrections() const { return corrections_; }
+  std::size_t recoveries() const { return recoveries_; }  // corrective steps taken
   const footstep::FootstepPlanner& planner() const { return planner_; }
 
  private:
   bool close_to_plan(const footstep::Footstep& stance) const;  // plan_.steps[cursor_] must exist
   bool needs_replan(const footstep::Footstep& stance);
   Result replan(const footstep::Footstep& stance);
+  // A corrective step from `stance` after a failed plan (plan_ becomes that one step); false
+  // when no planar step is safe.
+  bool recover(const footstep::Footstep& stance);
   footstep::FootstepPlan remaining() const;
   const mapping::Heightmap& planning_map();  // the heightmap with the obstacle margin
 
@@ -94,7 +102,7 @@ class FootstepNavigator {
   mapping::Heightmap planning_map_;
   footstep::FootstepPlan plan_;
   std::size_t cursor_ = 0;  // plan_.steps[cursor_] is the current stance foot
-  std::size_t plans_ = 0, corrections_ = 0;
+  std::size_t plans_ = 0, corrections_ = 0, recoveries_ = 0, recoveries_in_row_ = 0;
 };
 
 }  // namespace bipednav::navigation

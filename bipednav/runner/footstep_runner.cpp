@@ -134,6 +134,7 @@ FootstepRunResult run_footstep_scenario(const sim::Scenario& scenario, const Foo
   if (out.last_plan.steps.empty()) out.last_plan = out.first_plan;
   out.map = loop.nav.map();
   out.corrections = loop.nav.corrections();
+  out.recoveries = loop.nav.recoveries();
   RunResult& r = out.summary;
   r.wall_s = wall.elapsed_ms() / 1000.0;
   r.time_s = loop.walker.time_s();

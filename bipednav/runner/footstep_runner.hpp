@@ -54,6 +54,7 @@ struct FootstepRunResult {
   Pose2 goal;
   double max_body_z_m = 0.0;
   std::size_t views = 0, corrections = 0;
+  std::size_t recoveries = 0;      // corrective steps after a failed plan (footstep_navigator.hpp)
   std::size_t rough_landings = 0;  // true terrain under a landed sole spread over the flatness threshold
 };
 

@@ -80,6 +80,34 @@ TEST(FootstepNavigator, AGoalOnAnObstacleIsBlocked) {
   EXPECT_EQ(d.result.outcome, Outcome::BLOCKED_GOAL) << d.result.message;
 }
 
+TEST(FootstepNavigator, WithoutAPathItTakesBoundedCorrectiveStepsThenGivesUp) {
+  // The goal is walled in by 30 cm walls: standable, but unreachable.
+  const std::vector<DepthView> ring = {slab(0.7, 0.75, -0.3, 0.3, 0.3), slab(1.25, 1.3, -0.3, 0.3, 0.3),
+                                       slab(0.7, 1.3, -0.3, -0.25, 0.3), slab(0.7, 1.3, 0.25, 0.3, 0.3)};
+  for (std::size_t max_recovery : {0u, 3u}) {
+    FootstepNavigatorParams p = params();
+    p.max_recovery_steps = max_recovery;
+    FootstepNavigator nav(p, grid());
+    nav.observe(ring, SE3::Identity());
+    nav.set_goal({1.0, 0.0, 0.0});
+    const footstep::Footstep start = nav.planner().stance_for_body({0, 0, 0}, footstep::Foot::kLeft);
+    footstep::Footstep stance = start;
+    int steps = 0;
+    StepDecision d;
+    for (; steps < 10; ++steps) {
+      d = nav.next(stance);
+      if (d.done) break;
+      ASSERT_NE(d.action, nullptr);
+      EXPECT_EQ(d.action->name, "back_4");  // away from what blocks it, one safe planar step
+      EXPECT_LT(d.target.pose.x, stance.pose.x);
+      stance = d.target;
+    }
+    EXPECT_EQ(d.result.outcome, Outcome::NO_PATH_FOUND) << d.result.message;
+    EXPECT_EQ(steps, static_cast<int>(max_recovery));
+    EXPECT_EQ(nav.recoveries(), max_recovery);
+  }
+}
+
 }  // namespace
 }  // namespace bipednav::navigation
 

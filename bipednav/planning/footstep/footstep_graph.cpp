@@ -7,11 +7,13 @@
 
 namespace bipednav::footstep {
 
-ActionLattice::ActionLattice(const ActionSet& actions, double res, int theta_bins)
-    : actions_(actions), res_(res), bins_(theta_bins) {
+ActionLattice::ActionLattice(const ActionSet& actions, double res, int theta_bins, double landing_margin_m)
+    : actions_(actions), res_(res), bins_(theta_bins), margin_m_(landing_margin_m) {
   actions_.validate();
   require(res > 0.0, "lattice_resolution_m", "> 0");
   require(theta_bins >= 4, "theta_bins", ">= 4");
+  require(std::isfinite(landing_margin_m) && landing_margin_m >= 0.0 && landing_margin_m <= 0.1, "landing_margin_m",
+          "in [0, 0.1] m");
   const std::size_t n = 2 * actions_.actions.size() * static_cast<std::size_t>(bins_);
   trans_.resize(n);
   ihm_.resize(n);
@@ -31,9 +33,18 @@ ActionLattice::ActionLattice(const ActionSet& actions, double res, int theta_bin
     }
   }
   soles_.resize(bins_);
+  rings_.resize(bins_);
   for (int t = 0; t < bins_; ++t) {
     soles_[t] = footprint_cells(actions_.body, theta_of(t), res);
     for (const auto& [dx, dy] : soles_[t]) sole_radius_ = std::max({sole_radius_, std::abs(dx), std::abs(dy)});
+    if (margin_m_ <= 0.0) continue;
+    const auto sole = soles_[t];
+    for (const auto& c : footprint_cells(actions_.body, theta_of(t), res, margin_m_)) {
+      if (std::find(sole.begin(), sole.end(), c) != sole.end()) continue;
+      rings_[t].push_back(c);
+      ring_radius_ =
+          std::max({ring_radius_, std::abs(static_cast<int>(c.first)), std::abs(static_cast<int>(c.second))});
+    }
   }
 }
 
@@ -74,12 +85,25 @@ Pose2 FootstepGraph::body_centre(std::int32_t s) const {
   return pose_of(k) * Pose2{0.0, k.stance == Foot::kLeft ? -half : half, 0.0};
 }
 
+bool FootstepGraph::clear_of_rising_edges(int ix, int iy, int itheta, float top) const {
+  const auto& ring = lattice_.margin_ring(itheta);
+  if (ring.empty()) return true;
+  const float limit = top + static_cast<float>(lattice_.actions().flatness_threshold_m);
+  const int r = lattice_.ring_radius_cells();
+  if (terrain_.range(ix - r, iy - r, ix + r, iy + r).max_h <= limit) return true;
+  for (const auto& [dx, dy] : ring) {
+    const int x = ix + dx, y = iy + dy;
+    if (terrain_.in_bounds(x, y) && terrain_.known(x, y) && terrain_.max_h(x, y) > limit) return false;
+  }
+  return true;
+}
+
 bool FootstepGraph::footprint_height(int ix, int iy, int itheta, float stance_z, float* z) const {
   const int r = lattice_.sole_radius_cells();
   const auto quick = terrain_.range(ix - r, iy - r, ix + r, iy + r);
   if (quick.all_known && quick.max_h == quick.min_h) {  // uniformly flat: the mean is that height
     *z = quick.max_h;
-    return true;
+    return clear_of_rising_edges(ix, iy, itheta, quick.max_h);
   }
   float lo = std::numeric_limits<float>::infinity(), hi = -lo;
   double sum = 0.0;
@@ -97,7 +121,7 @@ bool FootstepGraph::footprint_height(int ix, int iy, int itheta, float stance_z,
     return true;
   }
   *z = static_cast<float>(sum / known);
-  return hi - lo <= lattice_.actions().flatness_threshold_m;
+  return hi - lo <= lattice_.actions().flatness_threshold_m && clear_of_rising_edges(ix, iy, itheta, hi);
 }
 
 bool FootstepGraph::whole_body_free(const StateKey& s, float z, int action) const {

@@ -16,7 +16,11 @@ namespace bipednav::footstep {
 // inverse heightmap; for each heading bin the sole's cells. Built once per robot and lattice.
 class ActionLattice {
  public:
-  ActionLattice(const ActionSet& actions, double res, int theta_bins);
+  // `landing_margin_m`: a landed sole must also keep this far from any rising edge (a cell
+  // higher than its top by more than the flatness threshold), so that the walker's landing
+  // error does not put its toe on a riser. Edges that drop away need none: an overhang of a
+  // centimetre or two still supports the sole.
+  ActionLattice(const ActionSet& actions, double res, int theta_bins, double landing_margin_m = 0.0);
 
   struct Transition {
     int dix = 0, diy = 0, ditheta = 0;
@@ -30,6 +34,10 @@ class ActionLattice {
   const InverseHeightmap& ihm(Foot f, int action, int itheta) const { return ihm_[slot(f, action, itheta)]; }
   const std::vector<std::pair<std::int16_t, std::int16_t>>& sole(int itheta) const { return soles_[itheta]; }
   int sole_radius_cells() const { return sole_radius_; }
+  // The cells within the landing margin around the sole (none without a margin).
+  const std::vector<std::pair<std::int16_t, std::int16_t>>& margin_ring(int itheta) const { return rings_[itheta]; }
+  int ring_radius_cells() const { return ring_radius_; }
+  double landing_margin_m() const { return margin_m_; }
 
  private:
   std::size_t slot(Foot f, int a, int t) const {
@@ -40,8 +48,9 @@ class ActionLattice {
   int bins_;
   std::vector<Transition> trans_;
   std::vector<InverseHeightmap> ihm_;
-  std::vector<std::vector<std::pair<std::int16_t, std::int16_t>>> soles_;
-  int sole_radius_ = 0;
+  std::vector<std::vector<std::pair<std::int16_t, std::int16_t>>> soles_, rings_;
+  int sole_radius_ = 0, ring_radius_ = 0;
+  double margin_m_ = 0.0;
 };
 
 struct FootstepGoal {
@@ -77,6 +86,7 @@ class FootstepGraph : public SearchGraph {
   };
   std::int32_t intern(const StateKey& k, float z);
   bool footprint_height(int ix, int iy, int itheta, float stance_z, float* z) const;
+  bool clear_of_rising_edges(int ix, int iy, int itheta, float top) const;  // the landing margin
   bool whole_body_free(const StateKey& s, float z, int action) const;
   Pose2 pose_of(const StateKey& k) const;
 

@@ -11,6 +11,8 @@ void FootstepPlannerParams::validate() const {
   require(heuristic == "dijkstra" || heuristic == "euclidean", "heuristic", "dijkstra or euclidean");
   require(goal_tolerance_m > 0.0, "goal_tolerance_m", "> 0");
   require(goal_tolerance_rad > 0.0, "goal_tolerance_rad", "> 0");
+  require(std::isfinite(landing_margin_m) && landing_margin_m >= 0.0 && landing_margin_m <= 0.1, "landing_margin_m",
+          "in [0, 0.1] m");
   search.validate();
 }
 
@@ -18,7 +20,8 @@ FootstepPlanner::FootstepPlanner(FootstepPlannerParams params) : params_(std::mo
   params_.validate();
   ActionSet set = action_set_for(params_.robot);
   if (params_.planar_only) set = planar_only(set);
-  lattice_ = std::make_unique<ActionLattice>(set, params_.lattice_resolution_m, params_.theta_bins);
+  lattice_ =
+      std::make_unique<ActionLattice>(set, params_.lattice_resolution_m, params_.theta_bins, params_.landing_margin_m);
 }
 
 Footstep FootstepPlanner::stance_for_body(const Pose2& body, Foot foot, double z_m) const {
@@ -112,6 +115,23 @@ bool FootstepPlanner::still_valid(const mapping::Heightmap& map, const FootstepP
     s = next;
   }
   return true;
+}
+
+std::vector<std::pair<std::string, Footstep>> FootstepPlanner::safe_steps(const mapping::Heightmap& map,
+                                                                          const Footstep& from) const {
+  std::vector<std::pair<std::string, Footstep>> out;
+  if (!from.pose.is_finite() || !std::isfinite(from.z_m)) return out;
+  const TerrainGrid terrain(map, params_.lattice_resolution_m);
+  if (!terrain.geometry().world_to_cell(from.pose.x, from.pose.y)) return out;
+  const EuclideanHeuristic none(from.pose, 1.0, 1.0);
+  FootstepGraph graph(*lattice_, terrain, none, {from.pose, 1.0, 1.0}, from);
+  const auto& actions = lattice_->actions().actions;
+  for (std::size_t a = 0; a < actions.size(); ++a) {
+    std::int32_t to = -1;
+    if (graph.action_safe(graph.start_state(), static_cast<int>(a), &to))
+      out.emplace_back(actions[a].name, graph.footstep(to));
+  }
+  return out;
 }
 
 }  // namespace bipednav::footstep

@@ -19,6 +19,9 @@ struct FootstepPlannerParams {
   std::string heuristic = "dijkstra";  // dijkstra | euclidean
   double goal_tolerance_m = 0.05;
   double goal_tolerance_rad = 0.3;
+  // A landed sole keeps this far from rising edges (footstep_graph.hpp): the walker's landing
+  // error. 0 (Table I, exact footholds); the closed loop sets it (footstep_navigator.hpp).
+  double landing_margin_m = 0.0;
   AraStarParams search;  // initial epsilon 8, decreasing to 1 within the time limit
 
   void validate() const;
@@ -48,6 +51,9 @@ class FootstepPlanner {
   FootstepPlan plan(const mapping::Heightmap& map, const Footstep& start, const Pose2& goal) const;
   // Whether every step of `plan` is still safe on `map` (replan when it is not).
   bool still_valid(const mapping::Heightmap& map, const FootstepPlan& plan) const;
+  // The actions that are safe from `from` on `map` (flat landing, dz, whole body), each with
+  // the foot it lands (on the lattice). For recovery steps when no plan reaches the goal.
+  std::vector<std::pair<std::string, Footstep>> safe_steps(const mapping::Heightmap& map, const Footstep& from) const;
 
   // The stance foot pose for a body pose (feet half a separation to each side).
   Footstep stance_for_body(const Pose2& body, Foot foot, double z_m = 0.0) const;

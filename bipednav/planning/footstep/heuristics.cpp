@@ -17,9 +17,6 @@ double EuclideanHeuristic::seconds_to_goal(double x, double y) const {
 
 namespace {
 
-// Height of a lattice cell for the graph; unknown cells count as the floor around them (free).
-float cell_height(const TerrainGrid& t, int x, int y) { return t.known(x, y) ? t.max_h(x, y) : 0.0f; }
-
 double swing_peak_planar(const ActionSet& a) {
   double peak = std::numeric_limits<double>::infinity();
   for (const auto& act : a.actions)
@@ -43,7 +40,18 @@ double elevation_penalty(const ActionSet& a) {
 }  // namespace
 
 EdgeClass classify_edge(const TerrainGrid& t, int x0, int y0, int x1, int y1, const ActionSet& actions) {
-  const double dh = std::abs(cell_height(t, x0, y0) - cell_height(t, x1, y1));
+  const bool k0 = t.known(x0, y0), k1 = t.known(x1, y1);
+  if (!k0 && !k1) return EdgeClass::kPlanar;  // unknown ground is free (the footstep graph's view)
+  if (!k0 || !k1) {
+    // Unknown cells count as the floor (0), but an unseen tread may hide in them: a known cell
+    // up to two steps above the floor is reachable through them (elevating). As a plain step, a
+    // 10 cm platform whose lower stair was not seen yet was a cliff, and the heuristic infinite
+    // for every state behind it; walls stay impassable.
+    const double h = std::abs(k0 ? t.max_h(x0, y0) : t.max_h(x1, y1));
+    if (h > 2.0 * actions.max_step_height_m) return EdgeClass::kImpassable;
+    return h < swing_peak_planar(actions) ? EdgeClass::kPlanar : EdgeClass::kElevating;
+  }
+  const double dh = std::abs(t.max_h(x0, y0) - t.max_h(x1, y1));
   if (dh > actions.max_step_height_m) return EdgeClass::kImpassable;
   // A planar swing foot clears bumps lower than its peak without any 3D action.
   if (dh < swing_peak_planar(actions)) return EdgeClass::kPlanar;

@@ -132,9 +132,10 @@ InverseHeightmap build_inverse_heightmap(const FootstepAction& a, const BodyMode
   return vol.result(b.torso_bottom_m);
 }
 
-std::vector<std::pair<std::int16_t, std::int16_t>> footprint_cells(const BodyModel& b, double theta, double res) {
+std::vector<std::pair<std::int16_t, std::int16_t>> footprint_cells(const BodyModel& b, double theta, double res,
+                                                                   double grow_m) {
   std::vector<std::pair<std::int16_t, std::int16_t>> out;
-  rasterize_rect(sole(b, {0, 0, 0}), theta, res, 0.0,
+  rasterize_rect(sole(b, {0, 0, 0}), theta, res, grow_m,
                  [&](int x, int y) { out.emplace_back(static_cast<std::int16_t>(x), static_cast<std::int16_t>(y)); });
   if (out.empty()) out.emplace_back(0, 0);
   return out;

@@ -70,7 +70,9 @@ void rasterize_rect(const Rect& r, double theta, double res, double grow_m, Visi
 InverseHeightmap build_inverse_heightmap(const FootstepAction& action, const BodyModel& body, Foot stance, double theta,
                                          double res);
 
-// Lattice offsets of a foot sole with heading `theta` centred on cell (0, 0).
-std::vector<std::pair<std::int16_t, std::int16_t>> footprint_cells(const BodyModel& body, double theta, double res);
+// Lattice offsets of a foot sole with heading `theta` centred on cell (0, 0), the sole grown by
+// `grow_m` on every side.
+std::vector<std::pair<std::int16_t, std::int16_t>> footprint_cells(const BodyModel& body, double theta, double res,
+                                                                   double grow_m = 0.0);
 
 }  // namespace bipednav::footstep

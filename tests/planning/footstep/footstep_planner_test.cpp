@@ -102,6 +102,62 @@ TEST(FootstepPlanner, ClimbsTwoStairsUpAndDown) {
   EXPECT_NEAR(plan.steps.back().z_m, 0.0, 1e-6);
 }
 
+TEST(FootstepPlanner, LandingMarginKeepsTheToeOffARiserButNotOffADrop) {
+  // From a left stance at x = 0.805 m, fwd_8 lands the right sole's toe at 0.965 m, half a
+  // centimetre short of a rising step (cells from 0.97 m) or of a drop.
+  const Footstep stance{{0.805, 0.405, 0.0}, 0.0, Foot::kLeft};
+  const auto lands = [&](const FootstepPlanner& planner, const mapping::Heightmap& map, const std::string& action) {
+    for (const auto& [name, foot] : planner.safe_steps(map, stance))
+      if (name == action) return true;
+    return false;
+  };
+  FootstepPlannerParams exact = fast_params(), margin = fast_params();
+  margin.landing_margin_m = 0.015;
+  const FootstepPlanner without(exact), with(margin);
+  auto riser = flat_map(1.4, 0.8, 0.01);
+  add_box(riser, 0.97, 0.0, 1.4, 0.8, 0.05);
+  EXPECT_TRUE(lands(without, riser, "fwd_8"));
+  EXPECT_FALSE(lands(with, riser, "fwd_8"));  // the toe would be within 1.5 cm of the riser
+  EXPECT_TRUE(lands(with, riser, "fwd_4"));
+  auto drop = flat_map(1.4, 0.8, 0.01);
+  add_box(drop, 0.97, 0.0, 1.4, 0.8, -0.05);
+  EXPECT_TRUE(lands(with, drop, "fwd_8"));  // an overhang of a few millimetres still supports the sole
+  margin.landing_margin_m = -0.01;
+  EXPECT_THROW(FootstepPlanner{margin}, ParamError);
+}
+
+TEST(FootstepPlanner, ClimbsTheScenarioStairsWithTheLoopsLandingMargin) {
+  // nao_stairs: 35 cm treads, 5 cm risers; step_onto leaves 2 cm between the soles, so a 1 cm
+  // margin still admits it from the right places.
+  auto map = flat_map(2.6, 0.8, 0.01);
+  add_box(map, 0.6, 0.0, 2.0, 0.8, 0.05);
+  add_box(map, 0.95, 0.0, 1.65, 0.8, 0.10);
+  FootstepPlannerParams p = fast_params();
+  p.landing_margin_m = 0.01;
+  FootstepPlanner planner(p);
+  const FootstepPlan plan = planner.plan(map, planner.stance_for_body({0.3, 0.4, 0.0}, Foot::kLeft), {2.3, 0.4, 0.0});
+  ASSERT_TRUE(plan.result.ok()) << plan.result.message;
+  EXPECT_TRUE(uses(plan, "step_onto"));
+  EXPECT_TRUE(uses(plan, "step_down"));
+}
+
+TEST(FootstepPlanner, UnknownGroundNextToAPlatformDoesNotBlockTheHeuristic) {
+  // Only a 10 cm platform across the whole width is known; the rest is unseen (free).
+  mapping::Heightmap map({200, 100, 0.01, 0.0, 0.0});
+  for (int y = 0; y < 100; ++y)
+    for (int x = 50; x < 100; ++x) map.set(x, y, 0.10f, 1e-4f);
+  const TerrainGrid terrain(map, 0.01);
+  const Pose2 goal{1.5, 0.5, 0.0};
+  const DijkstraHeuristic h(terrain, nao_action_set(), goal, 0.05);
+  for (double x : {0.2, 0.75, 1.2}) EXPECT_TRUE(std::isfinite(h.seconds_to_goal(x, 0.5))) << x;
+  // A 30 cm wall seen only from above, across the whole width, still blocks.
+  mapping::Heightmap wall({200, 100, 0.01, 0.0, 0.0});
+  for (int y = 0; y < 100; ++y)
+    for (int x = 95; x < 100; ++x) wall.set(x, y, 0.30f, 1e-4f);
+  const TerrainGrid walled(wall, 0.01);
+  EXPECT_FALSE(std::isfinite(DijkstraHeuristic(walled, nao_action_set(), goal, 0.05).seconds_to_goal(0.2, 0.5)));
+}
+
 TEST(FootstepPlanner, TurnsSidewaysThroughAPassageNarrowerThanTheArms) {
   // Walls 0.5 m high leave a 0.24 m gap: the legs fit, the arms (0.29 m span) do not.
   auto map = flat_map(1.6, 1.2, 0.01);
