@@ -109,6 +109,9 @@ RunResult run_scenario(const sim::Scenario& scenario, const RunOptions& o) {
     const auto state = nav.status().state;
     if (!more_goals && (state == navigation::NavState::SUCCEEDED || state == navigation::NavState::FAILED)) break;
   }
+  // The trace ends with the final step (the robot's last command), not the last periodic sample.
+  if (out.trace.empty() || out.trace.back().t_s + 1e-9 < sim.now_s())
+    out.trace.push_back({sim.now_s(), sim.true_pose(), nav.pose(), cmd, nav.status().active_leaf, sim.actor_poses()});
   bar.finish();
   out.wall_s = wall.elapsed_ms() / 1000.0;
   out.time_s = sim.now_s();

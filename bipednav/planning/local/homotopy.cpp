@@ -243,11 +243,16 @@ void HomotopyPlanner::optimise_all(const Twist& v0, const std::vector<Eigen::Vec
   });
 }
 
-const BandCandidate* HomotopyPlanner::select() {
+const BandCandidate* HomotopyPlanner::select(const std::vector<Eigen::Vector2d>& centroids,
+                                             const std::vector<double>& plan_signature) {
   const BandCandidate* best = nullptr;
   double best_cost = 0.0;
+  const double tol = params_.homotopy.signature_tolerance_rad;
   for (const auto& b : bands_) {
-    const double c = b.cost.selection() * (b.id == selected_id_ ? params_.homotopy.selection_hysteresis : 1.0);
+    double c = b.cost.selection() * (b.id == selected_id_ ? params_.homotopy.selection_hysteresis : 1.0);
+    if (!plan_signature.empty() && bands_.size() > 1 &&
+        same_homotopy_class(winding_signature(band_polyline(b.band), centroids), plan_signature, tol))
+      c *= params_.homotopy.global_plan_preference;
     if (best == nullptr || c < best_cost) best = &b, best_cost = c;
   }
   if (best == nullptr) {
@@ -279,7 +284,14 @@ const BandCandidate* HomotopyPlanner::plan(const Pose2& start, const Pose2& goal
   optimise_all(start_velocity, via_points, obstacles);
   std::erase_if(bands_, [](const BandCandidate& b) { return !b.ok; });
   drop_duplicates(centroids, true);
-  return select();
+  std::vector<double> plan_signature;
+  if (!via_points.empty()) {
+    std::vector<Eigen::Vector2d> plan{start.position()};
+    plan.insert(plan.end(), via_points.begin(), via_points.end());
+    plan.push_back(goal.position());
+    plan_signature = winding_signature(plan, centroids);
+  }
+  return select(centroids, plan_signature);
 }
 
 }  // namespace bipednav::planning::local
