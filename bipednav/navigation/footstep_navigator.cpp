@@ -153,28 +153,39 @@ Result FootstepNavigator::replan(const Footstep& stance) {
 }
 
 bool FootstepNavigator::recover(const Footstep& stance) {
-  // A plan that fails from a stance also fails from every step the graph could take from it, so
-  // the recovery is not planned: one corrective planar step is taken, the head looks again and
-  // the next decision replans from where the foot really landed (a centimetre or two elsewhere,
-  // seen anew). Steps that move the feet away from what blocks them come first.
+  // Within the planning map a plan that fails from a stance also fails from every step the
+  // graph could take from it: one corrective planar step is taken, the head looks again and the
+  // next decision replans from where the foot really landed (a centimetre or two elsewhere, seen
+  // anew). Steps that move the feet away from what blocks them come first.
   static constexpr const char* kOrder[] = {"back_4",   "in_place",    "back_turn_out", "turn_in",
                                            "turn_out", "fwd_turn_in", "side_out",      "fwd_turn_out",
                                            "fwd_4",    "diag_out",    "long_out",      "fwd_8"};
   // The obstacle margin is a planning buffer that execution error may already have put the
-  // stance inside (sideways in a narrow gap, an arm within 3 cm of a wall): then the corrective
-  // step is checked against the map as measured, without the margin.
+  // stance inside (sideways in a narrow gap, an arm within 3 cm of a wall). Then the corrective
+  // step is checked against the map as measured, without the margin, and the first of a few
+  // candidates from whose landing the planner (with the margin) reaches the goal is preferred.
   auto safe = planner_.safe_steps(planning_map(), stance);
-  if (safe.empty()) safe = planner_.safe_steps(fusion_.map(), stance);
-  const std::pair<std::string, Footstep>* step = nullptr;
-  for (const char* name : kOrder) {
+  const bool inside_margin = safe.empty();
+  if (inside_margin) safe = planner_.safe_steps(fusion_.map(), stance);
+  std::vector<const std::pair<std::string, Footstep>*> candidates;
+  for (const char* name : kOrder)
     for (const auto& s : safe)
-      if (!step && s.first == name) step = &s;
-  }
-  for (const auto& s : safe) {  // other action sets: their first planar action
+      if (s.first == name) candidates.push_back(&s);
+  for (const auto& s : safe) {  // other action sets: their planar actions
+    if (std::find(candidates.begin(), candidates.end(), &s) != candidates.end()) continue;
     for (const auto& a : planner_.lattice().actions().actions)
-      if (!step && a.name == s.first && a.kind == footstep::ActionKind::kPlanar) step = &s;
+      if (a.name == s.first && a.kind == footstep::ActionKind::kPlanar) candidates.push_back(&s);
   }
-  if (!step) return false;
+  if (candidates.empty()) return false;
+  const std::pair<std::string, Footstep>* step = candidates.front();
+  if (inside_margin) {
+    for (std::size_t i = 0; i < std::min<std::size_t>(candidates.size(), 4); ++i) {
+      if (planner_.plan(planning_map(), candidates[i]->second, goal_).result.ok()) {
+        step = candidates[i];
+        break;
+      }
+    }
+  }
   plan_ = {};
   plan_.steps = {stance, step->second};
   plan_.actions = {step->first};
