@@ -33,10 +33,6 @@ NavigatorParams NavigatorParams::for_robot(const RobotProfile& robot) {
   // Odometry faster than twice the robot's limits has jumped.
   p.localization.max_odometry_speed_mps = 2.0 * std::max(robot.max_vel_x_mps, robot.max_vel_x_backwards_mps);
   p.localization.max_odometry_rate_radps = 2.0 * robot.max_vel_theta_radps;
-  // Both robots move on a flat floor: LOAM keeps the LiDAR's height, roll and pitch (the
-  // directions a torso VLP-16 observes worst; left free, the height drifts by ~1 m over
-  // three_rooms and drags x/y with it).
-  p.localization.loam.planar_motion = true;
 
   auto& lim = p.server.local.teb.limits;
   lim.max_vel_x_mps = robot.max_vel_x_mps;

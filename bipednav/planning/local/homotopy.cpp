@@ -243,16 +243,11 @@ void HomotopyPlanner::optimise_all(const Twist& v0, const std::vector<Eigen::Vec
   });
 }
 
-const BandCandidate* HomotopyPlanner::select(const std::vector<Eigen::Vector2d>& centroids,
-                                             const std::vector<double>& plan_signature) {
+const BandCandidate* HomotopyPlanner::select() {
   const BandCandidate* best = nullptr;
   double best_cost = 0.0;
-  const double tol = params_.homotopy.signature_tolerance_rad;
   for (const auto& b : bands_) {
-    double c = b.cost.selection() * (b.id == selected_id_ ? params_.homotopy.selection_hysteresis : 1.0);
-    if (!plan_signature.empty() && bands_.size() > 1 &&
-        same_homotopy_class(winding_signature(band_polyline(b.band), centroids), plan_signature, tol))
-      c *= params_.homotopy.global_plan_preference;
+    const double c = b.cost.selection() * (b.id == selected_id_ ? params_.homotopy.selection_hysteresis : 1.0);
     if (best == nullptr || c < best_cost) best = &b, best_cost = c;
   }
   if (best == nullptr) {
@@ -284,14 +279,7 @@ const BandCandidate* HomotopyPlanner::plan(const Pose2& start, const Pose2& goal
   optimise_all(start_velocity, via_points, obstacles);
   std::erase_if(bands_, [](const BandCandidate& b) { return !b.ok; });
   drop_duplicates(centroids, true);
-  std::vector<double> plan_signature;
-  if (!via_points.empty()) {
-    std::vector<Eigen::Vector2d> plan{start.position()};
-    plan.insert(plan.end(), via_points.begin(), via_points.end());
-    plan.push_back(goal.position());
-    plan_signature = winding_signature(plan, centroids);
-  }
-  return select(centroids, plan_signature);
+  return select();
 }
 
 }  // namespace bipednav::planning::local

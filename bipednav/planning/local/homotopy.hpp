@@ -45,8 +45,7 @@ struct BandCandidate {
 };
 
 // Keeps up to max_classes bands in distinct homotopy classes across cycles, optimises them in
-// parallel and selects the cheapest, preferring the previous choice by selection_hysteresis and the
-// global plan's class (start -> via points -> goal) by global_plan_preference.
+// parallel and selects the cheapest, preferring the previous choice by selection_hysteresis.
 // Deterministic for any thread count: every band is optimised independently into its own slot.
 class HomotopyPlanner {
  public:
@@ -64,8 +63,7 @@ class HomotopyPlanner {
                       const std::vector<Obstacle>& obstacles, const std::vector<Eigen::Vector2d>& centroids);
   void optimise_all(const Twist& v0, const std::vector<Eigen::Vector2d>& via, const std::vector<Obstacle>& obstacles);
   void drop_duplicates(const std::vector<Eigen::Vector2d>& centroids, bool by_cost);
-  // `plan_signature`: the global plan's class (empty: no preference).
-  const BandCandidate* select(const std::vector<Eigen::Vector2d>& centroids, const std::vector<double>& plan_signature);
+  const BandCandidate* select();
 
   TebParams params_;
   ThreadPool pool_;

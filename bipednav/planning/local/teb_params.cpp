@@ -59,7 +59,6 @@ void HomotopyParams::validate() const {
   require(max_classes >= 1, "max_classes", ">= 1");
   require(num_threads >= 1, "num_threads", ">= 1");
   require(pos(selection_hysteresis) && selection_hysteresis <= 1.0, "selection_hysteresis", "in (0, 1]");
-  require(pos(global_plan_preference) && global_plan_preference <= 1.0, "global_plan_preference", "in (0, 1]");
   require(nonneg(corridor_halfwidth_m), "corridor_halfwidth_m", ">= 0");
   require(max_keypoint_obstacles >= 0, "max_keypoint_obstacles", ">= 0");
   require(nonneg(keypoint_margin_m), "keypoint_margin_m", ">= 0");

@@ -71,10 +71,6 @@ struct HomotopyParams {
   int max_classes = 3;
   int num_threads = 1;
   double selection_hysteresis = 0.9;  // the selected class's cost is scaled by this when comparing
-  // The class of the global plan (start -> via points -> goal) is scaled by this too (TEB's
-  // selection_prefer_initial_plan): the local band follows the global path's side of an obstacle
-  // unless another class is clearly cheaper, so the two planners do not pull the robot apart.
-  double global_plan_preference = 0.8;
   double corridor_halfwidth_m = 2.0;  // obstacles further off the start-goal line get no keypoints
   int max_keypoint_obstacles = 6;
   double keypoint_margin_m = 0.1;

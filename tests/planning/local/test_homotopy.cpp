@@ -106,22 +106,4 @@ TEST(HomotopyPlanner, KeepsDistinctClassesAndItsSelection) {
   }
 }
 
-TEST(HomotopyPlanner, PrefersTheGlobalPlansSideOfAnObstacle) {
-  const std::vector<Obstacle> obs{point_obstacle(1.5, 0.0)};
-  const std::vector<Eigen::Vector2d> c{{1.5, 0.0}};
-  const Pose2 start{0, 0, 0}, goal{3, 0, 0};
-  for (const double side : {0.8, -0.8}) {
-    TebParams p;
-    HomotopyPlanner planner(p);
-    const std::vector<Eigen::Vector2d> via{{1.5, side}};
-    const std::vector<Eigen::Vector2d> plan{start.position(), via[0], goal.position()};
-    for (int i = 0; i < 3; ++i) {
-      const BandCandidate* b = planner.plan(start, goal, {}, via, obs);
-      ASSERT_NE(b, nullptr);
-      EXPECT_TRUE(same_homotopy_class(winding_signature(band_polyline_of(b->band), c), winding_signature(plan, c), 1.0))
-          << "the band left the global plan's side " << side;
-    }
-  }
-}
-
 }  // namespace bipednav::planning::local
