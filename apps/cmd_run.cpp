@@ -81,9 +81,9 @@ nlohmann::json to_json(const runner::RunResult& r) {
   j["wall_s"] = r.wall_s;
   j["goals_given"] = r.goals_given;
   const sim::FaultCounters& f = r.faults;
-  j["faults"] = {{"sweeps_dropped", f.sweeps_dropped},       {"depth_points_nan", f.depth_points_nan},
-                 {"odometry_jumps", f.odometry_jumps},       {"odometry_slipped", f.odometry_slipped},
-                 {"messages_delayed", f.messages_delayed},   {"messages_reordered", f.messages_reordered}};
+  j["faults"] = {{"sweeps_dropped", f.sweeps_dropped},     {"depth_points_nan", f.depth_points_nan},
+                 {"odometry_jumps", f.odometry_jumps},     {"odometry_slipped", f.odometry_slipped},
+                 {"messages_delayed", f.messages_delayed}, {"messages_reordered", f.messages_reordered}};
   return j;
 }
 
@@ -204,9 +204,10 @@ void add_run_commands(CLI::App& app, CLI::App& bench) {
   run->add_option("--world", args->world, "A Gazebo .world file instead of a scenario");
   run->add_option("--start", args->start, "With --world: start pose x,y,yaw")->capture_default_str();
   run->add_option("--goal", args->goal, "With --world: goal pose x,y,yaw");
-  run->add_option("--fault", args->faults,
-                  "Inject a fault: type:start_s:duration_s[:value] (lidar_dropout, depth_nan_burst, localization_jump "
-                  "(value dx,dy,dyaw), odometry_slip, stale_timestamps, out_of_order_timestamps, goal_flood); repeatable");
+  run->add_option(
+      "--fault", args->faults,
+      "Inject a fault: type:start_s:duration_s[:value] (lidar_dropout, depth_nan_burst, localization_jump "
+      "(value dx,dy,dyaw), odometry_slip, stale_timestamps, out_of_order_timestamps, goal_flood); repeatable");
   run->add_option("--bag", args->bag, "Record the run as a rosbag (ROS build only)");
   run->add_option("--replay", args->replay, "Write a self-contained HTML replay of the run to this file");
   run->callback([args] {
