@@ -31,23 +31,6 @@ void parallel_chunks(std::size_t n, int threads, Fn fn) {
   for (auto& th : pool) th.join();
 }
 
-// A nanoflann result set: nanoflann offers a point only when its squared distance is below worstDist().
-struct NearestWithin {
-  float worst;
-  std::uint32_t index = 0;
-  bool found = false;
-  bool full() const { return true; }
-  float worstDist() const { return worst; }
-  bool addPoint(float d2, std::uint32_t i) {
-    if (d2 < worst) {  // nanoflann compares a whole leaf with the bound at the leaf's start
-      worst = d2;
-      index = i;
-      found = true;
-    }
-    return true;
-  }
-};
-
 // Plane covariance from the neighbours of one point: the eigenvalues of their scatter become
 // (epsilon, 1, 1), i.e. I - (1 - epsilon) n n^T with n the normal (smallest eigenvector).
 template <class PointAt>
@@ -140,23 +123,6 @@ Linearization linearize(const GicpCloud& source, const GicpCloud& target, const 
 }
 
 }  // namespace
-
-GicpIndex::GicpIndex(std::vector<Eigen::Vector3f> points) : impl_(std::make_unique<Impl>(std::move(points))) {}
-
-bool GicpIndex::nearest(const Eigen::Vector3f& q, float bound_sq, std::uint32_t& index, float& sq_dist) const {
-  if (empty()) return false;
-  NearestWithin r{bound_sq};
-  impl_->tree.findNeighbors(r, q.data(), nanoflann::SearchParams());
-  if (!r.found) return false;
-  index = r.index;
-  sq_dist = r.worst;
-  return true;
-}
-
-std::size_t GicpIndex::knn(const Eigen::Vector3f& q, std::size_t k, std::uint32_t* indices, float* sq_dists) const {
-  if (empty()) return 0;
-  return impl_->tree.knnSearch(q.data(), k, indices, sq_dists);
-}
 
 void GicpParams::validate() const {
   require(covariance_neighbours >= 5 && covariance_neighbours <= 100, "covariance_neighbours", "in [5, 100]");

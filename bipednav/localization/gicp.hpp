@@ -26,45 +26,9 @@ struct GicpParams {
   void validate() const;
 };
 
-// Exact nearest-neighbour searches over a fixed set of points (a nanoflann kd-tree that owns a copy
-// of its points), with the bounded query GICP's correspondence search needs.
-class GicpIndex {
- public:
-  GicpIndex() = default;
-  explicit GicpIndex(std::vector<Eigen::Vector3f> points);
-
-  bool empty() const { return !impl_ || impl_->adaptor.pts.empty(); }
-  std::size_t size() const { return impl_ ? impl_->adaptor.pts.size() : 0; }
-  const Eigen::Vector3f& point(std::size_t i) const { return impl_->adaptor.pts[i]; }
-  // Point indices in the tree's leaf order (neighbouring entries are spatially close).
-  const std::vector<std::uint32_t>& leaf_order() const { return impl_->tree.vAcc; }
-
-  // The nearest point of q closer than sqrt(bound_sq): writes its index and squared distance and
-  // returns true, or returns false when there is none. A tight bound makes the search cheap.
-  bool nearest(const Eigen::Vector3f& q, float bound_sq, std::uint32_t& index, float& sq_dist) const;
-  // The k nearest points of q, closest first; returns how many were found.
-  std::size_t knn(const Eigen::Vector3f& q, std::size_t k, std::uint32_t* indices, float* sq_dists) const;
-
- private:
-  struct Adaptor {
-    std::vector<Eigen::Vector3f> pts;
-    std::size_t kdtree_get_point_count() const { return pts.size(); }
-    float kdtree_get_pt(std::size_t i, std::size_t d) const { return pts[i][static_cast<Eigen::Index>(d)]; }
-    template <class BBox>
-    bool kdtree_get_bbox(BBox& /*bb*/) const {
-      return false;
-    }
-  };
-  using Tree =
-      nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, Adaptor>, Adaptor, 3, std::uint32_t>;
-  struct Impl {
-    explicit Impl(std::vector<Eigen::Vector3f> points)
-        : adaptor{std::move(points)}, tree(3, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(10)) {}
-    Adaptor adaptor;
-    Tree tree;
-  };
-  std::unique_ptr<Impl> impl_;
-};
+// Exact nearest-neighbour searches over a fixed set of points, with the bounded query GICP's
+// correspondence search needs.
+using GicpIndex = KdTree3f;
 
 // A cloud ready for GICP: finite points, their regularised covariances and a search index.
 struct GicpCloud {
