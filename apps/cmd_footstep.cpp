@@ -127,12 +127,10 @@ void bench_footsteps(const BenchArgs& a) {
   bar.finish();
   nlohmann::json rows = nlohmann::json::object();
   for (auto& [name, cell] : table) {
+    std::vector<double> init_ms;
+    for (double t : cell.t_init) init_ms.push_back(1000.0 * t);
     rows[name] = {{"suboptimality_ratio", stats(cell.subopt)},
-                  {"t_init_sol_ms", stats([&] {
-                     std::vector<double> ms;
-                     for (double t : cell.t_init) ms.push_back(1000.0 * t);
-                     return ms;
-                   }())},
+                  {"t_init_sol_ms", stats(init_ms)},
                   {"solve_rate_ratio", total ? static_cast<double>(cell.solved) / total : 0.0}};
   }
   const auto& d5 = rows["dijkstra_" + std::to_string(static_cast<int>(a.short_limit_s)) + "s"];

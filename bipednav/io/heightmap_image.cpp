@@ -76,7 +76,10 @@ mapping::Heightmap read_heightmap_image(const std::filesystem::path& file, const
   } catch (const ParamError& e) {
     throw FileError(file.string(), "", e.what());
   }
-  return read_png(file.parent_path() / image, p);
+  const std::filesystem::path png = file.parent_path() / image;
+  if (!std::filesystem::is_regular_file(png))
+    throw FileError(file.string(), "image", "the image '" + png.string() + "' does not exist");
+  return read_png(png, p);
 }
 
 }  // namespace bipednav::io

@@ -231,6 +231,8 @@ Costmap2D read_map_server(const std::filesystem::path& yaml_path, MapServerMetad
   const MapServerMetadata m = parse_metadata(yaml_path);
   std::filesystem::path image = m.image;
   if (image.is_relative()) image = yaml_path.parent_path() / image;
+  if (!std::filesystem::is_regular_file(image))
+    throw FileError(yaml_path.string(), "image", "the image '" + image.string() + "' does not exist");
   std::string ext = image.extension().string();
   for (auto& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   GrayImage img;

@@ -1,7 +1,10 @@
 #include "bipednav/sim/sdf_world.hpp"
 
 #include <algorithm>
+#include <exception>
+#include <new>
 #include <sdf/sdf.hh>
+#include <string>
 
 #include "bipednav/common/error.hpp"
 #include "bipednav/sim/mesh_loader.hpp"
@@ -179,7 +182,17 @@ World load_sdf_world(const fs::path& file, const std::vector<fs::path>& model_pa
   for (const fs::path& dir : ctx.model_paths) config.AddURIPath("model://", fs::absolute(dir).string());
   config.SetFindCallback([](const std::string& uri) { return is_remote(uri) ? std::string() : uri; });
   sdf::Root root;
-  const bool fuel_ground = check_errors(root.Load(file.string(), config), file);
+  sdf::Errors errors;
+  try {
+    errors = root.Load(file.string(), config);
+  } catch (const std::bad_alloc&) {
+    throw;
+  } catch (const std::exception& e) {
+    // libsdformat lets some parse failures escape as standard exceptions (e.g. std::stoi on a
+    // malformed version or number): report them as a load error of this file.
+    throw FileError(file.string(), "", std::string("libsdformat could not parse the file: ") + e.what());
+  }
+  const bool fuel_ground = check_errors(errors, file);
 
   World world;
   world.name = file.stem().string();

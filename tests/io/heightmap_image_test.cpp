@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <string>
 
 #include "bipednav/common/error.hpp"
 #include "test_data.hpp"
@@ -38,5 +39,13 @@ TEST(HeightmapImage, YamlSidecarAndBadInput) {
   std::ofstream(dir / "notpng.png") << "definitely not a png";
   EXPECT_THROW(io::read_heightmap_image(dir / "notpng.png"), FileError);
   EXPECT_THROW(io::read_heightmap_image(dir / "missing.png"), FileError);
+  // A YAML whose image does not exist names the YAML (found by fuzz_heightmap_image).
+  std::ofstream(dir / "abs.yaml") << "image: /nothere.png\nresolution_m: 0.01\n";
+  try {
+    io::read_heightmap_image(dir / "abs.yaml");
+    ADD_FAILURE() << "no error for a missing image";
+  } catch (const FileError& e) {
+    EXPECT_NE(std::string(e.what()).find("abs.yaml"), std::string::npos) << e.what();
+  }
   std::filesystem::remove_all(dir);
 }

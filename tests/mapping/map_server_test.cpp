@@ -131,6 +131,11 @@ TEST(MapServer, MalformedFilesNameFileAndField) {
   EXPECT_NE(msg.find("free_thresh"), std::string::npos);
   msg = bad("i.yaml", "image: nothere.pgm\nresolution: 0.1\norigin: [0, 0, 0]\n");
   EXPECT_NE(msg.find("nothere.pgm"), std::string::npos);
+  EXPECT_NE(msg.find("i.yaml"), std::string::npos);
+  // An absolute image path that does not exist still names the YAML (found by fuzz_map_server).
+  msg = bad("abs.yaml", "image: /nothere.png\nresolution: 0.1\norigin: [0, 0, 0]\n");
+  EXPECT_NE(msg.find("abs.yaml"), std::string::npos);
+  EXPECT_NE(msg.find("/nothere.png"), std::string::npos);
   write_text(dir / "trunc.pgm", "P5\n4 4\n255\nab");
   msg = bad("tr.yaml", "image: trunc.pgm\nresolution: 0.1\norigin: [0, 0, 0]\n");
   EXPECT_NE(msg.find("trunc.pgm"), std::string::npos);

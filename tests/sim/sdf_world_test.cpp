@@ -197,4 +197,13 @@ TEST(SdfWorld, BadInputsNameTheFile) {
   } catch (const FileError& e) {
     EXPECT_NE(std::string(e.what()).find("model://missing"), std::string::npos) << e.what();
   }
+  // libsdformat throws std::invalid_argument (std::stoi) on a non-numeric version: found by fuzz_sdf_world.
+  const fs::path bad_version =
+      write_temp("badversion.world", R"(<?xml version="1.0"?><sdf version="1.x"><world name="w"></world></sdf>)");
+  try {
+    load_sdf_world(bad_version);
+    FAIL();
+  } catch (const FileError& e) {
+    EXPECT_NE(std::string(e.what()).find(bad_version.string()), std::string::npos) << e.what();
+  }
 }
