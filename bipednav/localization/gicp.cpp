@@ -68,35 +68,73 @@ struct Linearization {
   }
 };
 
-// Normal equations of the plane-to-plane cost at T (left perturbation T <- exp(delta) T).
-// `match` holds each source point's target correspondence of the previous iteration (kNoMatch when
-// none): its distance at the new pose bounds the nearest-neighbour search, which stays exact.
+// What the last search around a source point established, so later iterations can often prove
+// the answer unchanged without searching: at `ref`, `first` (kNoMatch: none within the cap) was
+// the nearest target point and every other one was at least `others` away.
+struct MatchState {
+  Eigen::Vector3f ref = Eigen::Vector3f::Zero();
+  std::uint32_t first = kNoMatch, second = kNoMatch;
+  float others = -1.0f;  // < 0: no search yet
+};
+
+// The exact nearest target point of q if closer than max_d (squared: max_d2), writing its index
+// and squared distance. Once q has moved by `moved` from the last search, every point but `first`
+// is at least others - moved away, so `first` stays the nearest while it is closer than that.
+// Otherwise the two nearest within `cap` are searched, bounded by the previous two's distances.
+bool find_match(const GicpIndex& target, const Eigen::Vector3f& q, float max_d, float max_d2, float cap, MatchState& s,
+                std::uint32_t& j, float& d2) {
+  constexpr float kMargin = 1e-5f;  // absorbs float rounding; a tie then costs only a search
+  if (s.others >= 0.0f) {
+    const float lower = s.others - (q - s.ref).norm() - kMargin * (1.0f + s.others);
+    if (s.first == kNoMatch) {
+      if (lower >= max_d) return false;
+    } else {
+      d2 = (target.point(s.first) - q).squaredNorm();
+      if (std::sqrt(d2) <= lower) {
+        j = s.first;
+        return d2 < max_d2;
+      }
+    }
+  }
+  const float cap2 = cap * cap;
+  float bound = cap2;
+  if (s.first != kNoMatch && s.second != kNoMatch)
+    bound =
+        std::min(cap2, std::max((target.point(s.first) - q).squaredNorm(), (target.point(s.second) - q).squaredNorm()) *
+                               (1.0f + 1e-4f) +
+                           1e-12f);
+  std::uint32_t idx[2];
+  float sq[2];
+  std::size_t m = target.knn(q, 2, idx, sq, bound);
+  if (m < 2 && bound < cap2) m = target.knn(q, 2, idx, sq, cap2);
+  s.ref = q;
+  s.first = m > 0 ? idx[0] : kNoMatch;
+  s.second = m > 1 ? idx[1] : kNoMatch;
+  s.others = m > 1 ? std::sqrt(sq[1]) : cap;
+  if (m == 0) return false;
+  j = idx[0];
+  d2 = sq[0];
+  return d2 < max_d2;
+}
+
+// Normal equations of the plane-to-plane cost at T (left perturbation T <- exp(delta) T), with
+// exact nearest-neighbour correspondences found through `state` (one per source point).
 Linearization linearize(const GicpCloud& source, const GicpCloud& target, const SE3& T, const GicpParams& p,
-                        std::vector<std::uint32_t>& match) {
+                        std::vector<MatchState>& state) {
   const int threads = std::max(1, p.threads);
   std::vector<Linearization> parts(static_cast<std::size_t>(threads));
   const Eigen::Matrix3d R = T.linear();
   // The searches keep distances "< bound": the next float up keeps pairs at exactly the maximum.
-  const float max_d2 = std::nextafter(static_cast<float>(p.max_correspondence_m * p.max_correspondence_m),
-                                      std::numeric_limits<float>::infinity());
+  const float max_d = static_cast<float>(p.max_correspondence_m);
+  const float max_d2 = std::nextafter(max_d * max_d, std::numeric_limits<float>::infinity());
+  const float cap = 1.1f * max_d;  // searching a little beyond the maximum lets unmatched points skip too
   parallel_chunks(source.size(), threads, [&](std::size_t begin, std::size_t end, std::size_t w) {
     Linearization& L = parts[w];
     for (std::size_t i = begin; i < end; ++i) {
       const Eigen::Vector3d q = T * source.points[i].cast<double>();
-      const Eigen::Vector3f qf = q.cast<float>();
       std::uint32_t j = 0;
       float d2 = 0.0f;
-      bool found = false;
-      if (match[i] != kNoMatch) {
-        // A relative margin: nanoflann may round the same distance differently.
-        const float prev = (target.points[match[i]] - qf).squaredNorm() * (1.0f + 1e-4f) + 1e-12f;
-        if (prev < max_d2) found = target.index.nearest(qf, prev, j, d2);
-      }
-      if (!found && !target.index.nearest(qf, max_d2, j, d2)) {
-        match[i] = kNoMatch;
-        continue;
-      }
-      match[i] = j;
+      if (!find_match(target.index, q.cast<float>(), max_d, max_d2, cap, state[i], j, d2)) continue;
       const Eigen::Matrix3d RCs = R * source.covariances[i].cast<double>();
       Eigen::Matrix3d C = target.covariances[j].cast<double>();
       C.noalias() += RCs * R.transpose();
@@ -149,18 +187,28 @@ std::vector<Eigen::Matrix3f> plane_covariances(const std::vector<Eigen::Vector3f
   return covs;
 }
 
-// Per point in the tree's leaf order: consecutive queries then touch the same tree nodes and points.
+// Per point in the tree's leaf order: consecutive queries touch the same tree nodes and points,
+// and the previous point's k neighbours, being k points near this one, bound the search.
 std::vector<Eigen::Matrix3f> plane_covariances(const GicpIndex& index, int k, double epsilon, int threads) {
-  const std::size_t n = index.size(), kk = static_cast<std::size_t>(std::max(k, 1));
-  std::vector<Eigen::Matrix3f> covs(n);
+  const std::size_t n = index.indexed(), kk = static_cast<std::size_t>(std::max(k, 1));
+  std::vector<Eigen::Matrix3f> covs(index.size(), Eigen::Matrix3f::Identity());
   if (n == 0) return covs;
   const std::vector<std::uint32_t>& order = index.leaf_order();
   parallel_chunks(n, threads, [&](std::size_t begin, std::size_t end, std::size_t) {
     std::vector<std::uint32_t> idx(kk);
     std::vector<float> d2(kk);
+    std::size_t m = 0;
     for (std::size_t j = begin; j < end; ++j) {
       const std::uint32_t i = order[j];
-      const std::size_t m = index.knn(index.point(i), kk, idx.data(), d2.data());
+      const Eigen::Vector3f& q = index.point(i);
+      float bound = std::numeric_limits<float>::infinity();
+      if (m == kk) {  // a margin above the farthest so rounding cannot exclude a k-th nearest there
+        bound = 0.0f;
+        for (std::size_t t = 0; t < m; ++t) bound = std::max(bound, (index.point(idx[t]) - q).squaredNorm());
+        bound = bound * (1.0f + 1e-4f) + 1e-12f;
+      }
+      m = index.knn(q, kk, idx.data(), d2.data(), bound);
+      if (m < kk && bound < std::numeric_limits<float>::infinity()) m = index.knn(q, kk, idx.data(), d2.data());
       covs[i] = plane_covariance(
           m, [&](std::size_t t) { return index.point(idx[t]); }, epsilon);
     }
@@ -203,9 +251,9 @@ GicpResult gicp_align(const GicpCloud& source, const GicpCloud& target, const SE
   if (!guess.matrix().allFinite()) throw Error("GICP: the initial guess is not finite");
   GicpResult res;
   SE3 T = guess;
-  std::vector<std::uint32_t> match(source.size(), kNoMatch);
+  std::vector<MatchState> state(source.size());
   for (res.iterations = 1; res.iterations <= p.max_iterations; ++res.iterations) {
-    const Linearization L = linearize(source, target, T, p, match);
+    const Linearization L = linearize(source, target, T, p, state);
     res.correspondences = L.matches;
     res.fitness = L.matches > 0 ? L.sq_dist / static_cast<double>(L.matches) : 0.0;
     if (L.matches < 6) break;

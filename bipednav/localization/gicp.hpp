@@ -3,12 +3,12 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <memory>
-#include <nanoflann.hpp>
 #include <vector>
 
 #include "bipednav/common/point_cloud.hpp"
 #include "bipednav/common/se3.hpp"
 #include "bipednav/localization/kdtree.hpp"
+#include "bipednav/localization/point_kdtree.hpp"
 
 namespace bipednav::localization {
 
@@ -28,7 +28,7 @@ struct GicpParams {
 
 // Exact nearest-neighbour searches over a fixed set of points, with the bounded query GICP's
 // correspondence search needs.
-using GicpIndex = KdTree3f;
+using GicpIndex = PointKdTree;
 
 // A cloud ready for GICP: finite points, their regularised covariances and a search index.
 struct GicpCloud {

@@ -1,0 +1,58 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+namespace bipednav::localization {
+
+// An exact 3D kd-tree specialised for GICP's many small queries: median splits on the widest
+// axis, and the points copied into leaf order as separate x / y / z arrays, so a leaf is one
+// contiguous, vectorisable scan and neighbouring leaves are neighbours in memory.
+// Non-finite points are not indexed (never returned). Queries allocate nothing.
+class PointKdTree {
+ public:
+  PointKdTree() = default;
+  explicit PointKdTree(std::vector<Eigen::Vector3f> points);
+
+  bool empty() const { return ids_.empty(); }
+  std::size_t indexed() const { return ids_.size(); }
+  std::size_t size() const { return points_.size(); }
+  const Eigen::Vector3f& point(std::size_t i) const { return points_[i]; }
+
+  // Indices of the indexed points in leaf order (neighbouring entries are spatially close).
+  const std::vector<std::uint32_t>& leaf_order() const { return ids_; }
+
+  // The nearest point of q closer than sqrt(bound_sq): writes its index and squared distance and
+  // returns true, or returns false when there is none. A tight bound makes the search cheap.
+  bool nearest(const Eigen::Vector3f& q, float bound_sq, std::uint32_t& index, float& sq_dist) const;
+
+  // The k nearest points of q closer than sqrt(bound_sq), nearest first: writes indices and
+  // squared distances, returns how many were found (fewer than k when the bound or the points
+  // run out).
+  std::size_t knn(const Eigen::Vector3f& q, std::size_t k, std::uint32_t* indices, float* sq_dists,
+                  float bound_sq = std::numeric_limits<float>::infinity()) const;
+
+ private:
+  struct Node {
+    float lo = 0.0f, hi = 0.0f;  // inner: the left child's maximum and the right child's minimum on `dim`
+    std::uint32_t begin = 0;     // leaf: first slot; inner: index of the right child (the left is next)
+    std::uint16_t count = 0;     // leaf: number of slots
+    std::uint8_t dim = 0;        // 0..2 inner, kLeaf for a leaf
+  };
+  static constexpr std::uint8_t kLeaf = 3;
+  struct Knn;
+  struct Nearest;
+
+  std::uint32_t build(std::uint32_t begin, std::uint32_t end);
+  template <class Result>
+  void search(std::uint32_t node, const float* q, float* offset, float cell_sq, Result& r) const;
+
+  std::vector<Eigen::Vector3f> points_;  // as given
+  std::vector<std::uint32_t> ids_;       // slot -> index into points_
+  std::vector<float> x_, y_, z_;         // per slot, leaf order
+  std::vector<Node> nodes_;              // preorder, root first
+};
+
+}  // namespace bipednav::localization
