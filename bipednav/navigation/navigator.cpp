@@ -48,7 +48,10 @@ Navigator::Navigator(NavigatorParams params, RobotProfile robot, const mapping::
   params_.validate();
   robot_.validate();
   lidar_name_ = lidar_mount_name(robot_);
-  server_ = std::make_unique<NavigationServer>(params_.server, robot_, global_, local_);
+  moving_ = std::make_shared<planning::local::MovingObstacleTracker>(params_.moving_obstacles);
+  ServerParams server_params = params_.server;
+  server_params.local.moving_obstacles = moving_;
+  server_ = std::make_unique<NavigationServer>(std::move(server_params), robot_, global_, local_);
   BtFactory factory;
   register_leaves(factory);
   tree_ = std::make_unique<BehaviorTree>(load_tree_xml(params_.behavior_tree, factory));
@@ -137,6 +140,7 @@ void Navigator::update_maps() {
   const Pose2 pose = localizer_.T_map_base();
   if (local_gate_.ready(now_s_)) {
     Stopwatch sw;
+    track_moving_obstacles();
     local_.update(pose, local_obs_);
     local_obs_.clear();
     timings_.local_map_ms = sw.elapsed_ms();
@@ -147,6 +151,29 @@ void Navigator::update_maps() {
     server_->add_global_changes(global_.update(pose, lidar_obs_, &local_));
     lidar_obs_.clear();
     timings_.global_map_ms = sw.elapsed_ms();
+  }
+}
+
+void Navigator::track_moving_obstacles() {
+  // The obstacle points of every sensor since the last local map update, in the map frame.
+  std::vector<Eigen::Vector2d> pts;
+  for (const auto& o : local_obs_) {
+    if (!o.marking) continue;
+    for (const auto& p : o.points_map) pts.emplace_back(p.x(), p.y());
+  }
+  if (pts.empty()) return;
+  moving_->update(pts, localizer_.T_map_base().position(), now_s_);
+  // Moving obstacles stay out of the global map (their trail would block the lanes they crossed);
+  // the local map and the local planner's prediction handle them.
+  const auto moving = moving_->moving(now_s_);
+  if (moving.empty()) return;
+  for (auto& o : lidar_obs_) {
+    std::erase_if(o.points_map, [&](const Eigen::Vector3f& p) {
+      const Eigen::Vector2d q(p.x(), p.y());
+      for (const auto& m : moving)
+        if ((q - m.position).norm() <= m.radius_m + 0.1) return true;
+      return false;
+    });
   }
 }
 

@@ -15,6 +15,7 @@
 #include "bipednav/navigation/navigation_server.hpp"
 #include "bipednav/navigation/sensor_gate.hpp"
 #include "bipednav/perception/pipeline.hpp"
+#include "bipednav/planning/local/moving_obstacles.hpp"
 
 namespace bipednav::navigation {
 
@@ -29,7 +30,8 @@ struct NavigatorParams {
   ServerParams server;
   double control_rate_hz = 10.0;  // behavior tree, TEB; D* Lite at 5 Hz inside the tree
   SensorGateParams sensors;       // stale / out-of-order / NaN data; SensorsAlive = no range sensor silent
-  std::string behavior_tree;      // BT XML file (navigate.xml)
+  planning::local::MovingObstacleParams moving_obstacles;  // blob tracking at the local map's rate
+  std::string behavior_tree;                               // BT XML file (navigate.xml)
 
   // Defaults with footprint-dependent values (inscribed radius, velocity limits) from the robot.
   static NavigatorParams for_robot(const RobotProfile& robot);
@@ -84,10 +86,12 @@ class Navigator {
   bool localization_healthy() const { return localizer_.healthy(now_s_); }
   const SensorGate& sensor_gate() const { return gate_; }
   const RobotProfile& robot() const { return robot_; }
+  const planning::local::MovingObstacleTracker& moving_obstacles() const { return *moving_; }
 
  private:
   void perceive(const SensorFrame& frame);
   void update_maps();
+  void track_moving_obstacles();
   void control();
   void register_leaves(BtFactory& factory);
   bool sensors_alive() const;
@@ -100,6 +104,7 @@ class Navigator {
   SensorGate gate_;
   mapping::LocalCostmap local_;
   mapping::GlobalCostmap global_;
+  std::shared_ptr<planning::local::MovingObstacleTracker> moving_;  // shared with the local planner
   std::unique_ptr<NavigationServer> server_;
   std::unique_ptr<BehaviorTree> tree_;
   RateGate local_gate_, global_gate_, control_gate_;

@@ -46,6 +46,9 @@ NavigatorParams NavigatorParams::for_robot(const RobotProfile& robot) {
   tr.max_vel_theta_radps = robot.max_vel_theta_radps;
   tr.acc_lim_x_mps2 = robot.acc_lim_x_mps2;
   tr.acc_lim_theta_radps2 = robot.acc_lim_theta_radps2;
+  tr.max_vel_x_backwards_mps = robot.max_vel_x_backwards_mps;
+  // Yielding to moving obstacles: the robot's swaying footprint plus a margin.
+  p.server.local.avoidance.robot_radius_m = inscribed_m;
 
   // The progress window covers a full turn on the spot plus a short wait.
   p.server.progress.movement_time_allowance_s =
@@ -66,6 +69,7 @@ void NavigatorParams::validate() const {
   server.validate();
   require(control_rate_hz > 0.0 && control_rate_hz <= 100.0, "control_rate_hz", "in (0, 100] Hz");
   sensors.validate();
+  moving_obstacles.validate();
   require(!behavior_tree.empty(), "behavior_tree", "the path of a behavior tree XML file");
 }
 

@@ -14,6 +14,33 @@ namespace bipednav::planning::local {
 void LocalPlannerParams::validate() const {
   teb.validate();
   tracker.validate();
+  avoidance.validate();
+}
+
+void LocalPlanner::yield(LocalPlanResult& r, const Pose2& pose, const Twist& current, const mapping::Costmap2D& costmap,
+                         const CommandLimits& lim, double period_s, double now_s) {
+  last_yield_ = {};
+  last_yield_.cmd = r.cmd;
+  if (!moving_ || !avoidance_.enabled) return;
+  const auto moving = moving_->moving(now_s);
+  if (moving.empty()) return;
+  // Only commands the planner produced or a stop are checked; bad input stays rejected.
+  const bool failed = !r.result.ok();
+  if (failed && r.result.outcome != Outcome::COLLISION && r.result.outcome != Outcome::NO_VALID_CMD &&
+      r.result.outcome != Outcome::OSCILLATION)
+    return;
+  const Twist cmd = failed ? Twist{} : r.cmd;
+  last_yield_ = yield_to_moving_obstacles(cmd, pose, current, moving, costmap, lim, period_s, now_s, avoidance_);
+  if (!last_yield_.modified) return;
+  if (failed) {
+    // Standing still would be run into: move away instead of failing.
+    if (last_yield_.target.is_zero()) return;
+    r.result = {Outcome::SUCCESS, "evading a moving obstacle (" + r.result.message + ")"};
+  } else {
+    r.result.message = "yielding to a moving obstacle";
+  }
+  r.cmd = last_yield_.cmd;
+  r.goal_reached = false;
 }
 
 std::optional<LocalPlanResult> reject_bad_inputs(const Pose2& T_map_base, const Twist& current_velocity,
@@ -39,7 +66,11 @@ std::unique_ptr<LocalPlanner> make_local_planner(std::string_view name, const Lo
        }},
   };
   for (const auto& [key, make] : kTable) {
-    if (key == name) return make(params);
+    if (key != name) continue;
+    auto planner = make(params);
+    planner->set_avoidance_params(params.avoidance);
+    planner->set_moving_obstacles(params.moving_obstacles);
+    return planner;
   }
   throw ParamError("local_planner", "\"teb\" or \"tracker\", got \"" + std::string(name) + "\"");
 }

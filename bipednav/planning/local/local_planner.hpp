@@ -9,6 +9,7 @@
 #include "bipednav/common/pose2.hpp"
 #include "bipednav/common/twist.hpp"
 #include "bipednav/mapping/costmap2d.hpp"
+#include "bipednav/planning/local/moving_obstacles.hpp"
 #include "bipednav/planning/local/teb_params.hpp"
 #include "bipednav/planning/local/tracker_params.hpp"
 
@@ -37,11 +38,30 @@ class LocalPlanner {
   // Forgets the warm start, the selected homotopy class and the oscillation history.
   virtual void reset() = 0;
   virtual std::string_view name() const = 0;
+
+  // The tracked obstacles to yield to (the navigator's tracker, fed from the sensors); none by default.
+  void set_moving_obstacles(std::shared_ptr<const MovingObstacleTracker> tracker) { moving_ = std::move(tracker); }
+  void set_avoidance_params(const DynamicAvoidanceParams& params) { avoidance_ = (params.validate(), params); }
+  const YieldDecision& last_yield() const { return last_yield_; }
+
+ protected:
+  // Replaces r.cmd by a command that yields to the predicted moving obstacles (see
+  // yield_to_moving_obstacles); a failed cycle whose zero command would be run into becomes a
+  // SUCCESS with the evasive command.
+  void yield(LocalPlanResult& r, const Pose2& pose, const Twist& current, const mapping::Costmap2D& costmap,
+             const CommandLimits& lim, double period_s, double now_s);
+
+  std::shared_ptr<const MovingObstacleTracker> moving_;
+  DynamicAvoidanceParams avoidance_;
+  YieldDecision last_yield_;
 };
 
 struct LocalPlannerParams {
   TebParams teb;
   TrackerParams tracker;
+  DynamicAvoidanceParams avoidance;
+  // The tracked moving obstacles the planner yields to (set by the navigator; may be null).
+  std::shared_ptr<const MovingObstacleTracker> moving_obstacles;
   void validate() const;
 };
 

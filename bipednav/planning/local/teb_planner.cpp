@@ -48,7 +48,14 @@ LocalPlanResult TebPlanner::finish(LocalPlanResult r, const Twist& desired, cons
 }
 
 LocalPlanResult TebPlanner::compute(const Pose2& T_map_base, const Twist& current_velocity, const Path& global_plan,
-                                    const mapping::Costmap2D& local_costmap, double /*now_s*/) {
+                                    const mapping::Costmap2D& local_costmap, double now_s) {
+  LocalPlanResult r = plan(T_map_base, current_velocity, global_plan, local_costmap);
+  yield(r, T_map_base, current_velocity, local_costmap, command_limits(), params_.control_period_s, now_s);
+  return r;
+}
+
+LocalPlanResult TebPlanner::plan(const Pose2& T_map_base, const Twist& current_velocity, const Path& global_plan,
+                                 const mapping::Costmap2D& local_costmap) {
   if (auto bad = reject_bad_inputs(T_map_base, current_velocity, global_plan, local_costmap)) return *bad;
   LocalPlanResult r;
   r.trajectory.frame_id = global_plan.frame_id;

@@ -30,6 +30,8 @@ class TebPlanner : public LocalPlanner {
   const std::vector<BandCandidate>& candidates() const { return homotopy_.candidates(); }
 
  private:
+  LocalPlanResult plan(const Pose2& T_map_base, const Twist& current_velocity, const Path& global_plan,
+                       const mapping::Costmap2D& local_costmap);
   LocalPlanResult finish(LocalPlanResult r, const Twist& desired, const Twist& current);
   CommandLimits command_limits() const;
 

@@ -13,6 +13,7 @@ void TrackerParams::validate() const {
   require(pos(lookahead_m), "lookahead_m", "> 0");
   require(pos(max_vel_x_mps), "max_vel_x_mps", "> 0");
   require(pos(max_vel_theta_radps), "max_vel_theta_radps", "> 0");
+  require(std::isfinite(max_vel_x_backwards_mps) && max_vel_x_backwards_mps >= 0.0, "max_vel_x_backwards_mps", ">= 0");
   require(pos(acc_lim_x_mps2), "acc_lim_x_mps2", "> 0");
   require(pos(acc_lim_theta_radps2), "acc_lim_theta_radps2", "> 0");
   require(pos(rotate_in_place_angle_rad), "rotate_in_place_angle_rad", "> 0");
@@ -42,7 +43,16 @@ Twist pure_pursuit_command(const Eigen::Vector2d& target_in_base, double dist_to
 PathTracker::PathTracker(TrackerParams params) : params_(std::move(params)) { params_.validate(); }
 
 LocalPlanResult PathTracker::compute(const Pose2& T_map_base, const Twist& current_velocity, const Path& global_plan,
-                                     const mapping::Costmap2D& local_costmap, double /*now_s*/) {
+                                     const mapping::Costmap2D& local_costmap, double now_s) {
+  LocalPlanResult r = follow(T_map_base, current_velocity, global_plan, local_costmap);
+  const CommandLimits lim{params_.max_vel_x_mps, params_.max_vel_x_backwards_mps, params_.max_vel_theta_radps,
+                          params_.acc_lim_x_mps2, params_.acc_lim_theta_radps2};
+  yield(r, T_map_base, current_velocity, local_costmap, lim, params_.control_period_s, now_s);
+  return r;
+}
+
+LocalPlanResult PathTracker::follow(const Pose2& T_map_base, const Twist& current_velocity, const Path& global_plan,
+                                    const mapping::Costmap2D& local_costmap) {
   if (auto bad = reject_bad_inputs(T_map_base, current_velocity, global_plan, local_costmap)) return *bad;
   LocalPlanResult r;
   r.trajectory.frame_id = global_plan.frame_id;

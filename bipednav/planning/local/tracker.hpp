@@ -25,6 +25,9 @@ class PathTracker : public LocalPlanner {
   std::string_view name() const override { return "tracker"; }
 
  private:
+  LocalPlanResult follow(const Pose2& T_map_base, const Twist& current_velocity, const Path& global_plan,
+                         const mapping::Costmap2D& local_costmap);
+
   TrackerParams params_;
 };
 

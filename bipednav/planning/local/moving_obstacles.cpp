@@ -1,0 +1,324 @@
+#include "bipednav/planning/local/moving_obstacles.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <tuple>
+#include <unordered_map>
+#include <utility>
+
+#include "bipednav/common/error.hpp"
+
+namespace bipednav::planning::local {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+bool positive(double v) { return std::isfinite(v) && v > 0.0; }
+
+std::uint64_t cell_key(long x, long y) {
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(x)) << 32) |
+         static_cast<std::uint64_t>(static_cast<std::uint32_t>(y));
+}
+
+// Constant-velocity Kalman prediction of one axis over dt (white-noise acceleration of std q).
+void kf_predict(double& p, double& v, Eigen::Matrix2d& P, double dt, double q) {
+  p += v * dt;
+  Eigen::Matrix2d F;
+  F << 1.0, dt, 0.0, 1.0;
+  Eigen::Matrix2d Q;
+  const double q2 = q * q;
+  Q << 0.25 * dt * dt * dt * dt * q2, 0.5 * dt * dt * dt * q2, 0.5 * dt * dt * dt * q2, dt * dt * q2;
+  P = F * P * F.transpose() + Q;
+}
+
+// Kalman update of one axis with a position measurement z of variance r2.
+void kf_update(double& p, double& v, Eigen::Matrix2d& P, double z, double r2) {
+  const double s = P(0, 0) + r2;
+  const Eigen::Vector2d k = P.col(0) / s;
+  const double innov = z - p;
+  p += k(0) * innov;
+  v += k(1) * innov;
+  Eigen::Matrix2d I_KH = Eigen::Matrix2d::Identity();
+  I_KH(0, 0) -= k(0);
+  I_KH(1, 0) -= k(1);
+  P = I_KH * P;
+}
+
+}  // namespace
+
+void MovingObstacleParams::validate() const {
+  require(positive(cluster_cell_m), "moving_obstacles.cluster_cell_m", "> 0");
+  require(min_points >= 1, "moving_obstacles.min_points", ">= 1");
+  require(positive(max_blob_radius_m), "moving_obstacles.max_blob_radius_m", "> 0");
+  require(positive(max_range_m), "moving_obstacles.max_range_m", "> 0");
+  require(positive(gate_m), "moving_obstacles.gate_m", "> 0");
+  require(positive(max_track_age_s), "moving_obstacles.max_track_age_s", "> 0");
+  require(positive(measurement_noise_m), "moving_obstacles.measurement_noise_m", "> 0");
+  require(positive(accel_noise_mps2), "moving_obstacles.accel_noise_mps2", "> 0");
+  require(positive(max_speed_mps), "moving_obstacles.max_speed_mps", "> 0");
+  require(min_hits >= 1, "moving_obstacles.min_hits", ">= 1");
+  require(std::isfinite(min_moving_speed_mps) && min_moving_speed_mps >= 0.0, "moving_obstacles.min_moving_speed_mps",
+          ">= 0");
+  require(std::isfinite(min_displacement_m) && min_displacement_m >= 0.0, "moving_obstacles.min_displacement_m",
+          ">= 0");
+}
+
+void DynamicAvoidanceParams::validate() const {
+  require(positive(horizon_s), "dynamic_avoidance.horizon_s", "> 0");
+  require(std::isfinite(robot_radius_m) && robot_radius_m >= 0.0, "dynamic_avoidance.robot_radius_m", ">= 0");
+  require(std::isfinite(safety_margin_m) && safety_margin_m >= 0.0, "dynamic_avoidance.safety_margin_m", ">= 0");
+  require(positive(sim_step_s) && sim_step_s <= horizon_s, "dynamic_avoidance.sim_step_s", "in (0, horizon_s]");
+  require(positive(static_check_s), "dynamic_avoidance.static_check_s", "> 0");
+}
+
+std::vector<Blob> cluster_blobs(const std::vector<Eigen::Vector2d>& points, const Eigen::Vector2d& center,
+                                const MovingObstacleParams& params) {
+  std::vector<Blob> out;
+  const double cell = params.cluster_cell_m;
+  const double r2max = params.max_range_m * params.max_range_m;
+  // (key, point index) of the points in range, sorted so that cells come in a fixed order.
+  std::vector<std::tuple<long, long, std::size_t>> binned;
+  binned.reserve(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Eigen::Vector2d& p = points[i];
+    if (!p.allFinite() || (p - center).squaredNorm() > r2max) continue;
+    binned.emplace_back(static_cast<long>(std::floor(p.x() / cell)), static_cast<long>(std::floor(p.y() / cell)), i);
+  }
+  std::sort(binned.begin(), binned.end());
+  // Cells: [begin, end) ranges of `binned`.
+  std::vector<std::pair<std::size_t, std::size_t>> cells;
+  std::unordered_map<std::uint64_t, std::size_t> cell_of;
+  for (std::size_t i = 0; i < binned.size();) {
+    std::size_t j = i;
+    while (j < binned.size() && std::get<0>(binned[j]) == std::get<0>(binned[i]) &&
+           std::get<1>(binned[j]) == std::get<1>(binned[i]))
+      ++j;
+    cell_of.emplace(cell_key(std::get<0>(binned[i]), std::get<1>(binned[i])), cells.size());
+    cells.emplace_back(i, j);
+    i = j;
+  }
+  std::vector<char> seen(cells.size(), 0);
+  std::vector<std::size_t> stack, members;
+  for (std::size_t c0 = 0; c0 < cells.size(); ++c0) {
+    if (seen[c0]) continue;
+    seen[c0] = 1;
+    stack.assign(1, c0);
+    members.clear();
+    while (!stack.empty()) {
+      const std::size_t c = stack.back();
+      stack.pop_back();
+      members.push_back(c);
+      const long cx = std::get<0>(binned[cells[c].first]), cy = std::get<1>(binned[cells[c].first]);
+      for (long dy = -1; dy <= 1; ++dy) {
+        for (long dx = -1; dx <= 1; ++dx) {
+          const auto it = cell_of.find(cell_key(cx + dx, cy + dy));
+          if (it != cell_of.end() && !seen[it->second]) seen[it->second] = 1, stack.push_back(it->second);
+        }
+      }
+    }
+    Blob b;
+    for (const std::size_t c : members) {
+      for (std::size_t k = cells[c].first; k < cells[c].second; ++k) b.centroid += points[std::get<2>(binned[k])];
+      b.points += static_cast<int>(cells[c].second - cells[c].first);
+    }
+    b.centroid /= static_cast<double>(b.points);
+    for (const std::size_t c : members) {
+      for (std::size_t k = cells[c].first; k < cells[c].second; ++k)
+        b.radius_m = std::max(b.radius_m, (points[std::get<2>(binned[k])] - b.centroid).norm());
+    }
+    if (b.points >= params.min_points && b.radius_m <= params.max_blob_radius_m) out.push_back(b);
+  }
+  return out;
+}
+
+MovingObstacleTracker::MovingObstacleTracker(MovingObstacleParams params) : params_(std::move(params)) {
+  params_.validate();
+}
+
+void MovingObstacleTracker::clear() {
+  tracks_.clear();
+  last_stamp_s_ = -1e300;
+}
+
+void MovingObstacleTracker::update(const std::vector<Eigen::Vector2d>& points, const Eigen::Vector2d& robot,
+                                   double stamp_s) {
+  if (!params_.enabled || !std::isfinite(stamp_s) || !robot.allFinite()) return;
+  update_blobs(cluster_blobs(points, robot, params_), stamp_s);
+}
+
+void MovingObstacleTracker::update_blobs(const std::vector<Blob>& blobs, double stamp_s) {
+  if (!params_.enabled || !std::isfinite(stamp_s) || stamp_s <= last_stamp_s_) return;
+  last_stamp_s_ = stamp_s;
+  const double q = params_.accel_noise_mps2;
+  const double r2 = params_.measurement_noise_m * params_.measurement_noise_m;
+  // Predict every track to this cycle.
+  for (auto& t : tracks_) {
+    const double dt = stamp_s - t.stamp_s;
+    kf_predict(t.position.x(), t.velocity.x(), t.cov_x, dt, q);
+    kf_predict(t.position.y(), t.velocity.y(), t.cov_y, dt, q);
+    t.stamp_s = stamp_s;
+  }
+  // Gated nearest-neighbour association, closest pairs first.
+  std::vector<std::tuple<double, std::size_t, std::size_t>> pairs;
+  for (std::size_t i = 0; i < tracks_.size(); ++i) {
+    for (std::size_t j = 0; j < blobs.size(); ++j) {
+      if (!blobs[j].centroid.allFinite()) continue;
+      const double d = (tracks_[i].position - blobs[j].centroid).norm();
+      if (d <= params_.gate_m) pairs.emplace_back(d, i, j);
+    }
+  }
+  std::sort(pairs.begin(), pairs.end());
+  std::vector<char> track_used(tracks_.size(), 0), blob_used(blobs.size(), 0);
+  for (const auto& [d, i, j] : pairs) {
+    if (track_used[i] || blob_used[j]) continue;
+    track_used[i] = blob_used[j] = 1;
+    auto& t = tracks_[i];
+    kf_update(t.position.x(), t.velocity.x(), t.cov_x, blobs[j].centroid.x(), r2);
+    kf_update(t.position.y(), t.velocity.y(), t.cov_y, blobs[j].centroid.y(), r2);
+    const double speed = t.velocity.norm();
+    if (speed > params_.max_speed_mps) t.velocity *= params_.max_speed_mps / speed;
+    t.radius_m = blobs[j].radius_m;
+    ++t.hits;
+  }
+  // Tracks not seen this cycle keep their prediction until they are too old.
+  std::vector<TrackedObstacle> kept;
+  for (std::size_t i = 0; i < tracks_.size(); ++i) {
+    if (track_used[i]) tracks_[i].last_seen_s = stamp_s;
+    if (stamp_s - tracks_[i].last_seen_s <= params_.max_track_age_s) kept.push_back(tracks_[i]);
+  }
+  tracks_ = std::move(kept);
+  for (std::size_t j = 0; j < blobs.size(); ++j) {
+    if (blob_used[j] || !blobs[j].centroid.allFinite()) continue;
+    TrackedObstacle t;
+    t.id = next_id_++;
+    t.position = t.origin = blobs[j].centroid;
+    t.radius_m = blobs[j].radius_m;
+    t.stamp_s = t.last_seen_s = stamp_s;
+    t.hits = 1;
+    const double v0 = 0.5 * params_.max_speed_mps;
+    t.cov_x << r2, 0.0, 0.0, v0 * v0;
+    t.cov_y = t.cov_x;
+    tracks_.push_back(t);
+  }
+}
+
+std::vector<TrackedObstacle> MovingObstacleTracker::moving(double now_s) const {
+  std::vector<TrackedObstacle> out;
+  for (const auto& t : tracks_) {
+    if (t.hits < params_.min_hits || now_s - t.last_seen_s > params_.max_track_age_s) continue;
+    if (t.velocity.norm() < params_.min_moving_speed_mps) continue;
+    if ((t.position - t.origin).norm() < params_.min_displacement_m) continue;
+    out.push_back(t);
+  }
+  return out;
+}
+
+namespace {
+
+// Steps the velocity towards the target within the acceleration limits, then the pose.
+struct Rollout {
+  Pose2 pose;
+  Twist vel;
+};
+
+void step(Rollout& r, const Twist& target, const CommandLimits& lim, double dt) {
+  const double dv = std::clamp(target.linear_x - r.vel.linear_x, -lim.acc_lim_x_mps2 * dt, lim.acc_lim_x_mps2 * dt);
+  const double dw =
+      std::clamp(target.angular_z - r.vel.angular_z, -lim.acc_lim_theta_radps2 * dt, lim.acc_lim_theta_radps2 * dt);
+  r.vel.linear_x += dv;
+  r.vel.angular_z += dw;
+  r.pose = r.pose * Pose2{r.vel.linear_x * dt, 0.0, r.vel.angular_z * dt};
+}
+
+// First time within horizon at which the rolled-out robot is within reach of a moving
+// obstacle while the two still close in; also the arc (for the static check).
+double rollout_ttc(const Pose2& pose, const Twist& current, const Twist& target,
+                   const std::vector<TrackedObstacle>& moving, const CommandLimits& lim, double now_s,
+                   const DynamicAvoidanceParams& p, std::vector<Pose2>* arc) {
+  Rollout r{pose, current};
+  std::vector<double> prev(moving.size());
+  for (std::size_t i = 0; i < moving.size(); ++i) prev[i] = (moving[i].predict(now_s) - pose.position()).norm();
+  if (arc) arc->assign(1, pose);
+  double ttc = kInf;
+  const int n = static_cast<int>(std::ceil(p.horizon_s / p.sim_step_s - 1e-9));
+  for (int k = 1; k <= n; ++k) {
+    const double t = k * p.sim_step_s;
+    step(r, target, lim, p.sim_step_s);
+    if (arc && t <= p.static_check_s + 1e-9) arc->push_back(r.pose);
+    if (std::isfinite(ttc)) continue;
+    for (std::size_t i = 0; i < moving.size(); ++i) {
+      const double d = (moving[i].predict(now_s + t) - r.pose.position()).norm();
+      const double reach = p.robot_radius_m + moving[i].radius_m + p.safety_margin_m;
+      if (d < reach && d < prev[i] - 1e-6) {
+        ttc = t;
+        break;
+      }
+      prev[i] = d;
+    }
+    if (std::isfinite(ttc) && !arc) break;
+  }
+  return ttc;
+}
+
+}  // namespace
+
+double time_to_collision(const Pose2& pose, const Twist& cmd, const std::vector<TrackedObstacle>& moving, double now_s,
+                         const DynamicAvoidanceParams& params) {
+  // Instant velocity changes: unlimited acceleration.
+  const CommandLimits lim{1e9, 1e9, 1e9, 1e9, 1e9};
+  return rollout_ttc(pose, cmd, cmd, moving, lim, now_s, params, nullptr);
+}
+
+YieldDecision yield_to_moving_obstacles(const Twist& cmd, const Pose2& pose, const Twist& current,
+                                        const std::vector<TrackedObstacle>& moving, const mapping::Costmap2D& costmap,
+                                        const CommandLimits& lim, double period_s, double now_s,
+                                        const DynamicAvoidanceParams& p) {
+  YieldDecision out;
+  out.cmd = out.target = cmd;
+  out.ttc_s = kInf;
+  if (!p.enabled || moving.empty() || !pose.is_finite() || !cmd.is_finite()) return out;
+  const Twist cur = current.is_finite() ? current : Twist{};
+  out.ttc_s = rollout_ttc(pose, cur, cmd, moving, lim, now_s, p, nullptr);
+  if (!std::isfinite(out.ttc_s)) return out;
+
+  // Candidates: the command slowed along its arc, then a coarse grid of forward, turning and
+  // backing commands.
+  std::vector<Twist> cand;
+  for (const double f : {0.75, 0.5, 0.25, 0.0}) cand.push_back({f * cmd.linear_x, 0.0, f * cmd.angular_z});
+  cand.push_back({0.0, 0.0, 0.0});
+  const double vb = lim.max_vel_x_backwards_mps, vf = lim.max_vel_x_mps, wm = lim.max_vel_theta_radps;
+  for (const double v : {-vb, -0.5 * vb, 0.0, 0.5 * vf, vf}) {
+    for (const double w : {-0.6 * wm, -0.3 * wm, 0.0, 0.3 * wm, 0.6 * wm}) cand.push_back({v, 0.0, w});
+  }
+  const auto deviation = [&](const Twist& c) {
+    return std::abs(c.linear_x - cmd.linear_x) / std::max(vf, 1e-3) +
+           0.5 * std::abs(c.angular_z - cmd.angular_z) / std::max(wm, 1e-3) + (c.linear_x < 0.0 ? 0.5 : 0.0);
+  };
+  const Twist* best = nullptr;
+  double best_ttc = -1.0, best_dev = kInf;
+  std::vector<Pose2> arc;
+  for (const auto& c : cand) {
+    const double ttc = rollout_ttc(pose, cur, c, moving, lim, now_s, p, &arc);
+    if (!poses_feasible(arc, costmap)) continue;
+    const double capped = std::isfinite(ttc) ? p.horizon_s + 1.0 : ttc;
+    const double dev = deviation(c);
+    // Longer time to collision first (to 0.1 s), then the smallest deviation from the command.
+    const bool better = capped > best_ttc + 0.05 || (std::abs(capped - best_ttc) <= 0.05 && dev < best_dev);
+    if (best == nullptr || better) best = &c, best_ttc = capped, best_dev = dev;
+  }
+  out.modified = true;
+  if (best == nullptr) {
+    out.target = {};
+    out.cmd = clamp_command({}, cur, lim, period_s);
+    out.ttc_s = rollout_ttc(pose, cur, Twist{}, moving, lim, now_s, p, nullptr);
+    return out;
+  }
+  out.target = *best;
+  out.cmd = clamp_command(*best, cur, lim, period_s);
+  out.ttc_s = best_ttc > p.horizon_s ? kInf : best_ttc;
+  return out;
+}
+
+}  // namespace bipednav::planning::local
