@@ -15,6 +15,6 @@ std::filesystem::path source_dir();
 }  // namespace bipednav::test
 
 // Skips the current test (visibly) when a data file is absent.
-#define BIPEDNAV_REQUIRE_DATA(var, rel)                                           \
-  const std::filesystem::path var = ::bipednav::test::data_file(rel);             \
+#define BIPEDNAV_REQUIRE_DATA(var, rel)                               \
+  const std::filesystem::path var = ::bipednav::test::data_file(rel); \
   if (var.empty()) GTEST_SKIP() << ::bipednav::test::missing_data(rel)

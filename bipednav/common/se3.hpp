@@ -10,8 +10,7 @@ using SE3 = Eigen::Isometry3d;
 
 // Rotation from roll, pitch, yaw (ZYX convention, as in REP-103).
 inline Eigen::Matrix3d rpy_to_matrix(double roll, double pitch, double yaw) {
-  return (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
-          Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
+  return (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
           Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
       .toRotationMatrix();
 }
@@ -50,8 +49,8 @@ inline SE3 se3_exp(const Eigen::Matrix<double, 6, 1>& xi) {
   const Eigen::Vector3d axis = phi / angle;
   Eigen::Matrix3d K;
   K << 0, -axis.z(), axis.y(), axis.z(), 0, -axis.x(), -axis.y(), axis.x(), 0;
-  const Eigen::Matrix3d V = Eigen::Matrix3d::Identity() + (1 - std::cos(angle)) / angle * K +
-                            (angle - std::sin(angle)) / angle * K * K;
+  const Eigen::Matrix3d V =
+      Eigen::Matrix3d::Identity() + (1 - std::cos(angle)) / angle * K + (angle - std::sin(angle)) / angle * K * K;
   T.linear() = Eigen::AngleAxisd(angle, axis).toRotationMatrix();
   T.translation() = V * rho;
   return T;

@@ -14,9 +14,9 @@ namespace bipednav {
 struct Odometry {
   double stamp_s = 0.0;
   Pose2 T_odom_base;
-  Twist velocity;           // in the base frame
-  double roll_rad = 0.0;    // from the IMU
-  double pitch_rad = 0.0;   // from the IMU
+  Twist velocity;          // in the base frame
+  double roll_rad = 0.0;   // from the IMU
+  double pitch_rad = 0.0;  // from the IMU
 };
 
 // A depth cloud with the camera it came from (mount name as in the robot profile).
@@ -29,8 +29,8 @@ struct DepthCloud {
 // produced nothing this step leaves its member empty; consumers must not assume a rate.
 struct SensorFrame {
   double stamp_s = 0.0;
-  std::optional<PointCloud> lidar;      // a full sweep, in the lidar frame, with time offsets and rings
-  std::vector<DepthCloud> depth;        // depth clouds completed this step
+  std::optional<PointCloud> lidar;  // a full sweep, in the lidar frame, with time offsets and rings
+  std::vector<DepthCloud> depth;    // depth clouds completed this step
   std::optional<Odometry> odometry;
 };
 

@@ -29,8 +29,7 @@ void Costmap2D::shift_origin(double new_origin_x_m, double new_origin_y_m, std::
 ChangeSet diff(const Costmap2D& before, const Costmap2D& after) {
   const auto& a = before.geometry();
   const auto& b = after.geometry();
-  if (a.width != b.width || a.height != b.height)
-    throw Error("costmap diff: grids differ in size");
+  if (a.width != b.width || a.height != b.height) throw Error("costmap diff: grids differ in size");
   ChangeSet out;
   for (std::size_t i = 0; i < before.data().size(); ++i) {
     if (before.data()[i] != after.data()[i]) out.push_back({a.cell_of(i), before.data()[i], after.data()[i]});

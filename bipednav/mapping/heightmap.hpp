@@ -27,7 +27,9 @@ class Heightmap {
     height_[geometry_.index(x, y)] = h;
     variance_[geometry_.index(x, y)] = var;
   }
-  void clear(int x, int y) { set(x, y, std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()); }
+  void clear(int x, int y) {
+    set(x, y, std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity());
+  }
 
   const std::vector<float>& heights() const { return height_; }
   std::vector<float>& heights() { return height_; }

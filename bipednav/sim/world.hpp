@@ -59,8 +59,10 @@ struct Actor {
     const double t0 = trajectory.front().time_s, t1 = trajectory.back().time_s;
     double t = t0 + (t_s - delay_s);
     if (t1 > t0) {
-      if (loop) t = t0 + std::fmod(t - t0, t1 - t0);
-      else if (t >= t1) return trajectory.back().pose;
+      if (loop)
+        t = t0 + std::fmod(t - t0, t1 - t0);
+      else if (t >= t1)
+        return trajectory.back().pose;
     }
     for (std::size_t i = 1; i < trajectory.size(); ++i) {
       if (t <= trajectory[i].time_s) {
