@@ -155,6 +155,7 @@ void Navigator::update_maps() {
 }
 
 void Navigator::track_moving_obstacles() {
+  if (!params_.moving_obstacles.enabled) return;  // opt-in: no point copies on the loop's hot path
   // The obstacle points of every sensor since the last local map update, in the map frame.
   std::vector<Eigen::Vector2d> pts;
   for (const auto& o : local_obs_) {

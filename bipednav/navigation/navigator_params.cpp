@@ -47,7 +47,7 @@ NavigatorParams NavigatorParams::for_robot(const RobotProfile& robot) {
   tr.acc_lim_x_mps2 = robot.acc_lim_x_mps2;
   tr.acc_lim_theta_radps2 = robot.acc_lim_theta_radps2;
   tr.max_vel_x_backwards_mps = robot.max_vel_x_backwards_mps;
-  // Yielding to moving obstacles: the robot's swaying footprint plus a margin.
+  // Yielding to moving obstacles: the robot's inscribed radius (its swaying footprint).
   p.server.local.avoidance.robot_radius_m = inscribed_m;
 
   // The progress window covers a full turn on the spot plus a short wait.
