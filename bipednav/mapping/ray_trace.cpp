@@ -32,9 +32,11 @@ bool clip_segment(Eigen::Vector2d& a, Eigen::Vector2d& b, const Eigen::Vector2d&
       }
     }
   }
+  // An end inside the box stays bit-identical (a0 + 1 * (b - a0) may round away from b, and the
+  // caller compares the end to tell a clipped ray from one ending at its return).
   const Eigen::Vector2d a0 = a;
-  a = a0 + t0 * d;
-  b = a0 + t1 * d;
+  if (t0 > 0.0) a = a0 + t0 * d;
+  if (t1 < 1.0) b = a0 + t1 * d;
   return true;
 }
 

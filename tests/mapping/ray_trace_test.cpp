@@ -58,3 +58,20 @@ TEST(RayTrace, ClipRayToRangeAndGrid) {
   EXPECT_FALSE(clip_ray(g, {-1.0, 1.0}, {3.0, 1.0}, 10.0));  // origin outside
   EXPECT_FALSE(clip_ray(g, {1.0, 1.0}, {std::nan(""), 1.0}, 10.0));
 }
+
+// A return on the grid within range is not clipped: its ray ends in the return's own cell (which a
+// clearing pass must not clear), whatever the rounding of origin + (return - origin).
+TEST(RayTrace, ReturnsInsideTheGridAreNeverClipped) {
+  const GridGeometry g{200, 150, 0.05, -3.7, -2.1};
+  int rounding_cases = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const Eigen::Vector2d o(-3.7 + 0.0037 * (i % 997) + 1e-3, -2.1 + 0.0031 * (i % 907) + 1e-3);
+    const Eigen::Vector2d p(-3.7 + 0.00493 * ((i * 7) % 1999) + 1e-3, -2.1 + 0.0037 * ((i * 13) % 1987) + 1e-3);
+    rounding_cases += (o + (p - o)) != p ? 1 : 0;
+    const auto r = clip_ray(g, o, p, 100.0);
+    ASSERT_TRUE(r);
+    EXPECT_FALSE(r->end_included) << i;
+    EXPECT_EQ(r->end, *g.world_to_cell(p.x(), p.y())) << i;
+  }
+  EXPECT_GT(rounding_cases, 0);  // the inputs do exercise the rounding
+}
