@@ -19,6 +19,7 @@ void DepthCameraParams::validate() const {
   require(max_range_m > min_range_m && std::isfinite(max_range_m), "max_range_m", "> min_range_m and finite");
   require(noise_coeff_per_m >= 0 && std::isfinite(noise_coeff_per_m), "noise_coeff_per_m", ">= 0");
   require(rate_hz > 0 && std::isfinite(rate_hz), "rate_hz", "> 0");
+  require(renderer == "raster" || renderer == "raycast", "renderer", "'raster' or 'raycast'");
 }
 
 DepthCamera::DepthCamera(const DepthCameraParams& params, std::string frame_id, std::uint64_t seed)
@@ -54,6 +55,8 @@ DepthCamera::DepthCamera(const DepthCameraParams& params, std::string frame_id, 
   for (int v = 0; v < h; ++v) slope_v_.push_back(static_cast<float>(-(v + 0.5 - 0.5 * h) / fy));
   // A ray can reach depth max_range_m at range max_range_m / cos(angle to the axis).
   max_cast_m_ = static_cast<float>(params_.max_range_m / min_x) * 1.01f;
+  if (params_.renderer == "raster")
+    rasterizer_ = DepthRasterizer(slope_u_, slope_v_, static_cast<float>(params_.max_range_m));
   depth_.resize(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
   noise_row_.resize(static_cast<std::size_t>(w));
 }
@@ -74,33 +77,10 @@ PointCloud DepthCamera::capture(const SE3& T_world_camera, const RayCaster& cast
 }
 
 PointCloud DepthCamera::capture_at(double stamp_s, const SE3& T_world_camera, const RayCaster& caster) {
-  constexpr int W = RayPacket::kWidth;
-  const Eigen::Matrix3f R = T_world_camera.linear().cast<float>();
-  const Eigen::Vector3f o = T_world_camera.translation().cast<float>();
-  RayPacket packet;
-  for (int i = 0; i < W; ++i) {
-    packet.org_x[i] = o.x();
-    packet.org_y[i] = o.y();
-    packet.org_z[i] = o.z();
-  }
-  // Cast tile by tile; keep the depth (distance along the optical axis) per pixel.
-  alignas(64) float ranges[W];
-  float* depth = depth_.data();
-  for (std::size_t t = 0; t < tile_count_.size(); ++t) {
-    const std::size_t base = t * W;
-    const float* rx = &ray_x_[base];
-    const float* ry = &ray_y_[base];
-    const float* rz = &ray_z_[base];
-    for (int i = 0; i < W; ++i) {
-      packet.dir_x[i] = R(0, 0) * rx[i] + R(0, 1) * ry[i] + R(0, 2) * rz[i];
-      packet.dir_y[i] = R(1, 0) * rx[i] + R(1, 1) * ry[i] + R(1, 2) * rz[i];
-      packet.dir_z[i] = R(2, 0) * rx[i] + R(2, 1) * ry[i] + R(2, 2) * rz[i];
-    }
-    packet.count = tile_count_[t];
-    caster.cast_packet(packet, max_cast_m_, ranges, true);
-    const int* pix = &pixel_[base];
-    for (int i = 0; i < packet.count; ++i) depth[pix[i]] = ranges[i] * rx[i];  // +inf without a hit
-  }
+  if (params_.renderer == "raster")
+    rasterizer_.render(caster.raster_scene(), T_world_camera, depth_.data());
+  else
+    cast_depth(T_world_camera, caster);
 
   // Noise and points row by row (noise drawn in pixel order).
   PointCloud cloud;
@@ -118,7 +98,7 @@ PointCloud DepthCamera::capture_at(double stamp_s, const SE3& T_world_camera, co
   for (std::size_t v = 0; v < slope_v_.size(); ++v) {
     noise_.fill(noise_row_);
     const float sv = slope_v_[v];
-    const float* z_row = depth + v * w;
+    const float* z_row = depth_.data() + v * w;
     Eigen::Vector3f* out_row = out + v * w;
     std::size_t u = 0;
     for (; u + 4 <= w; u += 4) {
@@ -136,6 +116,36 @@ PointCloud DepthCamera::capture_at(double stamp_s, const SE3& T_world_camera, co
     }
   }
   return cloud;
+}
+
+// One Embree ray per pixel, tile by tile; keeps the depth (distance along the optical axis).
+void DepthCamera::cast_depth(const SE3& T_world_camera, const RayCaster& caster) {
+  constexpr int W = RayPacket::kWidth;
+  const Eigen::Matrix3f R = T_world_camera.linear().cast<float>();
+  const Eigen::Vector3f o = T_world_camera.translation().cast<float>();
+  RayPacket packet;
+  for (int i = 0; i < W; ++i) {
+    packet.org_x[i] = o.x();
+    packet.org_y[i] = o.y();
+    packet.org_z[i] = o.z();
+  }
+  alignas(64) float ranges[W];
+  float* depth = depth_.data();
+  for (std::size_t t = 0; t < tile_count_.size(); ++t) {
+    const std::size_t base = t * W;
+    const float* rx = &ray_x_[base];
+    const float* ry = &ray_y_[base];
+    const float* rz = &ray_z_[base];
+    for (int i = 0; i < W; ++i) {
+      packet.dir_x[i] = R(0, 0) * rx[i] + R(0, 1) * ry[i] + R(0, 2) * rz[i];
+      packet.dir_y[i] = R(1, 0) * rx[i] + R(1, 1) * ry[i] + R(1, 2) * rz[i];
+      packet.dir_z[i] = R(2, 0) * rx[i] + R(2, 1) * ry[i] + R(2, 2) * rz[i];
+    }
+    packet.count = tile_count_[t];
+    caster.cast_packet(packet, max_cast_m_, ranges, true);
+    const int* pix = &pixel_[base];
+    for (int i = 0; i < packet.count; ++i) depth[pix[i]] = ranges[i] * rx[i];  // +inf without a hit
+  }
 }
 
 }  // namespace bipednav::sim

@@ -8,6 +8,7 @@
 #include "bipednav/common/angles.hpp"
 #include "bipednav/common/point_cloud.hpp"
 #include "bipednav/common/se3.hpp"
+#include "bipednav/sim/depth_raster.hpp"
 #include "bipednav/sim/gaussian_noise.hpp"
 #include "bipednav/sim/raycaster.hpp"
 
@@ -23,6 +24,10 @@ struct DepthCameraParams {
   double max_range_m = 10.0;
   double noise_coeff_per_m = 0.003;  // depth noise sigma = noise_coeff_per_m * z^2
   double rate_hz = 15.0;
+  // How depth is computed: "raster" (z-buffer of the world's triangles, as Gazebo renders a
+  // depth camera) or "raycast" (one Embree ray per pixel, the reference). Both give the same
+  // depth to float rounding except on silhouette edges (tests/sim/depth_raster_test.cpp).
+  std::string renderer = "raster";
 
   void validate() const;
 };
@@ -48,6 +53,8 @@ class DepthCamera {
   const DepthCameraParams& params() const { return params_; }
 
  private:
+  void cast_depth(const SE3& T_world_camera, const RayCaster& caster);
+
   DepthCameraParams params_;
   std::string frame_id_;
   GaussianNoise noise_;
@@ -59,7 +66,8 @@ class DepthCamera {
   std::vector<int> tile_count_;               // used lanes per tile
   // A pixel's point is depth * (1, slope_u_[u], slope_v_[v]).
   std::vector<float> slope_u_, slope_v_;
-  float max_cast_m_ = 0.0f;       // range at which the outermost ray reaches max_range_m in depth
+  float max_cast_m_ = 0.0f;  // range at which the outermost ray reaches max_range_m in depth
+  DepthRasterizer rasterizer_;
   std::vector<float> depth_;      // scratch: depth per pixel (row-major), +inf without a hit
   std::vector<float> noise_row_;  // scratch: one row of noise samples
 };

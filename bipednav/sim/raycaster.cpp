@@ -79,6 +79,7 @@ struct RayCaster::Impl {
   std::vector<Actor> actors;
   std::vector<float> plane_z;         // unbounded horizontal planes
   Eigen::AlignedBox3f movers_bounds;  // world bounds of all actors now (empty without actors)
+  RasterScene raster;                 // the same geometry for DepthRasterizer
 
   // True if the ray segment [0, tfar] can meet an actor (slab test against their bounds):
   // most rays and packets skip the actor scene entirely.
@@ -165,11 +166,15 @@ RayCaster::RayCaster(const World& world, const RayCasterParams& params) : impl_(
   d.statics = new_scene(d.device, robust, RTC_BUILD_QUALITY_HIGH);
   TriangleSoup soup;
   for (const Geometry& g : world.statics) {
-    if (const auto z = horizontal_plane_z(g))
+    if (const auto z = horizontal_plane_z(g)) {
       d.plane_z.push_back(static_cast<float>(*z));
-    else
-      soup.append(tessellate(g, params.tessellation));
+    } else {
+      const TriangleSoup shape = tessellate(g, params.tessellation);
+      d.raster.statics.add(shape);
+      soup.append(shape);
+    }
   }
+  d.raster.plane_z = d.plane_z;
   d.static_triangles = soup.size();
   attach_triangles(d.device, d.statics, soup);
   rtcCommitScene(d.statics);
@@ -187,6 +192,8 @@ RayCaster::RayCaster(const World& world, const RayCasterParams& params) : impl_(
     for (const Geometry& g : a.parts) parts.append(tessellate(g, params.tessellation));
     attach_triangles(d.device, s, parts);
     rtcCommitScene(s);
+    d.raster.actors.emplace_back().add(parts);
+    d.raster.T_world_actor.push_back(SE3::Identity());
     d.actor_scenes.push_back(s);
     RTCGeometry inst = rtcNewGeometry(d.device, RTC_GEOMETRY_TYPE_INSTANCE);
     rtcSetGeometryInstancedScene(inst, s);
@@ -207,8 +214,10 @@ void RayCaster::set_time(double t_s) {
   if (t_s == d.time_s) return;
   d.time_s = t_s;
   if (d.actors.empty()) return;
-  for (std::size_t i = 0; i < d.actors.size(); ++i)
-    set_instance_transform(d.actor_instances[i], d.actors[i].pose_at(t_s));
+  for (std::size_t i = 0; i < d.actors.size(); ++i) {
+    d.raster.T_world_actor[i] = d.actors[i].pose_at(t_s);
+    set_instance_transform(d.actor_instances[i], d.raster.T_world_actor[i]);
+  }
   rtcCommitScene(d.movers);
   RTCBounds b;
   rtcGetSceneBounds(d.movers, &b);
@@ -218,6 +227,7 @@ void RayCaster::set_time(double t_s) {
 }
 
 double RayCaster::time_s() const { return impl_->time_s; }
+const RasterScene& RayCaster::raster_scene() const { return impl_->raster; }
 std::size_t RayCaster::static_triangle_count() const { return impl_->static_triangles; }
 std::size_t RayCaster::actor_count() const { return impl_->actors.size(); }
 

@@ -5,6 +5,7 @@
 #include <memory>
 #include <span>
 
+#include "bipednav/sim/depth_raster.hpp"
 #include "bipednav/sim/shape_tessellation.hpp"
 #include "bipednav/sim/world.hpp"
 
@@ -69,6 +70,9 @@ class RayCaster {
   // Casts one packet; ranges[i] (i < p.count) is the hit distance or +infinity. `coherent`
   // hints that the rays are similar (neighbouring pixels, neighbouring LiDAR columns).
   void cast_packet(const RayPacket& p, float max_range_m, float* ranges, bool coherent = false) const;
+
+  // The same triangles, planes and actor poses (at time_s()) for rasterising depth images.
+  const RasterScene& raster_scene() const;
 
   std::size_t static_triangle_count() const;
   std::size_t actor_count() const;
