@@ -83,13 +83,23 @@ MappingResult LoamMapping::process(const PointCloud& edges, const PointCloud& pl
   res.T_world_lidar = guess;
   SE3 T = guess;
   for (int round = 0; round < p_.correspondence_rounds && map_size() > 0; ++round) {
-    // Left-perturbation model: the points already carry T, the solve finds a small correction.
-    const std::vector<Constraint> cs = associate(edges, planars, T);
+    // The points already carry T; the solve finds a small correction in world-aligned axes
+    // about the LiDAR's position (LOAM's parameterisation). Rotating about the world origin
+    // instead couples every rotation with a translation of |t| times it, so the degeneracy test
+    // and the damping would change with the distance from the start.
+    std::vector<Constraint> cs = associate(edges, planars, T);
     res.constraints = cs.size();
     if (cs.size() < p_.min_constraints) break;
+    const Eigen::Vector3d centre = T.translation();
+    for (auto& c : cs) {
+      c.point -= centre;
+      c.anchor -= centre;
+    }
     const LmSolution sol = solve_lm(cs, Vector6d::Zero(), p_.lm);
     if (!sol.x.allFinite()) break;
-    T = motion_to_se3(sol.x) * T;
+    const SE3 step = motion_to_se3(sol.x);
+    T.linear() = step.linear() * T.linear();
+    T.translation() += step.translation();
     res.matched = sol.inliers >= p_.min_constraints;
     res.degenerate_dims = sol.degenerate_dims;
     res.inliers = sol.inliers;
