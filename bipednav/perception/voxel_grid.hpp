@@ -70,6 +70,7 @@ class VoxelGrid {
   std::vector<std::array<double, 2>> extra_sums_;  // intensity and time per voxel, when present
   std::vector<std::uint32_t> slots_;               // open addressing, linear probing: voxel index
   std::array<std::uint64_t, 256> block_keys_{};    // keys of the block of points being grouped
+  bool with_extra_ = false;
   std::size_t mask_ = 0;
   int shift_ = 0;
 };
