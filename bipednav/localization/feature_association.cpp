@@ -39,6 +39,17 @@ bool fit_neighbours(const KdTree3f& tree, const Eigen::Vector3d& q, const Associ
   return true;
 }
 
+// Every neighbour seen from the side of `axis` (through the fit's mean) the sensor is on now.
+bool seen_from_this_side(const LocalFit& f, const Eigen::Vector3d& axis, const ViewCheck* view) {
+  if (view == nullptr || view->viewpoints == nullptr) return true;
+  const double now = axis.dot(view->sensor - f.mean);
+  for (std::size_t i = 0; i < f.n; ++i) {
+    if (f.idx[i] >= view->viewpoints->size()) return false;
+    if (now * axis.dot((*view->viewpoints)[f.idx[i]].cast<double>() - f.mean) <= 0.0) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 void AssociationParams::validate() const {
@@ -50,23 +61,29 @@ void AssociationParams::validate() const {
 }
 
 bool edge_correspondence(const KdTree3f& edges, const Eigen::Vector3d& point, double s, const Eigen::Vector3d& q,
-                         const AssociationParams& p, Constraint& out) {
+                         const AssociationParams& p, Constraint& out, const ViewCheck* view) {
   LocalFit f;
   if (edges.empty() || !fit_neighbours(edges, q, p, f)) return false;
   if (f.eigenvalues(2) < p.min_line_ratio * f.eigenvalues(1)) return false;
   const Eigen::Vector3d u = f.eigenvectors.col(2);
+  if (view != nullptr) {  // the half-space facing the sensor now, bounded through the line
+    const Eigen::Vector3d to_sensor = view->sensor - f.mean;
+    const Eigen::Vector3d across = to_sensor - u.dot(to_sensor) * u;
+    if (across.norm() < 1e-6 || !seen_from_this_side(f, across.normalized(), view)) return false;
+  }
   out = line_constraint(point, s, f.mean - 0.1 * u, f.mean + 0.1 * u);  // two points of the line (eq. 4.6)
   out.weight = p.edge_weight;
   return true;
 }
 
 bool planar_correspondence(const KdTree3f& planars, const Eigen::Vector3d& point, double s, const Eigen::Vector3d& q,
-                           const AssociationParams& p, Constraint& out) {
+                           const AssociationParams& p, Constraint& out, const ViewCheck* view) {
   LocalFit f;
   if (planars.empty() || !fit_neighbours(planars, q, p, f)) return false;
   const Eigen::Vector3d normal = f.eigenvectors.col(0);
   for (std::size_t t = 0; t < f.n; ++t)
     if (std::abs(normal.dot(planars.point(f.idx[t]).cast<double>() - f.mean)) > p.max_plane_deviation_m) return false;
+  if (!seen_from_this_side(f, normal, view)) return false;
   out.point = point;  // the patch's plane (eq. 4.7) through its centroid
   out.s = s;
   out.anchor = f.mean;

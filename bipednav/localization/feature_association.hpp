@@ -1,5 +1,7 @@
 #pragma once
 
+#include <vector>
+
 #include "bipednav/localization/kdtree.hpp"
 #include "bipednav/localization/registration_lm.hpp"
 
@@ -17,11 +19,23 @@ struct AssociationParams {
   void validate() const;
 };
 
+// Where each reference point was seen from (indexed like the tree's points) and where the
+// sensor is now, both in the reference frame. The two faces of a thin wall (or the two corners of
+// its end) lie closer together than the correspondence distance; a feature on the face seen now
+// must not be matched to the other face, seen earlier from the other side, or the estimate is
+// pulled through the wall by its thickness.
+struct ViewCheck {
+  const std::vector<Eigen::Vector3f>* viewpoints = nullptr;
+  Eigen::Vector3d sensor = Eigen::Vector3d::Zero();
+};
+
 // `q` is the feature point moved into the reference frame with the current estimate; the
-// constraint keeps `point` and `s` (the motion is applied to them by the solver).
+// constraint keeps `point` and `s` (the motion is applied to them by the solver). With `view`,
+// a patch is rejected unless all its points were seen from the side of its plane the sensor is
+// on now (an edge: from the same half-space).
 bool edge_correspondence(const KdTree3f& edges, const Eigen::Vector3d& point, double s, const Eigen::Vector3d& q,
-                         const AssociationParams& p, Constraint& out);
+                         const AssociationParams& p, Constraint& out, const ViewCheck* view = nullptr);
 bool planar_correspondence(const KdTree3f& planars, const Eigen::Vector3d& point, double s, const Eigen::Vector3d& q,
-                           const AssociationParams& p, Constraint& out);
+                           const AssociationParams& p, Constraint& out, const ViewCheck* view = nullptr);
 
 }  // namespace bipednav::localization

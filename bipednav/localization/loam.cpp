@@ -86,10 +86,10 @@ SE3 Loam::odometry_step(const LoamFeatures& f, const SE3& guess, bool prior_give
   return r.T_start_end;
 }
 
-void Loam::mapping_step(LoamOutput& out) {
+void Loam::mapping_step(LoamOutput& out, const std::optional<Eigen::Vector3d>& up_in_lidar) {
   Stopwatch sw;
-  const MappingResult m =
-      mapping_.process(odometry_.reference_edges(), odometry_.reference_planars(), T_world_odom_ * T_odom_lidar_);
+  const MappingResult m = mapping_.process(odometry_.reference_edges(), odometry_.reference_planars(),
+                                           T_world_odom_ * T_odom_lidar_, up_in_lidar);
   out.mapped = true;
   if (m.matched && finite(m.T_world_lidar)) {
     T_world_odom_ = level(m.T_world_lidar) * T_odom_lidar_.inverse();
@@ -111,7 +111,8 @@ SE3 Loam::constant_velocity_guess() const {
   return motion_to_se3(x);
 }
 
-LoamOutput Loam::process(const PointCloud& sweep, const std::optional<SE3>& motion_prior) {
+LoamOutput Loam::process(const PointCloud& sweep, const std::optional<SE3>& motion_prior,
+                         const std::optional<Eigen::Vector3d>& up_in_lidar) {
   Stopwatch sw;
   LoamOutput out;
   const PointCloud clean = sanitize_sweep(sweep, p_.features);
@@ -152,7 +153,7 @@ LoamOutput Loam::process(const PointCloud& sweep, const std::optional<SE3>& moti
   out.odometry_ms = sw.elapsed_ms();
   // The first sweep's own motion is unknown (it has nothing to match), so mapping starts with the
   // second sweep rather than putting a distorted sweep into the map.
-  if (usable && odometry_matched && (sweeps_ - 1) % mapping_every_ == 0) mapping_step(out);
+  if (usable && odometry_matched && (sweeps_ - 1) % mapping_every_ == 0) mapping_step(out, up_in_lidar);
   out.T_world_lidar = T_world_odom_ * T_odom_lidar_;
   if (!finite(out.T_world_lidar)) {  // never hand out NaN: fall back to the last good pose
     out.healthy = false;

@@ -53,7 +53,10 @@ class Loam {
   // One sweep in the LiDAR frame with per-point time offsets (since the sweep start) and rings.
   // `motion_prior` is the LiDAR motion since the previous sweep from another odometry source
   // (T_prevlidar_lidar); without it a constant-velocity guess is used.
-  LoamOutput process(const PointCloud& sweep, const std::optional<SE3>& motion_prior = std::nullopt);
+  // `up_in_lidar` is the world's up direction in the LiDAR frame at the sweep end from an IMU
+  // (gravity): the mapping step holds roll and pitch to it (MappingParams::gravity_weight).
+  LoamOutput process(const PointCloud& sweep, const std::optional<SE3>& motion_prior = std::nullopt,
+                     const std::optional<Eigen::Vector3d>& up_in_lidar = std::nullopt);
   void reset();
   // Re-anchors the current pose (e.g. after a relocalization); the map is cleared.
   void set_pose(const SE3& T_world_lidar);
@@ -62,7 +65,7 @@ class Loam {
 
  private:
   SE3 odometry_step(const LoamFeatures& f, const SE3& guess, bool prior_given, LoamOutput& out);
-  void mapping_step(LoamOutput& out);
+  void mapping_step(LoamOutput& out, const std::optional<Eigen::Vector3d>& up_in_lidar);
   SE3 constant_velocity_guess() const;
   SE3 level(const SE3& T_world_lidar) const;  // the planar projection (identity without planar_motion)
 

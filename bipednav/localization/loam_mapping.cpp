@@ -12,33 +12,42 @@ void MappingParams::validate() const {
   association.validate();
   require(correspondence_rounds >= 1, "correspondence_rounds", ">= 1");
   require(min_constraints >= 6, "min_constraints", ">= 6");
+  require(gravity_weight >= 0.0, "gravity_weight", ">= 0");
   lm.validate();
 }
 
-std::int64_t VoxelPointMap::key(const Eigen::Vector3f& p) const {
+std::int64_t VoxelPointMap::key(const Eigen::Vector3f& p, const Eigen::Vector3f& viewpoint) const {
   const auto cell = [&](float v) {
-    return (static_cast<std::int64_t>(std::floor(v / leaf_m_)) + (1 << 20)) & ((1 << 21) - 1);
+    return (static_cast<std::int64_t>(std::floor(v / leaf_m_)) + (1 << 19)) & ((1 << 20) - 1);
   };
-  return (cell(p.x()) << 42) | (cell(p.y()) << 21) | cell(p.z());
+  const Eigen::Vector3f d = viewpoint - p;
+  Eigen::Index axis = 0;
+  d.cwiseAbs().maxCoeff(&axis);
+  const std::int64_t direction = 2 * axis + (d(axis) < 0.0f ? 1 : 0);  // 0..5
+  return (direction << 60) | (cell(p.x()) << 40) | (cell(p.y()) << 20) | cell(p.z());
 }
 
-void VoxelPointMap::insert(const Eigen::Vector3f& p) {
-  if (occupied_.insert(key(p)).second) points_.push_back(p);
+void VoxelPointMap::insert(const Eigen::Vector3f& p, const Eigen::Vector3f& viewpoint) {
+  if (!occupied_.insert(key(p, viewpoint)).second) return;
+  points_.push_back(p);
+  viewpoints_.push_back(viewpoint);
 }
 
 void VoxelPointMap::crop(const Eigen::Vector3f& centre, double radius_m) {
   const float r2 = static_cast<float>(radius_m * radius_m);
-  std::vector<Eigen::Vector3f> kept;
+  std::vector<std::size_t> kept;
   kept.reserve(points_.size());
-  for (const auto& p : points_)
-    if ((p - centre).squaredNorm() <= r2) kept.push_back(p);
+  for (std::size_t i = 0; i < points_.size(); ++i)
+    if ((points_[i] - centre).squaredNorm() <= r2) kept.push_back(i);
   if (kept.size() == points_.size()) return;
+  const std::vector<Eigen::Vector3f> points = std::move(points_), viewpoints = std::move(viewpoints_);
   clear();
-  for (const auto& p : kept) insert(p);
+  for (const std::size_t i : kept) insert(points[i], viewpoints[i]);
 }
 
 void VoxelPointMap::clear() {
   points_.clear();
+  viewpoints_.clear();
   occupied_.clear();
 }
 
@@ -57,28 +66,48 @@ std::vector<Constraint> LoamMapping::associate(const PointCloud& edges, const Po
   std::vector<Constraint> cs;
   cs.reserve(edges.size() + planars.size());
   Constraint c;
+  const ViewCheck edge_view{&edge_map_.viewpoints(), T.translation()};
+  const ViewCheck planar_view{&planar_map_.viewpoints(), T.translation()};
   for (const auto& p : edges.points) {
     const Eigen::Vector3d q = T * p.cast<double>();
-    if (edge_correspondence(edge_tree_, q, 1.0, q, p_.association, c)) cs.push_back(c);
+    if (edge_correspondence(edge_tree_, q, 1.0, q, p_.association, c, &edge_view)) cs.push_back(c);
   }
   for (const auto& p : planars.points) {
     const Eigen::Vector3d q = T * p.cast<double>();
-    if (planar_correspondence(planar_tree_, q, 1.0, q, p_.association, c)) cs.push_back(c);
+    if (planar_correspondence(planar_tree_, q, 1.0, q, p_.association, c, &planar_view)) cs.push_back(c);
   }
   return cs;
 }
 
 void LoamMapping::insert(const PointCloud& edges, const PointCloud& planars, const SE3& T) {
-  for (const auto& p : edges.points) edge_map_.insert((T * p.cast<double>()).cast<float>());
-  for (const auto& p : planars.points) planar_map_.insert((T * p.cast<double>()).cast<float>());
   const Eigen::Vector3f centre = T.translation().cast<float>();
+  for (const auto& p : edges.points) edge_map_.insert((T * p.cast<double>()).cast<float>(), centre);
+  for (const auto& p : planars.points) planar_map_.insert((T * p.cast<double>()).cast<float>(), centre);
   edge_map_.crop(centre, p_.map_radius_m);
   planar_map_.crop(centre, p_.map_radius_m);
   edge_tree_ = KdTree3f(edge_map_.points());
   planar_tree_ = KdTree3f(planar_map_.points());
 }
 
-MappingResult LoamMapping::process(const PointCloud& edges, const PointCloud& planars, const SE3& guess) {
+namespace {
+
+// Rows x, y of exp(dtheta) R u - e_z, linear in dtheta: the up direction u the IMU measured,
+// rotated into the world by the corrected pose, must point up.
+LinearPrior gravity_prior(const SE3& T, const std::optional<Eigen::Vector3d>& up_in_lidar, double weight) {
+  LinearPrior prior;
+  if (!up_in_lidar || !up_in_lidar->allFinite() || up_in_lidar->norm() < 1e-6 || weight <= 0.0) return prior;
+  const Eigen::Vector3d v = T.linear() * up_in_lidar->normalized();
+  prior.A = Eigen::Matrix<double, 2, 6>::Zero();
+  prior.A.block<2, 3>(0, 3) << 0.0, v.z(), -v.y(), -v.z(), 0.0, v.x();
+  prior.b = v.head<2>();
+  prior.weight = weight;
+  return prior;
+}
+
+}  // namespace
+
+MappingResult LoamMapping::process(const PointCloud& edges, const PointCloud& planars, const SE3& guess,
+                                   const std::optional<Eigen::Vector3d>& up_in_lidar) {
   MappingResult res;
   res.T_world_lidar = guess;
   SE3 T = guess;
@@ -95,7 +124,7 @@ MappingResult LoamMapping::process(const PointCloud& edges, const PointCloud& pl
       c.point -= centre;
       c.anchor -= centre;
     }
-    const LmSolution sol = solve_lm(cs, Vector6d::Zero(), p_.lm);
+    const LmSolution sol = solve_lm(cs, Vector6d::Zero(), p_.lm, gravity_prior(T, up_in_lidar, p_.gravity_weight));
     if (!sol.x.allFinite()) break;
     const SE3 step = motion_to_se3(sol.x);
     T.linear() = step.linear() * T.linear();

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <unordered_set>
 #include <vector>
 
@@ -25,6 +26,12 @@ struct MappingParams {
                                 .edge_weight = 0.3};
   int correspondence_rounds = 5;
   std::size_t min_constraints = 30;
+  // Weight of a gravity (IMU tilt) measurement in units of full-weight point rows, rad vs m. The
+  // map alone pins roll and pitch only as well as the map was built: each new room is inserted at
+  // the tilt of the pose that first saw it, so tilt errors persist and turn into height and x/y
+  // drift. An IMU measures tilt absolutely (LOAM fuses it into the mapping step, LeGO-LOAM and
+  // LIO-SAM likewise).
+  double gravity_weight = 1000.0;
   LmParams lm{};
   void validate() const;
 };
@@ -39,20 +46,24 @@ struct MappingResult {
 };
 
 // A point set down-sampled incrementally: a point is added only when its voxel is still empty.
+// Each point keeps the sensor position it was seen from, and a voxel holds one point per viewing
+// direction (the dominant axis and sign of point -> sensor): the two faces of a wall thinner than
+// a voxel both stay in the map.
 class VoxelPointMap {
  public:
   explicit VoxelPointMap(double leaf_m = 0.2) : leaf_m_(leaf_m) {}
-  void insert(const Eigen::Vector3f& p);
+  void insert(const Eigen::Vector3f& p, const Eigen::Vector3f& viewpoint);
   // Drops points farther than radius_m from centre.
   void crop(const Eigen::Vector3f& centre, double radius_m);
   const std::vector<Eigen::Vector3f>& points() const { return points_; }
+  const std::vector<Eigen::Vector3f>& viewpoints() const { return viewpoints_; }
   std::size_t size() const { return points_.size(); }
   void clear();
 
  private:
-  std::int64_t key(const Eigen::Vector3f& p) const;
+  std::int64_t key(const Eigen::Vector3f& p, const Eigen::Vector3f& viewpoint) const;
   double leaf_m_;
-  std::vector<Eigen::Vector3f> points_;
+  std::vector<Eigen::Vector3f> points_, viewpoints_;
   std::unordered_set<std::int64_t> occupied_;
 };
 
@@ -63,7 +74,9 @@ class LoamMapping {
   // Registers the de-skewed features of one sweep (LiDAR frame at the sweep end) onto the map,
   // starting from `T_world_lidar_guess`, then inserts them at the registered pose. The first call
   // only inserts.
-  MappingResult process(const PointCloud& edges, const PointCloud& planars, const SE3& T_world_lidar_guess);
+  // `up_in_lidar`: the world's up direction in the LiDAR frame measured by an IMU, if there is one.
+  MappingResult process(const PointCloud& edges, const PointCloud& planars, const SE3& T_world_lidar_guess,
+                        const std::optional<Eigen::Vector3d>& up_in_lidar = std::nullopt);
   std::size_t map_size() const { return edge_map_.size() + planar_map_.size(); }
   void reset();
   const MappingParams& params() const { return p_; }

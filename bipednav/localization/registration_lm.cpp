@@ -30,14 +30,20 @@ Eigen::Vector3d distance_gradient(const Constraint& c, const Eigen::Vector3d& q)
   return n > 1e-12 ? Eigen::Vector3d(e / n) : Eigen::Vector3d::Zero();
 }
 
-double total_loss(const std::vector<Constraint>& cs, const Vector6d& x, double c) {
+double total_loss(const std::vector<Constraint>& cs, const Vector6d& x, double c, const LinearPrior& prior) {
   double sum = 0.0;
   for (const auto& k : cs) sum += k.weight * bisquare_loss(constraint_distance(k, apply_motion(x, k.s, k.point)), c);
+  if (!prior.empty()) sum += 0.5 * prior.weight * (prior.A * x + prior.b).squaredNorm();
   return sum;
 }
 
-NormalEquations linearize(const std::vector<Constraint>& cs, const Vector6d& x, double c) {
+NormalEquations linearize(const std::vector<Constraint>& cs, const Vector6d& x, double c, const LinearPrior& prior) {
   NormalEquations ne;
+  if (!prior.empty()) {
+    const Eigen::VectorXd r = prior.A * x + prior.b;
+    ne.H.noalias() += prior.weight * prior.A.transpose() * prior.A;
+    ne.g.noalias() += prior.weight * prior.A.transpose() * r;
+  }
   for (const auto& k : cs) {
     const Eigen::Vector3d rp = rodrigues(k.s * x.tail<3>()) * k.point;
     const Eigen::Vector3d q = rp + k.s * x.head<3>();
@@ -157,13 +163,14 @@ void LmParams::validate() const {
   require(converged_rotation_rad > 0.0, "converged_rotation_rad", "> 0");
 }
 
-LmSolution solve_lm(const std::vector<Constraint>& constraints, const Vector6d& x0, const LmParams& p) {
+LmSolution solve_lm(const std::vector<Constraint>& constraints, const Vector6d& x0, const LmParams& p,
+                    const LinearPrior& prior) {
   LmSolution sol;
   sol.x = x0;
   double lambda = p.initial_lambda;
-  double loss = total_loss(constraints, sol.x, p.bisquare_c_m);
+  double loss = total_loss(constraints, sol.x, p.bisquare_c_m, prior);
   for (sol.iterations = 0; sol.iterations < p.max_iterations;) {
-    const NormalEquations ne = linearize(constraints, sol.x, p.bisquare_c_m);
+    const NormalEquations ne = linearize(constraints, sol.x, p.bisquare_c_m, prior);
     ++sol.iterations;
     Vector6d delta;
     if (ne.rows < 6 || !lm_step(ne, lambda, p.degenerate_min_eigenvalue, delta, sol.degenerate_dims)) {
@@ -171,7 +178,7 @@ LmSolution solve_lm(const std::vector<Constraint>& constraints, const Vector6d& 
       break;
     }
     const Vector6d candidate = sol.x + delta;
-    const double candidate_loss = total_loss(constraints, candidate, p.bisquare_c_m);
+    const double candidate_loss = total_loss(constraints, candidate, p.bisquare_c_m, prior);
     if (candidate_loss <= loss) {
       sol.x = candidate;
       loss = candidate_loss;

@@ -82,8 +82,20 @@ struct LmSolution {
   double rms_m = 0.0;       // RMS distance of the inliers
 };
 
+// Extra residual rows r = A x + b, weighted by `weight` each (in units of one full-weight point
+// row), for a measurement of the motion itself (e.g. the tilt an IMU reports). Empty: none.
+struct LinearPrior {
+  Eigen::Matrix<double, Eigen::Dynamic, 6> A;
+  Eigen::VectorXd b;
+  double weight = 0.0;
+  bool empty() const { return A.rows() == 0 || weight <= 0.0; }
+};
+
 // Levenberg-Marquardt on the stacked distances of fixed constraints (eq. 4.13-4.14), starting
-// from x0; bisquare weights are recomputed every iteration.
-LmSolution solve_lm(const std::vector<Constraint>& constraints, const Vector6d& x0, const LmParams& p);
+// from x0; bisquare weights are recomputed every iteration. The prior's rows join the normal
+// equations and the loss (they also count in the degeneracy test: a direction the prior fixes
+// is not degenerate).
+LmSolution solve_lm(const std::vector<Constraint>& constraints, const Vector6d& x0, const LmParams& p,
+                    const LinearPrior& prior = {});
 
 }  // namespace bipednav::localization

@@ -90,7 +90,12 @@ void Localizer::add_sweep(const PointCloud& sweep) {
   }
   prev_sweep_odom_ = *odom_end;
   prev_sweep_end_s_ = t_end;
-  const localization::LoamOutput out = loam_->process(sweep, prior);
+  // The IMU's gravity direction holds LOAM's roll and pitch (odometry samples carry the tilt).
+  const Odometry& imu = history_.back();
+  const Eigen::Vector3d up_in_lidar = T_base_lidar_.linear().transpose() *
+                                      rpy_to_matrix(imu.roll_rad, imu.pitch_rad, 0.0).transpose() *
+                                      Eigen::Vector3d::UnitZ();
+  const localization::LoamOutput out = loam_->process(sweep, prior, up_in_lidar);
   last_loam_ms_ = out.odometry_ms + out.mapping_ms;
   const Pose2 predicted = correction_ * *odom_end;
   const Pose2 measured = pose2_from_se3(out.T_world_lidar * T_lidar_base);
