@@ -73,6 +73,7 @@ struct BenchOptions {
   double duration_s = 20.0;
   std::string robot_file;
   std::string sensors = "all";
+  std::string renderer = sim::DepthCameraParams{}.renderer;
   bool json = false;
 };
 
@@ -84,6 +85,7 @@ void run_sim_bench(const BenchOptions& o) {
   params.raycaster.threads = 1;
   params.enable_lidar = o.sensors != "depth";
   params.enable_depth = o.sensors != "lidar";
+  params.depth.renderer = o.renderer;
   sim::Simulation simulation(benchmark_world(), robot, Pose2{-2.0, 0.0, 0.0}, params);
   const auto steps = static_cast<std::size_t>(std::llround(o.duration_s / params.step_s));
   ProgressBar progress("bench sim", steps, !o.json);
@@ -124,7 +126,8 @@ void run_sim_bench(const BenchOptions& o) {
                                                              {"rate_hz", params.depth.rate_hz},
                                                              {"width", params.depth.width},
                                                              {"height", params.depth.height},
-                                                             {"noise_coeff_per_m", params.depth.noise_coeff_per_m}}
+                                                             {"noise_coeff_per_m", params.depth.noise_coeff_per_m},
+                                                             {"renderer", params.depth.renderer}}
                                             : nlohmann::json(nullptr)}};
   j["simulated_s"] = simulation.now_s();
   // The goal is measured on CPU time: simulated seconds per CPU second of this process
@@ -157,6 +160,9 @@ void add_sim_bench(CLI::App& bench) {
   cmd->add_option("--robot", opts->robot_file, "robot profile YAML (default: built-in Digit)");
   cmd->add_option("--sensors", opts->sensors, "which sensors run")
       ->check(CLI::IsMember({"all", "lidar", "depth"}))
+      ->capture_default_str();
+  cmd->add_option("--renderer", opts->renderer, "depth images: z-buffer (raster) or one ray per pixel (raycast)")
+      ->check(CLI::IsMember({"raster", "raycast"}))
       ->capture_default_str();
   cmd->add_flag("--json", opts->json, "print only the JSON result (no progress)");
   cmd->callback([opts] { run_sim_bench(*opts); });

@@ -17,19 +17,39 @@ constexpr double kNearM = 1e-6;
 
 }  // namespace
 
-void RasterMesh::add(const TriangleSoup& soup) {
+void RasterMesh::add(const TriangleSoup& soup, bool convex_solid) {
   const auto n = static_cast<std::uint32_t>(soup.triangles.size());
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  if (convex_solid && n > 0) {
+    Eigen::AlignedBox3f bounds;
+    for (const Eigen::Vector3f& v : soup.vertices) {
+      bounds.extend(v);
+      centroid += v.cast<double>();
+    }
+    centroid /= static_cast<double>(soup.vertices.size());
+    solids.push_back(bounds);
+  }
   for (std::uint32_t first = 0; first < n; first += kChunkTriangles) {
     Chunk chunk;
     chunk.first = static_cast<std::uint32_t>(size());
     chunk.count = std::min(kChunkTriangles, n - first);
+    chunk.solid = convex_solid ? static_cast<std::int32_t>(solids.size()) - 1 : -1;
     Eigen::AlignedBox3f box;
-    for (std::uint32_t i = first; i < first + chunk.count; ++i)
+    for (std::uint32_t i = first; i < first + chunk.count; ++i) {
+      Eigen::Vector3i t = soup.triangles[i];
+      const auto vertex = [&](int k) -> const Eigen::Vector3f& {
+        return soup.vertices.at(static_cast<std::size_t>(t[k]));
+      };
+      if (convex_solid) {  // outward: the normal points away from the centroid
+        const Eigen::Vector3d a = vertex(0).cast<double>(), b = vertex(1).cast<double>(), c = vertex(2).cast<double>();
+        if ((b - a).cross(c - a).dot(a - centroid) < 0.0) std::swap(t[1], t[2]);
+      }
       for (int k = 0; k < 3; ++k) {
-        const Eigen::Vector3f& p = soup.vertices.at(static_cast<std::size_t>(soup.triangles[i][k]));
+        const Eigen::Vector3f& p = vertex(k);
         box.extend(p);
         xyz.insert(xyz.end(), {p.x(), p.y(), p.z()});
       }
+    }
     chunk.center = box.center();
     chunk.half_extent = 0.5f * box.sizes();
     chunks.push_back(chunk);
@@ -115,21 +135,31 @@ void DepthRasterizer::draw(const RasterMesh& mesh, const SE3& T_camera_mesh) {
   const Eigen::Vector3d t = T_camera_mesh.translation();
   const Eigen::Matrix3f Rf = R.cast<float>();
   const Eigen::Vector3f tf = t.cast<float>();
+  // A camera outside a convex solid's bounds (by a margin) sees none of its back faces.
+  const Eigen::Vector3f camera = (-R.transpose() * t).cast<float>();
+  cull_back_.resize(mesh.solids.size());
+  for (std::size_t i = 0; i < mesh.solids.size(); ++i) {
+    const Eigen::AlignedBox3f& b = mesh.solids[i];
+    const Eigen::Vector3f margin = Eigen::Vector3f::Constant(1e-3f) + 1e-5f * b.sizes();
+    cull_back_[i] = !Eigen::AlignedBox3f(b.min() - margin, b.max() + margin).contains(camera);
+  }
   for (const RasterMesh::Chunk& chunk : mesh.chunks) {
     const Eigen::Vector3d c = R * chunk.center.cast<double>() + t;
     const Eigen::Vector3d e = R_abs * chunk.half_extent.cast<double>() + Eigen::Vector3d::Constant(1e-5);
     if (!frustum.may_see(c, e)) continue;
+    const bool cull = chunk.solid >= 0 && cull_back_[static_cast<std::size_t>(chunk.solid)];
     const float* p = &mesh.xyz[9 * static_cast<std::size_t>(chunk.first)];
     for (std::uint32_t i = 0; i < chunk.count; ++i, p += 9) {
       const Eigen::Vector3f a = Rf * Eigen::Vector3f(p[0], p[1], p[2]) + tf;
       const Eigen::Vector3f b = Rf * Eigen::Vector3f(p[3], p[4], p[5]) + tf;
       const Eigen::Vector3f cc = Rf * Eigen::Vector3f(p[6], p[7], p[8]) + tf;
-      draw_triangle(a, b, cc);
+      draw_triangle(a, b, cc, cull);
     }
   }
 }
 
-void DepthRasterizer::draw_triangle(const Eigen::Vector3f& af, const Eigen::Vector3f& bf, const Eigen::Vector3f& cf) {
+void DepthRasterizer::draw_triangle(const Eigen::Vector3f& af, const Eigen::Vector3f& bf, const Eigen::Vector3f& cf,
+                                    bool cull_back) {
   const Eigen::Vector3d a = af.cast<double>(), b = bf.cast<double>(), c = cf.cast<double>();
   if (a.x() <= kNearM && b.x() <= kNearM && c.x() <= kNearM) return;
   const double far = max_depth_m_;
@@ -137,6 +167,7 @@ void DepthRasterizer::draw_triangle(const Eigen::Vector3f& af, const Eigen::Vect
   const Eigen::Vector3d n = (b - a).cross(c - a);
   const double det = n.dot(a);  // det(a, b, c): 0 when the camera is in the triangle's plane
   if (!(std::abs(det) > 0.0) || !std::isfinite(det)) return;
+  if (cull_back && det > 0.0) return;  // outward normal n, camera at the origin behind it: n . a > 0
   // Ray r hits the triangle ahead iff sign(det) * (p x q) . r >= 0 for its edges (p, q).
   const double s = det > 0.0 ? 1.0 : -1.0;
   const Eigen::Vector3f e0 = (s * a.cross(b)).cast<float>(), e1 = (s * b.cross(c)).cast<float>(),
@@ -165,6 +196,7 @@ void DepthRasterizer::draw_triangle(const Eigen::Vector3f& af, const Eigen::Vect
   const int v1 = static_cast<int>(std::clamp(std::ceil(v_hi) + 1.0, 0.0, hmax));
 
   using namespace simd4;
+  const double su_abs_max = std::max(std::abs(su0), std::abs(su0 + du * wmax));
   const F4 e0u = splat(e0.y()), e1u = splat(e1.y()), e2u = splat(e2.y()), gu = splat(g.y());
   for (int v = v0; v <= v1; ++v) {
     const float sv = sv_[static_cast<std::size_t>(v)];
@@ -172,8 +204,22 @@ void DepthRasterizer::draw_triangle(const Eigen::Vector3f& af, const Eigen::Vect
     // triangles, whose coefficients are exact negatives, give exact negatives.
     const F4 r0 = splat(e0.x() + e0.z() * sv), r1 = splat(e1.x() + e1.z() * sv), r2 = splat(e2.x() + e2.z() * sv);
     const F4 rg = splat(g.x() + g.z() * sv);
+    // The columns where all three edge functions can be >= 0, widened by a pixel and by the
+    // float rounding of the edge functions; the exact per-pixel test below decides.
+    double lo = u0, hi = u1;
+    for (const auto& [r, e] : {std::pair{r0[0], e0.y()}, std::pair{r1[0], e1.y()}, std::pair{r2[0], e2.y()}}) {
+      const double c = static_cast<double>(r) + static_cast<double>(e) * su0, m = static_cast<double>(e) * du;
+      const double tol = 1e-6 * (std::abs(r) + std::abs(e) * su_abs_max);
+      if (m > 0.0)
+        lo = std::max(lo, (-c - tol) / m - 1.0);
+      else if (m < 0.0)
+        hi = std::min(hi, (-c - tol) / m + 1.0);
+      else if (c < -tol)
+        hi = -1.0;
+    }
+    if (!(lo <= hi)) continue;
     float* row = &inv_depth_[static_cast<std::size_t>(v) * static_cast<std::size_t>(stride_)];
-    for (int u = u0; u <= u1; u += 4) {
+    for (int u = static_cast<int>(lo) & ~3, end = static_cast<int>(hi); u <= end; u += 4) {
       const F4 su = load(&su_[static_cast<std::size_t>(u)]);
       const F4 q = rg + gu * su, old = load(row + u);
       const I4 in = (r0 + e0u * su >= 0.0f) & (r1 + e1u * su >= 0.0f) & (r2 + e2u * su >= 0.0f) & (q > old);

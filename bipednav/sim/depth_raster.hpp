@@ -11,18 +11,23 @@ namespace bipednav::sim {
 
 // Triangles for rasterisation, unindexed (9 floats per triangle), in chunks of neighbouring
 // triangles with their bounds so that a camera skips whole chunks outside its frustum.
+// Triangles of a closed convex solid (box, cylinder, sphere) are wound outwards: from outside
+// the solid's bounds its back faces are hidden behind its front faces and are skipped.
 struct RasterMesh {
   static constexpr std::uint32_t kChunkTriangles = 32;
   struct Chunk {
     Eigen::Vector3f center, half_extent;  // axis-aligned bounds in the mesh frame
     std::uint32_t first = 0, count = 0;   // triangles [first, first + count)
+    std::int32_t solid = -1;              // index into solids, -1: not part of a convex solid
   };
   std::vector<float> xyz;  // triangle i: vertices xyz[9 i .. 9 i + 8]
   std::vector<Chunk> chunks;
+  std::vector<Eigen::AlignedBox3f> solids;  // bounds of each convex solid, mesh frame
 
   // Appends the soup's triangles as chunks of consecutive triangles (one shape's triangles
-  // are close together, so a chunk never spans two calls).
-  void add(const TriangleSoup& soup);
+  // are close together, so a chunk never spans two calls). `convex_solid`: the soup is the
+  // closed surface of a convex body (its triangles are then re-wound outwards).
+  void add(const TriangleSoup& soup, bool convex_solid = false);
   std::size_t size() const { return xyz.size() / 9; }
 };
 
@@ -53,12 +58,14 @@ class DepthRasterizer {
   struct Frustum;
   void clear(const RasterScene& scene, const Eigen::Matrix3f& R_world_camera, float camera_z);
   void draw(const RasterMesh& mesh, const SE3& T_camera_mesh);
-  void draw_triangle(const Eigen::Vector3f& a, const Eigen::Vector3f& b, const Eigen::Vector3f& c);
+  // cull_back: skip the triangle if the camera is behind it (outward winding).
+  void draw_triangle(const Eigen::Vector3f& a, const Eigen::Vector3f& b, const Eigen::Vector3f& c, bool cull_back);
 
   int width_ = 0, height_ = 0, stride_ = 0;  // stride_: width rounded up to 4 lanes
   std::vector<float> su_, sv_;               // su_ padded to stride_
   float max_depth_m_ = 0.0f;
   std::vector<float> inv_depth_;  // z-buffer of 1 / depth (0: nothing), stride_ per row
+  std::vector<char> cull_back_;   // scratch: per solid of the mesh being drawn
 };
 
 }  // namespace bipednav::sim

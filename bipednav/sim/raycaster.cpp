@@ -68,6 +68,11 @@ std::optional<double> horizontal_plane_z(const Geometry& g) {
   return g.T_parent_shape.translation().z();
 }
 
+// Closed convex surfaces: the rasteriser may skip their back faces.
+bool is_convex_solid(const Shape& s) {
+  return std::holds_alternative<Box>(s) || std::holds_alternative<Cylinder>(s) || std::holds_alternative<Sphere>(s);
+}
+
 }  // namespace
 
 struct RayCaster::Impl {
@@ -170,7 +175,7 @@ RayCaster::RayCaster(const World& world, const RayCasterParams& params) : impl_(
       d.plane_z.push_back(static_cast<float>(*z));
     } else {
       const TriangleSoup shape = tessellate(g, params.tessellation);
-      d.raster.statics.add(shape);
+      d.raster.statics.add(shape, is_convex_solid(g.shape));
       soup.append(shape);
     }
   }
@@ -189,10 +194,14 @@ RayCaster::RayCaster(const World& world, const RayCasterParams& params) : impl_(
   for (const Actor& a : world.actors) {
     RTCScene s = new_scene(d.device, robust, RTC_BUILD_QUALITY_MEDIUM);
     TriangleSoup parts;
-    for (const Geometry& g : a.parts) parts.append(tessellate(g, params.tessellation));
+    RasterMesh& raster = d.raster.actors.emplace_back();
+    for (const Geometry& g : a.parts) {
+      const TriangleSoup part = tessellate(g, params.tessellation);
+      raster.add(part, is_convex_solid(g.shape));
+      parts.append(part);
+    }
     attach_triangles(d.device, s, parts);
     rtcCommitScene(s);
-    d.raster.actors.emplace_back().add(parts);
     d.raster.T_world_actor.push_back(SE3::Identity());
     d.actor_scenes.push_back(s);
     RTCGeometry inst = rtcNewGeometry(d.device, RTC_GEOMETRY_TYPE_INSTANCE);

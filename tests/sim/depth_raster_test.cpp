@@ -93,8 +93,11 @@ Agreement agreement(const World& world, double half_x, double half_y, int views,
 void expect_equivalent(const Agreement& a, const char* what) {
   const double edge_share = static_cast<double>(a.edge) / static_cast<double>(a.pixels);
   const double mismatch_share = static_cast<double>(a.mismatched) / static_cast<double>(a.pixels);
-  std::printf("%s: %zu pixels (%.1f %% valid), %.3f %% on edges, %.4f %% mismatched (%zu off edges), max error off edges %.2e m\n",
-              what, a.pixels, 100.0 * static_cast<double>(a.valid) / static_cast<double>(a.pixels), 100 * edge_share, 100 * mismatch_share, a.mismatched_inner, a.max_inner_error_m);
+  std::printf(
+      "%s: %zu pixels (%.1f %% valid), %.3f %% on edges, %.4f %% mismatched (%zu off edges), max error off edges %.2e "
+      "m\n",
+      what, a.pixels, 100.0 * static_cast<double>(a.valid) / static_cast<double>(a.pixels), 100 * edge_share,
+      100 * mismatch_share, a.mismatched_inner, a.max_inner_error_m);
   EXPECT_GT(a.valid, a.pixels / 2) << what;
   EXPECT_EQ(a.mismatched_inner, 0u) << what;
   EXPECT_LT(mismatch_share, 1e-3) << what;
@@ -138,6 +141,14 @@ TEST(DepthRaster, MatchesRayCastingInTheTurtlebot3MeshWorld) {
   World w = load_sdf_world(test::source_dir() / "scenarios/worlds/turtlebot3/worlds/turtlebot3_world.world");
   ensure_ground_plane(w);
   expect_equivalent(agreement(w, 2.0, 2.0, 40, 2), "turtlebot3 world");
+}
+
+TEST(DepthRaster, MatchesRayCastingFromInsideASolid) {
+  // Inside a closed box the ray caster sees the inner (back) faces: nothing may be culled.
+  World w;
+  w.statics.push_back({"hut", make_se3(0, 0, 1.5, 0, 0, 0.3), Box{{8.0, 6.0, 3.0}}});
+  w.statics.push_back({"barrel", make_se3(1.0, 1.0, 1.0, 0, 0, 0), Cylinder{0.3, 2.0}});
+  expect_equivalent(agreement(w, 2.0, 1.5, 10, 3), "inside a box");
 }
 
 TEST(DepthRaster, ActorsAreDrawnWhereTheyAreNowAndPlanesAnalytically) {
