@@ -77,12 +77,15 @@ PointCloud DepthCamera::capture(const SE3& T_world_camera, const RayCaster& cast
 }
 
 PointCloud DepthCamera::capture_at(double stamp_s, const SE3& T_world_camera, const RayCaster& caster) {
-  if (params_.renderer == "raster")
-    rasterizer_.render(caster.raster_scene(), T_world_camera, depth_.data());
+  // The rasteriser's rows are read out one by one below (into depth_, a row at a time).
+  const bool raster = params_.renderer == "raster";
+  if (raster)
+    rasterizer_.render(caster.raster_scene(), T_world_camera);
   else
     cast_depth(T_world_camera, caster);
 
   // Noise and points row by row (noise drawn in pixel order).
+  static_assert(sizeof(Eigen::Vector3f) == 3 * sizeof(float));  // points are packed x y z
   PointCloud cloud;
   cloud.frame_id = frame_id_;
   cloud.stamp_s = stamp_s;
@@ -98,7 +101,8 @@ PointCloud DepthCamera::capture_at(double stamp_s, const SE3& T_world_camera, co
   for (std::size_t v = 0; v < slope_v_.size(); ++v) {
     noise_.fill(noise_row_);
     const float sv = slope_v_[v];
-    const float* z_row = depth_.data() + v * w;
+    const float* z_row = depth_.data() + (raster ? 0 : v * w);
+    if (raster) rasterizer_.depth_row(static_cast<int>(v), depth_.data());
     Eigen::Vector3f* out_row = out + v * w;
     std::size_t u = 0;
     for (; u + 4 <= w; u += 4) {
@@ -106,7 +110,7 @@ PointCloud DepthCamera::capture_at(double stamp_s, const SE3& T_world_camera, co
       const F4 z_noisy = z + splat(k) * z * z * load(noise + u);
       const I4 ok = (z >= z_min) & (z <= z_max) & (z_noisy > 0.0f);
       const F4 x = select(ok, z_noisy, splat(nan)), y = x * load(su + u), zz = x * sv;
-      for (int i = 0; i < 4; ++i) out_row[u + static_cast<std::size_t>(i)] = Eigen::Vector3f(x[i], y[i], zz[i]);
+      store_xyz(out_row[u].data(), x, y, zz);
     }
     for (; u < w; ++u) {
       const float z = z_row[u];

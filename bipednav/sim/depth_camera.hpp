@@ -68,7 +68,7 @@ class DepthCamera {
   std::vector<float> slope_u_, slope_v_;
   float max_cast_m_ = 0.0f;  // range at which the outermost ray reaches max_range_m in depth
   DepthRasterizer rasterizer_;
-  std::vector<float> depth_;      // scratch: depth per pixel (row-major), +inf without a hit
+  std::vector<float> depth_;      // scratch: depth per pixel (row-major; raster: one row), +inf without a hit
   std::vector<float> noise_row_;  // scratch: one row of noise samples
 };
 

@@ -85,29 +85,34 @@ struct DepthRasterizer::Frustum {
   }
 };
 
-void DepthRasterizer::render(const RasterScene& scene, const SE3& T_world_camera, float* depth) {
+void DepthRasterizer::render(const RasterScene& scene, const SE3& T_world_camera) {
   clear(scene, T_world_camera.linear().cast<float>(), static_cast<float>(T_world_camera.translation().z()));
   const SE3 T_camera_world = T_world_camera.inverse();
   draw(scene.statics, T_camera_world);
   for (std::size_t i = 0; i < scene.actors.size(); ++i) draw(scene.actors[i], T_camera_world * scene.T_world_actor[i]);
+}
+
+void DepthRasterizer::depth_row(int v, float* out) const {
   using namespace simd4;
-  const auto w = static_cast<std::size_t>(width_);
-  for (std::size_t v = 0; v < static_cast<std::size_t>(height_); ++v) {
-    const float* in = &inv_depth_[v * static_cast<std::size_t>(stride_)];
-    float* out = depth + v * w;
-    std::size_t u = 0;
-    for (; u + 4 <= w; u += 4) {
-      const F4 q = load(in + u);
-      store(out + u, select(q > 0.0f, splat(1.0f) / q, splat(kInf)));
-    }
-    for (; u < w; ++u) out[u] = in[u] > 0.0f ? 1.0f / in[u] : kInf;
+  const float* in = &inv_depth_[static_cast<std::size_t>(v) * static_cast<std::size_t>(stride_)];
+  int u = 0;
+  for (; u + 4 <= width_; u += 4) {
+    const F4 q = load(in + u);
+    store(out + u, select(q > 0.0f, splat(1.0f) / q, splat(kInf)));
   }
+  for (; u < width_; ++u) out[u] = in[u] > 0.0f ? 1.0f / in[u] : kInf;
+}
+
+void DepthRasterizer::render(const RasterScene& scene, const SE3& T_world_camera, float* depth) {
+  render(scene, T_world_camera);
+  for (int v = 0; v < height_; ++v)
+    depth_row(v, depth + static_cast<std::size_t>(v) * static_cast<std::size_t>(width_));
 }
 
 // Starts every pixel at the nearest analytic plane ahead, or at nothing (inverse depth 0).
 void DepthRasterizer::clear(const RasterScene& scene, const Eigen::Matrix3f& R, float camera_z) {
-  std::fill(inv_depth_.begin(), inv_depth_.end(), 0.0f);
   using namespace simd4;
+  bool cleared = false;  // the first plane also clears (a plane behind, q < 0, is nothing: 0)
   for (const float z : scene.plane_z) {
     // Along pixel ray r = (1, su, sv), world height changes by (R row 2) . r per unit depth.
     const double dz = static_cast<double>(z) - static_cast<double>(camera_z);
@@ -119,10 +124,12 @@ void DepthRasterizer::clear(const RasterScene& scene, const Eigen::Matrix3f& R, 
       const F4 base = splat(p0 + p2 * sv_[static_cast<std::size_t>(v)]);
       for (int u = 0; u < stride_; u += 4) {
         const F4 q = base + splat(p1) * load(&su_[static_cast<std::size_t>(u)]);
-        store(row + u, max(load(row + u), q));  // a plane behind (q < 0) never wins over 0
+        store(row + u, max(cleared ? load(row + u) : splat(0.0f), q));
       }
     }
+    cleared = true;
   }
+  if (!cleared) std::fill(inv_depth_.begin(), inv_depth_.end(), 0.0f);
 }
 
 void DepthRasterizer::draw(const RasterMesh& mesh, const SE3& T_camera_mesh) {

@@ -51,7 +51,11 @@ class DepthRasterizer {
   DepthRasterizer() = default;
   DepthRasterizer(std::vector<float> slope_u, std::vector<float> slope_v, float max_depth_m);
 
-  // depth: width * height floats, row-major.
+  // Draws the scene into the z-buffer; depth_row() then reads it out row by row.
+  void render(const RasterScene& scene, const SE3& T_world_camera);
+  // Depth of row v (width floats; +inf where nothing was drawn).
+  void depth_row(int v, float* out) const;
+  // render() and every row into depth (width * height floats, row-major).
   void render(const RasterScene& scene, const SE3& T_world_camera, float* depth);
 
  private:

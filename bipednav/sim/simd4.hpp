@@ -29,4 +29,21 @@ inline float hmin(F4 v) { return std::min(std::min(v[0], v[1]), std::min(v[2], v
 inline float hmax(F4 v) { return std::max(std::max(v[0], v[1]), std::max(v[2], v[3])); }
 inline bool any(I4 m) { return (m[0] | m[1] | m[2] | m[3]) != 0; }
 
+// Lanes of (a, b) picked by indices 0-3 (a) and 4-7 (b).
+template <int I0, int I1, int I2, int I3>
+inline F4 shuffle(F4 a, F4 b) {
+#if defined(__clang__)
+  return __builtin_shufflevector(a, b, I0, I1, I2, I3);
+#else
+  return __builtin_shuffle(a, b, I4{I0, I1, I2, I3});
+#endif
+}
+
+// Stores four points (x[i], y[i], z[i]) as 12 consecutive floats x0 y0 z0 x1 ... z3.
+inline void store_xyz(float* p, F4 x, F4 y, F4 z) {
+  store(p, shuffle<0, 1, 4, 2>(shuffle<0, 4, 1, 5>(x, y), z));      // x0 y0 z0 x1
+  store(p + 4, shuffle<0, 1, 6, 2>(shuffle<1, 5, 2, 6>(y, z), x));  // y1 z1 x2 y2
+  store(p + 8, shuffle<2, 4, 5, 3>(z, shuffle<3, 7, 3, 7>(x, y)));  // z2 x3 y3 z3
+}
+
 }  // namespace bipednav::sim::simd4

@@ -11,6 +11,7 @@
 #include "bipednav/common/error.hpp"
 #include "bipednav/sim/depth_camera.hpp"
 #include "bipednav/sim/sdf_world.hpp"
+#include "bipednav/sim/simd4.hpp"
 #include "bipednav/sim/simulation.hpp"
 #include "test_data.hpp"
 
@@ -176,6 +177,13 @@ TEST(DepthRaster, ActorsAreDrawnWhereTheyAreNowAndPlanesAnalytically) {
   const std::size_t bottom = static_cast<std::size_t>((p.height - 1) * p.width);
   const Eigen::Vector3f r = cam.pixel_ray(0, p.height - 1);
   EXPECT_NEAR(c.points[bottom].x(), r.x() / -r.z(), 1e-5);
+}
+
+TEST(Simd4, StoreXyzInterleavesFourPoints) {
+  using namespace simd4;
+  float out[12];
+  store_xyz(out, F4{0, 3, 6, 9}, F4{1, 4, 7, 10}, F4{2, 5, 8, 11});
+  for (int i = 0; i < 12; ++i) EXPECT_EQ(out[i], static_cast<float>(i));
 }
 
 TEST(DepthRaster, RejectsAnEmptyImageAndAnUnknownRenderer) {
