@@ -1,0 +1,87 @@
+#include "bipednav/localization/loam_mapping.hpp"
+
+#include <gtest/gtest.h>
+
+#include "bipednav/localization/feature_association.hpp"
+#include "bipednav/localization/registration_lm.hpp"
+
+using namespace bipednav;
+using namespace bipednav::localization;
+
+namespace {
+
+// The two faces of a wall 0.2 m thick at x = 0 .. 0.2: the near face seen from x = -3, the far
+// one from x = +3. Points on a 0.1 m grid in y and z.
+struct ThinWall {
+  std::vector<Eigen::Vector3f> points, viewpoints;
+  ThinWall() {
+    for (int face = 0; face < 2; ++face)
+      for (int i = -10; i <= 10; ++i)
+        for (int j = -10; j <= 10; ++j) {
+          points.emplace_back(0.2f * static_cast<float>(face), 0.1f * static_cast<float>(i),
+                              0.1f * static_cast<float>(j));
+          viewpoints.emplace_back(face == 0 ? -3.0f : 3.0f, 0.0f, 0.0f);
+        }
+  }
+};
+
+}  // namespace
+
+TEST(FeatureAssociation, APatchSeenFromTheOtherSideOfAThinWallIsNotMatched) {
+  const ThinWall wall;
+  const KdTree3f tree(wall.points);
+  AssociationParams p;
+  Constraint c;
+  // A point of the far face, estimated 0.15 m too far back: its nearest neighbours are on the near face.
+  const Eigen::Vector3d q(0.05, 0.0, 0.0);
+  ASSERT_TRUE(planar_correspondence(tree, q, 1.0, q, p, c));  // without the check: the wrong face
+  EXPECT_NEAR(c.anchor.x(), 0.0, 1e-6);
+  const ViewCheck from_far_side{&wall.viewpoints, Eigen::Vector3d(2.0, 0.0, 0.0)};
+  EXPECT_FALSE(planar_correspondence(tree, q, 1.0, q, p, c, &from_far_side));
+  const Eigen::Vector3d on_far_face(0.17, 0.0, 0.0);
+  ASSERT_TRUE(planar_correspondence(tree, on_far_face, 1.0, on_far_face, p, c, &from_far_side));
+  EXPECT_NEAR(c.anchor.x(), 0.2, 1e-6);
+  const ViewCheck from_near_side{&wall.viewpoints, Eigen::Vector3d(-2.0, 0.0, 0.0)};
+  EXPECT_TRUE(planar_correspondence(tree, q, 1.0, q, p, c, &from_near_side));
+  const ViewCheck no_viewpoints{};  // a tree without viewpoints is not checked
+  EXPECT_TRUE(planar_correspondence(tree, q, 1.0, q, p, c, &no_viewpoints));
+}
+
+TEST(VoxelPointMap, KeepsBothFacesOfAWallThinnerThanAVoxel) {
+  VoxelPointMap map(0.4);
+  map.insert({0.05f, 0.1f, 0.1f}, {-3.0f, 0.0f, 0.0f});
+  map.insert({0.15f, 0.1f, 0.1f}, {-3.0f, 0.5f, 0.0f});  // same voxel, same side: dropped
+  map.insert({0.25f, 0.1f, 0.1f}, {3.0f, 0.0f, 0.0f});   // same voxel, seen from the other side
+  ASSERT_EQ(map.size(), 2u);
+  EXPECT_FLOAT_EQ(map.viewpoints()[1].x(), 3.0f);
+  map.crop({10.0f, 0.0f, 0.0f}, 1.0);
+  EXPECT_EQ(map.size(), 0u);
+  EXPECT_EQ(map.viewpoints().size(), 0u);
+}
+
+TEST(RegistrationLm, ALinearPriorFixesADirectionThePointsLeaveFree) {
+  // Points on the plane z = 0 observe z, roll and pitch only; a prior pins x to 0.3.
+  std::vector<Constraint> cs;
+  for (int i = -3; i <= 3; ++i)
+    for (int j = -3; j <= 3; ++j) {
+      Constraint c;
+      c.point = Eigen::Vector3d(i, j, 0.1);
+      c.anchor = Eigen::Vector3d::Zero();
+      c.axis = Eigen::Vector3d::UnitZ();
+      cs.push_back(c);
+    }
+  LmParams p;
+  const LmSolution free = solve_lm(cs, Vector6d::Zero(), p);
+  EXPECT_NEAR(free.x(2), -0.1, 1e-6);
+  EXPECT_NEAR(free.x(0), 0.0, 1e-9);
+  EXPECT_EQ(free.degenerate_dims, 3);
+  LinearPrior prior;
+  prior.A = Eigen::Matrix<double, 1, 6>::Zero();
+  prior.A(0, 0) = 1.0;
+  prior.b = Eigen::VectorXd::Constant(1, -0.3);
+  prior.weight = 100.0;
+  const LmSolution pinned = solve_lm(cs, Vector6d::Zero(), p, prior);
+  EXPECT_NEAR(pinned.x(0), 0.3, 1e-4);
+  EXPECT_NEAR(pinned.x(2), -0.1, 1e-6);
+  EXPECT_EQ(pinned.degenerate_dims, 2);
+}
