@@ -2,6 +2,7 @@
 #include <benchmark/benchmark.h>
 
 #include "bipednav/perception/ground_segmentation.hpp"
+#include "bipednav/perception/pass_through.hpp"
 #include "bipednav/perception/pipeline.hpp"
 #include "bipednav/perception/synthetic_scene.hpp"
 #include "bipednav/perception/voxel_grid.hpp"
@@ -24,6 +25,20 @@ void BM_VoxelGridDepthCloud(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_VoxelGridDepthCloud)->Unit(benchmark::kMicrosecond);
+
+// As the pipeline runs it: the 2.9 m range crop tested on the fly (section 4.2.2).
+void BM_VoxelGridDepthCloudCropped(benchmark::State& state) {
+  perception::VoxelGrid grid;
+  perception::PassThroughParams range;
+  range.max_range_m = 2.9;
+  const perception::PassThroughTest crop(range);
+  PointCloud out;
+  for (auto _ : state) {
+    grid.filter(digit_frame().depth.front().cloud, out, &crop);
+    benchmark::DoNotOptimize(out.points.data());
+  }
+}
+BENCHMARK(BM_VoxelGridDepthCloudCropped)->Unit(benchmark::kMicrosecond);
 
 void BM_RansacLidarSweep(benchmark::State& state) {
   perception::RansacParams p;
