@@ -4,6 +4,7 @@
 #include <numbers>
 
 #include "bipednav/common/error.hpp"
+#include "bipednav/sim/simd4.hpp"
 
 namespace bipednav::sim {
 
@@ -35,6 +36,17 @@ Vlp16::Vlp16(const Vlp16Params& params, std::string frame_id, std::uint64_t seed
     }
   }
   ranges_.resize(static_cast<std::size_t>(params_.rings) * RayPacket::kWidth);
+  // Ring-major copies, padded by a packet width so that every packet reads 16 columns.
+  beam_stride_ = static_cast<std::size_t>(params_.columns) + RayPacket::kWidth;
+  for (auto* v : {&beam_x_, &beam_y_, &beam_z_})
+    v->assign(beam_stride_ * static_cast<std::size_t>(params_.rings), 0.0f);
+  for (int c = 0; c < params_.columns; ++c)
+    for (int r = 0; r < params_.rings; ++r) {
+      const std::size_t i = static_cast<std::size_t>(r) * beam_stride_ + static_cast<std::size_t>(c);
+      beam_x_[i] = beam(c, r).x();
+      beam_y_[i] = beam(c, r).y();
+      beam_z_[i] = beam(c, r).z();
+    }
 }
 
 double Vlp16::ring_elevation_rad(int ring) const {
@@ -57,13 +69,14 @@ void Vlp16::fire_columns(int first, int n, const RayCaster& caster, const PoseAt
   const int rings = params_.rings;
   // Every column has its own firing time and sensor pose; a packet holds one ring of up to 16
   // neighbouring columns (0.2 deg apart: coherent rays, each from its own origin).
-  Eigen::Matrix3f R[W];
+  alignas(16) float R[3][3][W] = {};  // R[i][j][k]: entry (i, j) of column k's rotation
   RayPacket packet;
   float dt[W];
   for (int k = 0; k < n; ++k) {
     const double t = column_time_s(sweep_, first + k);
     const SE3 T = T_world_sensor_at(t);
-    R[k] = T.linear().cast<float>();
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) R[i][j][k] = static_cast<float>(T.linear()(i, j));
     const Eigen::Vector3f o = T.translation().cast<float>();
     packet.org_x[k] = o.x();
     packet.org_y[k] = o.y();
@@ -72,12 +85,15 @@ void Vlp16::fire_columns(int first, int n, const RayCaster& caster, const PoseAt
   }
   packet.count = n;
   const auto max_range = static_cast<float>(params_.max_range_m);
+  using namespace simd4;
   for (int r = 0; r < rings; ++r) {
-    for (int k = 0; k < n; ++k) {
-      const Eigen::Vector3f u = R[k] * beam(first + k, r);
-      packet.dir_x[k] = u.x();
-      packet.dir_y[k] = u.y();
-      packet.dir_z[k] = u.z();
+    // All 16 lanes (columns past n are ignored by the caster): dir = R_k * beam, 4 columns at once.
+    const std::size_t b = static_cast<std::size_t>(r) * beam_stride_ + static_cast<std::size_t>(first);
+    for (int k = 0; k < W; k += 4) {
+      const F4 bx = load(&beam_x_[b + k]), by = load(&beam_y_[b + k]), bz = load(&beam_z_[b + k]);
+      float* dir[3] = {packet.dir_x, packet.dir_y, packet.dir_z};
+      for (int i = 0; i < 3; ++i)
+        store(dir[i] + k, load(&R[i][0][k]) * bx + load(&R[i][1][k]) * by + load(&R[i][2][k]) * bz);
     }
     caster.cast_packet(packet, max_range, &ranges_[static_cast<std::size_t>(r) * W], true);
   }

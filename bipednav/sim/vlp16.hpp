@@ -64,8 +64,10 @@ class Vlp16 {
   Vlp16Params params_;
   std::string frame_id_;
   GaussianNoise noise_;
-  std::vector<Eigen::Vector3f> beams_;  // column-major, sensor frame
-  std::vector<float> ranges_;           // ring-major, RayPacket::kWidth columns per ring
+  std::vector<Eigen::Vector3f> beams_;           // column-major, sensor frame
+  std::vector<float> ranges_;                    // ring-major, RayPacket::kWidth columns per ring
+  std::vector<float> beam_x_, beam_y_, beam_z_;  // beams ring-major, beam_stride_ per ring
+  std::size_t beam_stride_ = 0;
   std::uint64_t sweep_ = 0;
   int next_column_ = 0;
   PointCloud current_;
