@@ -155,7 +155,7 @@ void Navigator::update_maps() {
 }
 
 void Navigator::track_moving_obstacles() {
-  if (!params_.moving_obstacles.enabled) return;  // opt-in: no point copies on the loop's hot path
+  if (!params_.moving_obstacles.enabled) return;  // switched off: no point copies on the loop's hot path
   // The obstacle points of every sensor since the last local map update, in the map frame.
   std::vector<Eigen::Vector2d> pts;
   for (const auto& o : local_obs_) {
@@ -168,14 +168,31 @@ void Navigator::track_moving_obstacles() {
   // the local map and the local planner's prediction handle them.
   const auto moving = moving_->moving(now_s_);
   if (moving.empty()) return;
+  const double margin_m = params_.moving_obstacles.global_map_margin_m;
   for (auto& o : lidar_obs_) {
     std::erase_if(o.points_map, [&](const Eigen::Vector3f& p) {
       const Eigen::Vector2d q(p.x(), p.y());
       for (const auto& m : moving)
-        if ((q - m.position).norm() <= m.radius_m + 0.1) return true;
+        if ((q - m.position).norm() <= m.radius_m + margin_m) return true;
       return false;
     });
   }
+}
+
+Twist Navigator::yield_to_moving_obstacles(const Twist& cmd) const {
+  // The local planners yield already; this catches the commands of the recoveries (backing up,
+  // turning, waiting), which know nothing of moving obstacles. Never on stale perception: with a
+  // sensor silent or localization unhealthy the tree's stop stands.
+  if (!params_.moving_obstacles.enabled || !sensors_alive() || !localizer_.healthy(now_s_)) return cmd;
+  const auto moving = moving_->moving(now_s_);
+  if (moving.empty()) return cmd;
+  const planning::local::CommandLimits lim{robot_.max_vel_x_mps, robot_.max_vel_x_backwards_mps,
+                                           robot_.max_vel_theta_radps, robot_.acc_lim_x_mps2,
+                                           robot_.acc_lim_theta_radps2};
+  return planning::local::yield_to_moving_obstacles(cmd, localizer_.T_map_base(), localizer_.velocity(), moving,
+                                                    local_.costmap(), lim, 1.0 / params_.control_rate_hz, now_s_,
+                                                    params_.server.local.avoidance)
+      .cmd;
 }
 
 bool Navigator::sensors_alive() const { return gate_.all_alive(now_s_); }
@@ -192,7 +209,7 @@ void Navigator::control() {
   const BtStatus s = tree_->tick(now_s_);
   status_.active_leaf = tree_->active_leaf();
   if (auto p = tree_->blackboard()->get<Path>("path")) global_path_ = *p;
-  cmd_ = server_->command();
+  cmd_ = yield_to_moving_obstacles(server_->command());
   if (s == BtStatus::SUCCESS || s == BtStatus::FAILURE) finish(s);
   timings_.control_ms = sw.elapsed_ms();
 }

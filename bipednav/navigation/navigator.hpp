@@ -92,6 +92,7 @@ class Navigator {
   void perceive(const SensorFrame& frame);
   void update_maps();
   void track_moving_obstacles();
+  Twist yield_to_moving_obstacles(const Twist& cmd) const;
   void control();
   void register_leaves(BtFactory& factory);
   bool sensors_alive() const;

@@ -21,7 +21,7 @@ void LocalPlanner::yield(LocalPlanResult& r, const Pose2& pose, const Twist& cur
                          const CommandLimits& lim, double period_s, double now_s) {
   last_yield_ = {};
   last_yield_.cmd = r.cmd;
-  if (!moving_ || !avoidance_.enabled) return;
+  if (!moving_ || !moving_->params().enabled) return;
   const auto moving = moving_->moving(now_s);
   if (moving.empty()) return;
   // Only commands the planner produced or a stop are checked; bad input stays rejected.

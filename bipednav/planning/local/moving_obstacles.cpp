@@ -63,12 +63,17 @@ void MovingObstacleParams::validate() const {
           ">= 0");
   require(std::isfinite(min_displacement_m) && min_displacement_m >= 0.0, "moving_obstacles.min_displacement_m",
           ">= 0");
+  require(positive(max_prediction_s), "moving_obstacles.max_prediction_s", "> 0");
+  require(std::isfinite(global_map_margin_m) && global_map_margin_m >= 0.0, "moving_obstacles.global_map_margin_m",
+          ">= 0");
 }
 
 void DynamicAvoidanceParams::validate() const {
   require(positive(horizon_s), "dynamic_avoidance.horizon_s", "> 0");
   require(std::isfinite(robot_radius_m) && robot_radius_m >= 0.0, "dynamic_avoidance.robot_radius_m", ">= 0");
   require(std::isfinite(safety_margin_m) && safety_margin_m >= 0.0, "dynamic_avoidance.safety_margin_m", ">= 0");
+  require(std::isfinite(prediction_growth_mps) && prediction_growth_mps >= 0.0,
+          "dynamic_avoidance.prediction_growth_mps", ">= 0");
   require(positive(sim_step_s) && sim_step_s <= horizon_s, "dynamic_avoidance.sim_step_s", "in (0, horizon_s]");
   require(positive(static_check_s), "dynamic_avoidance.static_check_s", "> 0");
 }
@@ -232,34 +237,36 @@ void step(Rollout& r, const Twist& target, const CommandLimits& lim, double dt) 
   r.pose = r.pose * Pose2{r.vel.linear_x * dt, 0.0, r.vel.angular_z * dt};
 }
 
-// First time within horizon at which the rolled-out robot is within reach of a moving
-// obstacle while the two still close in; also the arc (for the static check).
-double rollout_ttc(const Pose2& pose, const Twist& current, const Twist& target,
-                   const std::vector<TrackedObstacle>& moving, const CommandLimits& lim, double now_s,
-                   const DynamicAvoidanceParams& p, std::vector<Pose2>* arc) {
+// The rolled-out robot against the predictions: the first time within the horizon at which it is
+// within reach of a moving obstacle while the two still close in (infinity: never), and the
+// smallest distance minus reach over the horizon.
+struct RolloutCheck {
+  double ttc_s = kInf;
+  double min_gap_m = kInf;
+};
+
+RolloutCheck rollout_check(const Pose2& pose, const Twist& current, const Twist& target,
+                           const std::vector<TrackedObstacle>& moving, const CommandLimits& lim, double now_s,
+                           const DynamicAvoidanceParams& p, std::vector<Pose2>* arc) {
   Rollout r{pose, current};
   std::vector<double> prev(moving.size());
   for (std::size_t i = 0; i < moving.size(); ++i) prev[i] = (moving[i].predict(now_s) - pose.position()).norm();
   if (arc) arc->assign(1, pose);
-  double ttc = kInf;
+  RolloutCheck out;
   const int n = static_cast<int>(std::ceil(p.horizon_s / p.sim_step_s - 1e-9));
   for (int k = 1; k <= n; ++k) {
     const double t = k * p.sim_step_s;
     step(r, target, lim, p.sim_step_s);
     if (arc && t <= p.static_check_s + 1e-9) arc->push_back(r.pose);
-    if (std::isfinite(ttc)) continue;
     for (std::size_t i = 0; i < moving.size(); ++i) {
       const double d = (moving[i].predict(now_s + t) - r.pose.position()).norm();
-      const double reach = p.robot_radius_m + moving[i].radius_m + p.safety_margin_m;
-      if (d < reach && d < prev[i] - 1e-6) {
-        ttc = t;
-        break;
-      }
+      const double reach = p.robot_radius_m + moving[i].radius_m + p.safety_margin_m + p.prediction_growth_mps * t;
+      out.min_gap_m = std::min(out.min_gap_m, d - reach);
+      if (!std::isfinite(out.ttc_s) && d < reach && d < prev[i] - 1e-6) out.ttc_s = t;
       prev[i] = d;
     }
-    if (std::isfinite(ttc) && !arc) break;
   }
-  return ttc;
+  return out;
 }
 
 }  // namespace
@@ -268,7 +275,7 @@ double time_to_collision(const Pose2& pose, const Twist& cmd, const std::vector<
                          const DynamicAvoidanceParams& params) {
   // Instant velocity changes: unlimited acceleration.
   const CommandLimits lim{1e9, 1e9, 1e9, 1e9, 1e9};
-  return rollout_ttc(pose, cmd, cmd, moving, lim, now_s, params, nullptr);
+  return rollout_check(pose, cmd, cmd, moving, lim, now_s, params, nullptr).ttc_s;
 }
 
 YieldDecision yield_to_moving_obstacles(const Twist& cmd, const Pose2& pose, const Twist& current,
@@ -278,9 +285,9 @@ YieldDecision yield_to_moving_obstacles(const Twist& cmd, const Pose2& pose, con
   YieldDecision out;
   out.cmd = out.target = cmd;
   out.ttc_s = kInf;
-  if (!p.enabled || moving.empty() || !pose.is_finite() || !cmd.is_finite()) return out;
+  if (moving.empty() || !pose.is_finite() || !cmd.is_finite()) return out;
   const Twist cur = current.is_finite() ? current : Twist{};
-  out.ttc_s = rollout_ttc(pose, cur, cmd, moving, lim, now_s, p, nullptr);
+  out.ttc_s = rollout_check(pose, cur, cmd, moving, lim, now_s, p, nullptr).ttc_s;
   if (!std::isfinite(out.ttc_s)) return out;
 
   // Candidates: the command slowed along its arc, then a coarse grid of forward, turning and
@@ -296,28 +303,31 @@ YieldDecision yield_to_moving_obstacles(const Twist& cmd, const Pose2& pose, con
     return std::abs(c.linear_x - cmd.linear_x) / std::max(vf, 1e-3) +
            0.5 * std::abs(c.angular_z - cmd.angular_z) / std::max(wm, 1e-3) + (c.linear_x < 0.0 ? 0.5 : 0.0);
   };
+  // A collision-free candidate (against the predictions and the costmap) closest to the command;
+  // when there is none, the one that keeps the largest gap to the moving obstacles.
   const Twist* best = nullptr;
-  double best_ttc = -1.0, best_dev = kInf;
+  bool best_free = false;
+  double best_dev = kInf, best_gap = -kInf;
   std::vector<Pose2> arc;
   for (const auto& c : cand) {
-    const double ttc = rollout_ttc(pose, cur, c, moving, lim, now_s, p, &arc);
+    const RolloutCheck rc = rollout_check(pose, cur, c, moving, lim, now_s, p, &arc);
     if (!poses_feasible(arc, costmap)) continue;
-    const double capped = std::isfinite(ttc) ? p.horizon_s + 1.0 : ttc;
+    const bool free = !std::isfinite(rc.ttc_s);
     const double dev = deviation(c);
-    // Longer time to collision first (to 0.1 s), then the smallest deviation from the command.
-    const bool better = capped > best_ttc + 0.05 || (std::abs(capped - best_ttc) <= 0.05 && dev < best_dev);
-    if (best == nullptr || better) best = &c, best_ttc = capped, best_dev = dev;
+    const bool better = best == nullptr || (free && !best_free) || (free && best_free && dev < best_dev) ||
+                        (!free && !best_free && rc.min_gap_m > best_gap);
+    if (better) best = &c, best_free = free, best_dev = dev, best_gap = rc.min_gap_m;
   }
   out.modified = true;
   if (best == nullptr) {
     out.target = {};
     out.cmd = clamp_command({}, cur, lim, period_s);
-    out.ttc_s = rollout_ttc(pose, cur, Twist{}, moving, lim, now_s, p, nullptr);
+    out.ttc_s = rollout_check(pose, cur, Twist{}, moving, lim, now_s, p, nullptr).ttc_s;
     return out;
   }
   out.target = *best;
   out.cmd = clamp_command(*best, cur, lim, period_s);
-  out.ttc_s = best_ttc > p.horizon_s ? kInf : best_ttc;
+  out.ttc_s = rollout_check(pose, cur, *best, moving, lim, now_s, p, nullptr).ttc_s;
   return out;
 }
 

@@ -14,11 +14,11 @@ namespace bipednav::planning::local {
 // tracking): the obstacle points of one cycle are binned into a grid, 8-connected cells form
 // blobs, small blobs are associated with the tracks by gated nearest neighbour, and each track's
 // centroid runs through a constant-velocity Kalman filter (per axis).
-// Opt-in (enabled = false by default): with it, hexagon_dynamic/turtlebot3 seed 10 succeeds but
-// seeds 1 and 4 collide (see the navigation issue); it stays off until that is understood.
+// `enabled` is the one switch for tracking and for yielding to the tracked obstacles (local
+// planners and the navigator's final command).
 struct MovingObstacleParams {
-  bool enabled = false;
-  double cluster_cell_m = 0.15;       // binning grid; blobs are 8-connected sets of occupied bins
+  bool enabled = true;
+  double cluster_cell_m = 0.10;       // binning grid; blobs are 8-connected sets of occupied bins
   int min_points = 3;                 // smaller blobs are noise
   double max_blob_radius_m = 0.45;    // larger blobs (walls, furniture) are static structure
   double max_range_m = 5.0;           // only points this close to the robot are clustered
@@ -33,6 +33,9 @@ struct MovingObstacleParams {
   // (a static object's centroid wanders while the robot sees more or less of it).
   double min_displacement_m = 0.25;
   double max_prediction_s = 4.0;  // predictions are never extrapolated further
+  // Obstacle points within a moving track's radius plus this margin are kept out of the global map
+  // (the navigator's use: a moving obstacle's trail would block the lanes it crossed).
+  double global_map_margin_m = 0.1;
 
   void validate() const;
 };
@@ -94,12 +97,17 @@ class MovingObstacleTracker {
 // Yielding to moving obstacles: the command is checked against the constant-velocity predictions
 // of the moving tracks over horizon_s; when the robot would come closer than its radius plus the
 // blob's plus the margin, a safer command is chosen among slower, turning and backing candidates
-// (collision-free against the costmap), preferring the one closest to the planner's command.
+// (collision-free against the costmap): the one closest to the planner's command that no moving
+// obstacle runs into, else the one that keeps the largest gap to them.
+// Yielding runs whenever the planner is given a tracker whose MovingObstacleParams::enabled is set
+// (the one switch for tracking and yielding).
 struct DynamicAvoidanceParams {
-  bool enabled = false;  // opt-in, see MovingObstacleParams
   double horizon_s = 3.0;
   double robot_radius_m = 0.25;
   double safety_margin_m = 0.15;
+  // The reach grows this much per second of prediction: a constant-velocity prediction misses the
+  // obstacle's turns (hexagon_dynamic's box turns a corner 0.3 m from a robot waiting for it).
+  double prediction_growth_mps = 0.05;
   double sim_step_s = 0.1;
   double static_check_s = 1.5;  // candidate arcs are checked against the costmap this far ahead
 

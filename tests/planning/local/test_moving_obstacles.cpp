@@ -72,6 +72,22 @@ TEST(MovingObstacles, ClusterBlobsSeparatesSmallBlobsAndDropsWalls) {
   EXPECT_GT(blobs[1].radius_m, blobs[0].radius_m);
 }
 
+TEST(MovingObstacles, BoxBesideAPostInALaneStaysItsOwnBlob) {
+  // hexagon_dynamic: the 0.15 m box in a 0.8 m lane between r = 0.15 m cylinders (0.325 m gaps).
+  // Merged with a cylinder its centroid would jump and its track be lost.
+  std::vector<Eigen::Vector2d> pts;
+  add_square(pts, {0.55, 0.0}, 0.15, 0);
+  for (int i = 0; i < 64; ++i) {
+    const double a = 2.0 * M_PI * i / 64.0;
+    for (const double cx : {0.0, 1.1}) pts.emplace_back(cx + 0.15 * std::cos(a), 0.15 * std::sin(a));
+  }
+  const auto blobs = cluster_blobs(pts, {0.0, 0.0}, enabled_tracking());
+  ASSERT_EQ(blobs.size(), 3u);
+  int boxes = 0;
+  for (const auto& b : blobs) boxes += (b.centroid - Eigen::Vector2d(0.55, 0.0)).norm() < 0.02 ? 1 : 0;
+  EXPECT_EQ(boxes, 1);
+}
+
 TEST(MovingObstacles, BlobMovingAtKnownVelocityGetsThatEstimate) {
   MovingObstacleTracker tracker(enabled_tracking());
   const Eigen::Vector2d v(-0.25, 0.1);
@@ -110,6 +126,12 @@ TEST(MovingObstacles, BadParametersAreRejected) {
   DynamicAvoidanceParams a;
   a.horizon_s = std::numeric_limits<double>::quiet_NaN();
   EXPECT_ANY_THROW(a.validate());
+  MovingObstacleParams m;
+  m.global_map_margin_m = -0.1;
+  EXPECT_ANY_THROW(m.validate());
+  DynamicAvoidanceParams g;
+  g.prediction_growth_mps = -0.05;
+  EXPECT_ANY_THROW(g.validate());
 }
 
 TEST(MovingObstacles, TimeToCollisionHeadOnAndPassingBehind) {
@@ -118,9 +140,9 @@ TEST(MovingObstacles, TimeToCollisionHeadOnAndPassingBehind) {
   o.velocity = {-0.25, 0.0};
   o.radius_m = 0.1;
   DynamicAvoidanceParams p;
-  p.enabled = true;
   p.robot_radius_m = 0.2;
   p.safety_margin_m = 0.1;
+  p.prediction_growth_mps = 0.0;
   p.horizon_s = 4.0;
   // Closing at 0.5 m/s from 2 m: within reach (0.4 m) after 3.2 s.
   EXPECT_NEAR(time_to_collision({0, 0, 0}, {0.25, 0, 0}, {o}, 0.0, p), 3.2, 0.11);
@@ -136,7 +158,6 @@ TEST(MovingObstacles, HeadOnPredictedCollisionMakesTheTrackerStopOrBackOff) {
   const Path plan = test::straight_plan(0.0, 0.0, 3.5, 0.0);
   LocalPlannerParams params;
   params.avoidance.robot_radius_m = 0.3;
-  params.avoidance.enabled = true;
   // No moving obstacles: full speed ahead.
   auto free_tracker = make_local_planner("tracker", params);
   const Twist cruise{0.5, 0.0, 0.0};
@@ -165,7 +186,6 @@ TEST(MovingObstacles, ObstacleThatPassesBeforeTheRobotArrivesChangesNothing) {
   const Path plan = test::straight_plan(0.0, 0.0, 3.5, 0.0);
   LocalPlannerParams params;
   params.avoidance.robot_radius_m = 0.3;
-  params.avoidance.enabled = true;
   // Crossing 3 m ahead, already past the robot's lane, moving away from it.
   params.moving_obstacles = tracker_with({3.0, -1.0}, {0.0, -0.3}, 2.0);
   auto planner = make_local_planner("tracker", params);
@@ -173,6 +193,44 @@ TEST(MovingObstacles, ObstacleThatPassesBeforeTheRobotArrivesChangesNothing) {
   ASSERT_TRUE(r.result.ok());
   EXPECT_FALSE(planner->last_yield().modified);
   EXPECT_GT(r.cmd.linear_x, 0.4);
+}
+
+TEST(MovingObstacles, WhenEverythingCollidesTheCommandKeepingTheLargestGapWins) {
+  // In a 0.9 m lane, a box already 0.5 m ahead and closing at 0.3 m/s: every candidate is within
+  // reach at once; the yield must back off (the largest gap), not keep going or stop.
+  auto map = test::empty_costmap(0.0, 0.0, 8.0);
+  test::add_box(map, -3.0, 0.45, 3.0, 0.7);
+  test::add_box(map, -3.0, -0.7, 3.0, -0.45);
+  LocalPlannerParams params;
+  params.avoidance.robot_radius_m = 0.3;
+  const auto tracker = tracker_with({1.1, 0.0}, {-0.3, 0.0}, 2.0);
+  const auto moving = tracker->moving(2.0);
+  ASSERT_EQ(moving.size(), 1u);
+  const CommandLimits lim{0.5, 0.25, 0.8, 0.5, 1.0};
+  const auto y =
+      yield_to_moving_obstacles({0.5, 0.0, 0.0}, {0, 0, 0}, {}, moving, map, lim, 0.1, 2.0, params.avoidance);
+  ASSERT_TRUE(y.modified);
+  EXPECT_LT(y.target.linear_x, 0.0) << y.target.linear_x << " " << y.target.angular_z;
+  EXPECT_LT(y.cmd.linear_x, 0.0);
+}
+
+TEST(MovingObstacles, OfSeveralSafeCommandsTheClosestToThePlannersIsKept) {
+  // A box crossing 1.2 m ahead from the right: slowing down or veering lets it pass; stopping
+  // and backing off are safe too but further from the command.
+  const auto map = test::empty_costmap(0.0, 0.0, 8.0);
+  DynamicAvoidanceParams p;
+  p.robot_radius_m = 0.2;
+  const auto tracker = tracker_with({1.2, -1.6}, {0.0, 0.3}, 2.0);
+  const auto moving = tracker->moving(2.0);
+  ASSERT_EQ(moving.size(), 1u);
+  const CommandLimits lim{0.5, 0.25, 0.8, 0.5, 1.0};
+  const Twist cmd{0.5, 0.0, 0.0};
+  const auto y = yield_to_moving_obstacles(cmd, {0, 0, 0}, cmd, moving, map, lim, 0.1, 2.0, p);
+  ASSERT_TRUE(y.modified);
+  EXPECT_TRUE(std::isinf(y.ttc_s));
+  // Still moving forward (slower or veering away), neither stopping nor backing off.
+  EXPECT_GT(y.target.linear_x, 0.0) << y.target.linear_x << " " << y.target.angular_z;
+  EXPECT_FALSE(y.target.linear_x == cmd.linear_x && y.target.angular_z == cmd.angular_z);
 }
 
 }  // namespace bipednav::planning::local
