@@ -14,11 +14,15 @@ namespace bipednav::localization {
 // section III).
 struct CorrectedOdometryParams {
   GicpParams gicp{};
-  double ground_band_m = 0.05;         // points this close to the ground (base z = 0) are removed
+  double ground_band_m = 0.05;         // points below this height in the odometry frame are removed
   std::size_t min_points = 50;         // fewer points after ground removal: no correction this time
   double max_correction_step_m = 0.3;  // a larger change of T_corr in one update is rejected
   double max_correction_step_rad = 0.2;
   double max_fitness_m2 = 0.05;  // worse mean squared match distance is rejected
+  // A direction of (x, y, yaw) is corrected only when its GICP information equals that of this
+  // fraction of the matches lying on surfaces facing it; otherwise it keeps the odometry.
+  // 0 corrects every direction.
+  double min_constraining_fraction = 0.003;
   void validate() const;
 };
 
@@ -27,10 +31,16 @@ struct CorrectedOdometryParams {
 // foot so the IMU frame agrees with the IMU reading).
 SE3 kinematic_pose(const Odometry& odom, double z_m = 0.0);
 
+// The GICP information (Gauss-Newton Hessian of the Mahalanobis cost) of source matched into
+// target at T_target_source, over a planar motion (x, y, yaw about `pivot`) of the target frame.
+Eigen::Matrix3d planar_information(const GicpCloud& source, const GicpCloud& target, const SE3& T_target_source,
+                                   const Eigen::Vector3d& pivot, double max_correspondence_m);
+
 struct CorrectionUpdate {
   SE3 T_corrected_base = SE3::Identity();  // T_corr^t * T_odom^t (base frame)
   SE3 T_corr = SE3::Identity();            // the correction of eq. 1
   bool corrected = false;                  // false: the correction was kept from the last update
+  int degenerate_directions = 0;           // directions of (x, y, yaw) left to the odometry
   std::string reason;                      // why not, when not
   GicpResult gicp;
 };
@@ -47,6 +57,9 @@ class CorrectedOdometry {
   void reset();
 
  private:
+  // The GICP result with its poorly constrained planar directions reset to the last correction.
+  SE3 constrained_correction(const GicpCloud& current, const SE3& T_odom_base, CorrectionUpdate& u) const;
+
   CorrectedOdometryParams p_;
   SE3 T_base_sensor_;
   SE3 T_corr_ = SE3::Identity();
