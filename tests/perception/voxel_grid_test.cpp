@@ -245,7 +245,7 @@ TEST(VoxelGrid, KeysAtFacesAndRangeEnds) {
 TEST(VoxelGridClass, FarPointsAreAnErrorOnlyWhenKept) {
   PointCloud c;
   for (int i = 0; i < 9; ++i) c.points.emplace_back(0.01f * i + 0.005f, 0.0f, 0.0f);  // 5 voxels
-  c.points.emplace_back(1e5f, 0.0f, 0.0f);  // beyond 2^20 voxels of 0.02 m
+  c.points.emplace_back(1e5f, 0.0f, 0.0f);                                            // beyond 2^20 voxels of 0.02 m
   PassThroughParams range;
   range.max_range_m = 2.9;
   const PassThroughTest crop(range);
