@@ -1,7 +1,6 @@
 #include "bipednav/mapping/obstacle_layer.hpp"
 
 #include <cmath>
-#include <optional>
 
 #include "bipednav/common/error.hpp"
 #include "bipednav/mapping/ray_trace.hpp"
@@ -39,29 +38,11 @@ void ObstacleLayer::clear_observation(Costmap2D& grid, const Observation& obs, C
   const double range = std::min(params_.raytrace_max_range_m, obs.max_range_m);
   const double max_range_sq = obs.max_range_m * obs.max_range_m;
   std::uint8_t* cells = grid.data().data();
-  const auto start = g.world_to_cell(origin.x(), origin.y());
-  if (!start) return;  // every ray would start off the grid
-  // Most returns lie on the grid within the trace range, where clip_ray would leave the ray as it
-  // is: take their cells directly (same rays, without clipping or a square root per return).
-  const double eps = 1e-6 * g.resolution_m;  // clip_ray's box, shrunk the same way
-  const Eigen::Vector2d lo(g.origin_x_m, g.origin_y_m);
-  const Eigen::Vector2d hi(g.origin_x_m + g.size_x_m() - eps, g.origin_y_m + g.size_y_m() - eps);
-  const auto inside = [&](const Eigen::Vector2d& q) {
-    return (q.array() >= lo.array()).all() && (q.array() <= hi.array()).all();
-  };
-  const bool origin_inside = inside(origin);
-  const double unclipped_sq = range * range * (1.0 - 1e-9);
+  const RayClipper clipper(g, origin, range);  // origin cell and grid box once per observation
   for (const auto& p : obs.points_map) {
     if (!p.allFinite()) continue;
     if ((p.cast<double>() - obs.origin_map).squaredNorm() > max_range_sq) continue;
-    const Eigen::Vector2d q = p.head<2>().cast<double>();
-    std::optional<ClippedRay> ray;
-    if (origin_inside && (q - origin).squaredNorm() < unclipped_sq && inside(q)) {
-      const auto end = g.world_to_cell(q.x(), q.y());
-      if (end) ray = ClippedRay{*start, *end, false};
-    } else {
-      ray = clip_ray(g, origin, q, range);
-    }
+    const auto ray = clipper.clip(p.head<2>().cast<double>());
     if (!ray) continue;
     // Many returns share an end cell: trace each end cell once per observation.
     std::uint32_t& seen = traced_[g.index(ray->end)];

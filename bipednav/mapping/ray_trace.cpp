@@ -42,26 +42,41 @@ bool clip_segment(Eigen::Vector2d& a, Eigen::Vector2d& b, const Eigen::Vector2d&
 
 std::optional<ClippedRay> clip_ray(const GridGeometry& g, const Eigen::Vector2d& origin, const Eigen::Vector2d& point,
                                    double max_length_m) {
-  if (!origin.allFinite() || !point.allFinite()) return std::nullopt;
-  const auto start = g.world_to_cell(origin.x(), origin.y());
-  if (!start) return std::nullopt;
-  Eigen::Vector2d a = origin, b = point;
-  bool clipped = false;
-  const double len = (b - a).norm();
-  if (len > max_length_m) {
-    b = a + (b - a) * (max_length_m / len);
-    clipped = true;
-  }
+  return RayClipper(g, origin, max_length_m).clip(point);
+}
+
+RayClipper::RayClipper(const GridGeometry& g, const Eigen::Vector2d& origin, double max_length_m)
+    : g_(g), origin_(origin), max_length_m_(max_length_m) {
   // Shrink the box by a hair so a clipped end never floors onto the cell past the last one.
   const double eps = 1e-6 * g.resolution_m;
-  const Eigen::Vector2d lo(g.origin_x_m, g.origin_y_m);
-  const Eigen::Vector2d hi(g.origin_x_m + g.size_x_m() - eps, g.origin_y_m + g.size_y_m() - eps);
+  lo_ = {g.origin_x_m, g.origin_y_m};
+  hi_ = {g.origin_x_m + g.size_x_m() - eps, g.origin_y_m + g.size_y_m() - eps};
+  if (origin.allFinite()) start_ = g.world_to_cell(origin.x(), origin.y());
+  origin_inside_ = start_ && inside(origin);
+}
+
+std::optional<ClippedRay> RayClipper::clip(const Eigen::Vector2d& point) const {
+  if (!start_ || !point.allFinite()) return std::nullopt;
+  // On the grid and shorter than the limit (with a margin for the square root's rounding):
+  // the clipping below would leave the ray as it is.
+  if (origin_inside_ && inside(point) &&
+      (point - origin_).squaredNorm() < max_length_m_ * max_length_m_ * (1.0 - 1e-9)) {
+    const auto end = g_.world_to_cell(point.x(), point.y());
+    if (end) return ClippedRay{*start_, *end, false};
+  }
+  Eigen::Vector2d a = origin_, b = point;
+  bool clipped = false;
+  const double len = (b - a).norm();
+  if (len > max_length_m_) {
+    b = a + (b - a) * (max_length_m_ / len);
+    clipped = true;
+  }
   const Eigen::Vector2d b_before = b;
-  if (!clip_segment(a, b, lo, hi)) return std::nullopt;
+  if (!clip_segment(a, b, lo_, hi_)) return std::nullopt;
   if (b != b_before) clipped = true;
-  const auto end = g.world_to_cell(b.x(), b.y());
+  const auto end = g_.world_to_cell(b.x(), b.y());
   if (!end) return std::nullopt;
-  return ClippedRay{*start, *end, clipped};
+  return ClippedRay{*start_, *end, clipped};
 }
 
 }  // namespace bipednav::mapping

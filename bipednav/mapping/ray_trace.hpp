@@ -60,8 +60,27 @@ struct ClippedRay {
 };
 
 // Clips the ray origin->point to `max_length_m` and to the grid. nullopt when the origin is
-// outside the grid, the ray has zero length or any coordinate is not finite.
+// outside the grid or any coordinate is not finite.
 std::optional<ClippedRay> clip_ray(const GridGeometry& g, const Eigen::Vector2d& origin, const Eigen::Vector2d& point,
                                    double max_length_m);
+
+// clip_ray for many rays from one origin: the origin's cell and the grid box are computed once,
+// and a return on the grid within range (most of them) takes its cell directly, without clipping
+// or a square root.
+class RayClipper {
+ public:
+  RayClipper(const GridGeometry& g, const Eigen::Vector2d& origin, double max_length_m);
+  std::optional<ClippedRay> clip(const Eigen::Vector2d& point) const;
+
+ private:
+  bool inside(const Eigen::Vector2d& q) const {
+    return (q.array() >= lo_.array()).all() && (q.array() <= hi_.array()).all();
+  }
+  GridGeometry g_;
+  Eigen::Vector2d origin_, lo_, hi_;  // the box shrunk by a hair (see clip)
+  double max_length_m_;
+  std::optional<Cell> start_;
+  bool origin_inside_ = false;
+};
 
 }  // namespace bipednav::mapping
