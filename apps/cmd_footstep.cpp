@@ -1,14 +1,18 @@
 // `bipednav footsteps` (plan on a heightmap image and draw the plan) and `bench footsteps`
 // (the second reference's Table I on random cluttered heightmaps).
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <mutex>
 #include <nlohmann/json.hpp>
 #include <numeric>
+#include <thread>
 
 #include "apps/cli_pose.hpp"
 #include "apps/commands.hpp"
+#include "bipednav/common/clock.hpp"
 #include "bipednav/common/progress.hpp"
 #include "bipednav/io/heightmap_image.hpp"
 #include "bipednav/planning/footstep/footstep_planner.hpp"
@@ -76,64 +80,164 @@ std::optional<double> cost_by(const FootstepPlan& plan, double limit_s) {
 }
 
 struct BenchArgs {
-  int maps = 10, problems = 10;
+  int maps = 10, problems = 10, jobs = 1, only_map = -1;
   double long_limit_s = 10.0, short_limit_s = 5.0, optimal_limit_s = 120.0;
+  std::string clock = "thread_cpu", log;
 };
 
+// One Table I problem and everything measured on it (filled by one worker thread).
+struct BenchProblem {
+  int map = 0, index = 0;
+  PlanningProblem problem;
+  FootstepPlan optimal;
+  std::map<std::string, FootstepPlan> plans;  // by heuristic
+  FootstepPlan planar;
+};
+
+nlohmann::json plan_json(const FootstepPlan& p) {
+  nlohmann::json its = nlohmann::json::array();
+  for (const auto& it : p.iterations) its.push_back({it.epsilon, it.cost, it.time_s, it.expansions});
+  return {{"outcome", outcome_name(p.result.outcome)},
+          {"cost_s", p.result.ok() ? nlohmann::json(p.cost_s) : nlohmann::json(nullptr)},
+          {"final_epsilon", p.final_epsilon},
+          {"expansions", p.expansions},
+          {"time_s", p.time_s},
+          {"setup_s", p.setup_s},
+          {"iterations_eps_cost_time_expansions", its}};
+}
+
+// Table row name, e.g. dijkstra_5s (dijkstra_0.5s for fractional limits).
+std::string row_name(const std::string& heuristic, double limit_s) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%gs", limit_s);
+  return heuristic + "_" + buf;
+}
+
+nlohmann::json problem_json(const BenchProblem& w) {
+  nlohmann::json row = {{"map", w.map},
+                        {"problem", w.index},
+                        {"start", {w.problem.start.x, w.problem.start.y, w.problem.start.theta}},
+                        {"goal", {w.problem.goal.x, w.problem.goal.y, w.problem.goal.theta}},
+                        {"optimal", plan_json(w.optimal)},
+                        {"planar_only", plan_json(w.planar)}};
+  for (const auto& [h, plan] : w.plans) row[h] = plan_json(plan);
+  return row;
+}
+
 void bench_footsteps(const BenchArgs& a) {
+  require(a.maps >= 1 && a.problems >= 1, "--maps/--problems", ">= 1");
+  require(a.jobs >= 1 && a.jobs <= 64, "--jobs", "in [1, 64]");
+  require(a.clock == "thread_cpu" || a.clock == "wall", "--clock", "thread_cpu or wall");
+  require(a.short_limit_s > 0.0 && a.long_limit_s >= a.short_limit_s, "--short-limit/--long-limit",
+          "0 < short <= long");
+  const SearchClockKind clock = a.clock == "wall" ? SearchClockKind::kWall : SearchClockKind::kThreadCpu;
   TerrainGeneratorParams tg;
   FootstepPlannerParams base;
+  base.search.clock = clock;
   const int per_map = std::max(1, a.problems / a.maps);
+  // The maps and problems first (seeded), then the searches, each problem on one thread: the
+  // table is aggregated in problem order, so it does not depend on --jobs (with a CPU-time
+  // clock, only the instant a time limit strikes varies from run to run).
+  std::vector<mapping::Heightmap> maps;
+  std::vector<BenchProblem> work;
+  const FootstepPlanner probe(base);
+  for (int m = 0; m < a.maps; ++m) {
+    maps.push_back(random_terrain(tg, 1000 + m));
+    int i = 0;
+    for (const auto& prob : random_problems(maps.back(), probe, per_map, 1.5, 3.0, 2000 + m)) {
+      if (a.only_map < 0 || a.only_map == m) work.push_back({m, i, prob, {}, {}, {}});
+      ++i;
+    }
+  }
+  // Problem 0 of every map first, then problem 1...: a partial run (--log) covers every map.
+  std::stable_sort(work.begin(), work.end(), [](const BenchProblem& x, const BenchProblem& y) {
+    return std::pair{x.index, x.map} < std::pair{y.index, y.map};
+  });
+  FootstepPlannerParams opt = base;
+  opt.search.initial_epsilon = 1.0;
+  opt.search.time_limit_s = a.optimal_limit_s;
+  const FootstepPlanner optimal_planner(opt);
+  std::map<std::string, std::unique_ptr<FootstepPlanner>> planners;
+  for (const std::string h : {"dijkstra", "euclidean"}) {
+    FootstepPlannerParams p = base;
+    p.heuristic = h;
+    p.search.time_limit_s = a.long_limit_s;
+    planners[h] = std::make_unique<FootstepPlanner>(p);
+  }
+  FootstepPlannerParams planar = base;
+  planar.planar_only = true;
+  planar.search.time_limit_s = a.long_limit_s;
+  const FootstepPlanner planar_planner(planar);
+
+  // Each finished problem as one JSON line, for partial figures of a long run.
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> log(nullptr, &std::fclose);
+  if (!a.log.empty()) {
+    log.reset(std::fopen(a.log.c_str(), "w"));
+    if (!log) throw Error("cannot write --log file " + a.log);
+  }
+  ProgressBar bar("footstep problems", work.size(), true);
+  std::mutex bar_mutex;
+  std::atomic<std::size_t> next{0}, done{0};
+  const Stopwatch wall;
+  auto worker = [&] {
+    for (std::size_t k = next++; k < work.size(); k = next++) {
+      BenchProblem& w = work[k];
+      const mapping::Heightmap& map = maps[static_cast<std::size_t>(w.map)];
+      const Footstep start = probe.stance_for_body(w.problem.start, Foot::kLeft);
+      w.optimal = optimal_planner.plan(map, start, w.problem.goal);
+      for (auto& [h, planner] : planners) w.plans[h] = planner->plan(map, start, w.problem.goal);
+      w.planar = planar_planner.plan(map, start, w.problem.goal);
+      const std::lock_guard lock(bar_mutex);
+      if (log) {
+        std::fprintf(log.get(), "%s\n", problem_json(w).dump().c_str());
+        std::fflush(log.get());
+      }
+      bar.update(++done);
+    }
+  };
+  std::vector<std::thread> threads;
+  for (int j = 1; j < a.jobs; ++j) threads.emplace_back(worker);
+  worker();
+  for (auto& t : threads) t.join();
+  bar.finish();
+
   struct Cell {
-    std::vector<double> subopt, t_init;
+    std::vector<double> subopt, t_init, t_init_setup;
     int solved = 0;
   };
   std::map<std::string, Cell> table;
-  int planar_solved = 0, total = 0, optimal_known = 0;
-  ProgressBar bar("footstep problems", static_cast<std::size_t>(per_map * a.maps), true);
-  for (int m = 0; m < a.maps; ++m) {
-    const mapping::Heightmap map = random_terrain(tg, 1000 + m);
-    const FootstepPlanner probe(base);
-    for (const auto& prob : random_problems(map, probe, per_map, 1.5, 3.0, 2000 + m)) {
-      ++total;
-      const Footstep start = probe.stance_for_body(prob.start, Foot::kLeft);
-      FootstepPlannerParams opt = base;
-      opt.search.initial_epsilon = 1.0;
-      opt.search.time_limit_s = a.optimal_limit_s;
-      const FootstepPlan best = FootstepPlanner(opt).plan(map, start, prob.goal);
-      const bool have_opt = best.result.ok() && best.final_epsilon == 1.0;
-      optimal_known += have_opt;
-      for (const std::string h : {"dijkstra", "euclidean"}) {
-        FootstepPlannerParams p = base;
-        p.heuristic = h;
-        p.search.time_limit_s = a.long_limit_s;
-        const FootstepPlan plan = FootstepPlanner(p).plan(map, start, prob.goal);
-        for (double limit : {a.short_limit_s, a.long_limit_s}) {
-          Cell& cell = table[h + "_" + std::to_string(static_cast<int>(limit)) + "s"];
-          const auto c = cost_by(plan, limit);
-          if (!c) continue;
-          ++cell.solved;
-          cell.t_init.push_back(plan.first_solution_s);
-          if (have_opt) cell.subopt.push_back(*c / best.cost_s);
-        }
+  int planar_solved = 0, optimal_known = 0;
+  const int total = static_cast<int>(work.size());
+  nlohmann::json detail = nlohmann::json::array();
+  for (const BenchProblem& w : work) {
+    const bool have_opt = w.optimal.result.ok() && w.optimal.final_epsilon == 1.0;
+    optimal_known += have_opt;
+    planar_solved += w.planar.result.ok();
+    nlohmann::json row = problem_json(w);
+    for (const auto& [h, plan] : w.plans) {
+      for (double limit : {a.short_limit_s, a.long_limit_s}) {
+        Cell& cell = table[row_name(h, limit)];
+        const auto c = cost_by(plan, limit);
+        if (!c) continue;
+        ++cell.solved;
+        cell.t_init.push_back(plan.first_solution_s);
+        cell.t_init_setup.push_back(plan.setup_s + plan.first_solution_s);
+        if (have_opt) cell.subopt.push_back(*c / w.optimal.cost_s);
       }
-      FootstepPlannerParams planar = base;
-      planar.planar_only = true;
-      planar.search.time_limit_s = a.long_limit_s;
-      planar_solved += FootstepPlanner(planar).plan(map, start, prob.goal).result.ok();
-      bar.update(static_cast<std::size_t>(total));
     }
+    detail.push_back(row);
   }
-  bar.finish();
   nlohmann::json rows = nlohmann::json::object();
   for (auto& [name, cell] : table) {
-    std::vector<double> init_ms;
+    std::vector<double> init_ms, init_setup_ms;
     for (double t : cell.t_init) init_ms.push_back(1000.0 * t);
+    for (double t : cell.t_init_setup) init_setup_ms.push_back(1000.0 * t);
     rows[name] = {{"suboptimality_ratio", stats(cell.subopt)},
                   {"t_init_sol_ms", stats(init_ms)},
+                  {"t_init_sol_with_setup_ms", stats(init_setup_ms)},
                   {"solve_rate_ratio", total ? static_cast<double>(cell.solved) / total : 0.0}};
   }
-  const auto& d5 = rows["dijkstra_" + std::to_string(static_cast<int>(a.short_limit_s)) + "s"];
+  const auto& d5 = rows[row_name("dijkstra", a.short_limit_s)];
   const double subopt5 =
       d5["suboptimality_ratio"]["mean"].is_null() ? 1e9 : d5["suboptimality_ratio"]["mean"].get<double>();
   double worst_rate = 1.0, worst_median_ms = 0.0;
@@ -146,6 +250,11 @@ void bench_footsteps(const BenchArgs& a) {
                         {"maps", a.maps},
                         {"map_size_m", tg.size_m},
                         {"map_resolution_m", tg.resolution_m},
+                        {"clock", search_clock_name(clock)},
+                        {"jobs", a.jobs},
+                        {"time_limits_s", {a.short_limit_s, a.long_limit_s}},
+                        {"optimal_limit_s", a.optimal_limit_s},
+                        {"bench_wall_s", wall.elapsed_ms() / 1000.0},
                         {"optimal_solutions", optimal_known},
                         {"table", rows},
                         {"planar_only_solve_rate_ratio", total ? static_cast<double>(planar_solved) / total : 0.0},
@@ -154,7 +263,8 @@ void bench_footsteps(const BenchArgs& a) {
                         {"goal_dijkstra_5s_suboptimality_ratio", 1.04},
                         {"meets_goal_solve_rate", worst_rate >= 1.0},
                         {"meets_goal_t_init_sol_median", worst_median_ms <= 100.0},
-                        {"meets_goal_suboptimality", subopt5 <= 1.04}};
+                        {"meets_goal_suboptimality", subopt5 <= 1.04},
+                        {"per_problem", detail}};
   std::printf("%s\n", out.dump(2).c_str());
 }
 
@@ -183,6 +293,13 @@ void add_footstep_commands(CLI::App& app, CLI::App& bench) {
   bf->add_option("--problems", b->problems, "Start/goal pairs in all (the reference: 100)")->capture_default_str();
   bf->add_option("--optimal-limit", b->optimal_limit_s, "Time cap of the optimal reference search, s")
       ->capture_default_str();
+  bf->add_option("--short-limit", b->short_limit_s, "The shorter ARA* time limit, s")->capture_default_str();
+  bf->add_option("--long-limit", b->long_limit_s, "The longer ARA* time limit, s")->capture_default_str();
+  bf->add_option("--jobs", b->jobs, "Problems searched in parallel (each on one thread)")->capture_default_str();
+  bf->add_option("--clock", b->clock, "Clock of the time limits and times: thread_cpu (load-independent) or wall")
+      ->capture_default_str();
+  bf->add_option("--log", b->log, "Also write each finished problem as a JSON line to this file");
+  bf->add_option("--only-map", b->only_map, "Run only this map's problems (0-based; diagnosis)");
   bf->add_flag("--json", *json, "Print one JSON object (the default)");
   bf->callback([b] { bench_footsteps(*b); });
 }

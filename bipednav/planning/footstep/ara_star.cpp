@@ -1,13 +1,28 @@
 #include "bipednav/planning/footstep/ara_star.hpp"
 
+#include <time.h>
+
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 
-#include "bipednav/common/clock.hpp"
 #include "bipednav/common/error.hpp"
 
 namespace bipednav::footstep {
+
+const char* search_clock_name(SearchClockKind k) { return k == SearchClockKind::kThreadCpu ? "thread_cpu" : "wall"; }
+
+SearchClock::SearchClock(SearchClockKind kind) : kind_(kind), start_s_(0.0) { start_s_ = now_s(); }
+
+double SearchClock::now_s() const {
+  if (kind_ == SearchClockKind::kThreadCpu) {
+    timespec ts{};
+    if (clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts) == 0)
+      return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+  }
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
 
 void AraStarParams::validate() const {
   require(initial_epsilon >= 1.0, "initial_epsilon", ">= 1");
@@ -98,7 +113,7 @@ class OpenList {
 
 class Search {
  public:
-  Search(SearchGraph& graph, const AraStarParams& p) : graph_(graph), p_(p), open_(rec_) {}
+  Search(SearchGraph& graph, const AraStarParams& p) : graph_(graph), p_(p), open_(rec_), clock_(p.clock) {}
 
   AraStarResult run() {
     AraStarResult out;
@@ -120,7 +135,7 @@ class Search {
       reopen(eps);
     }
     out.expansions = expansions_;
-    out.time_s = clock_.elapsed_ms() / 1000.0;
+    out.time_s = clock_.elapsed_s();
     return out;
   }
 
@@ -140,7 +155,7 @@ class Search {
   bool improve_path(double eps, std::uint32_t iteration, AraStarResult& out) {
     std::vector<SearchGraph::Edge> edges;
     while (!open_.empty() && goal_g() > open_.min_key()) {
-      if ((expansions_ & 63u) == 0 && p_.time_limit_s > 0.0 && clock_.elapsed_ms() > 1000.0 * p_.time_limit_s) {
+      if ((expansions_ & 63u) == 0 && p_.time_limit_s > 0.0 && clock_.elapsed_s() > p_.time_limit_s) {
         out.time_exceeded = true;
         return false;
       }
@@ -199,7 +214,7 @@ class Search {
     }
     std::reverse(out.states.begin(), out.states.end());
     std::reverse(out.actions.begin(), out.actions.end());
-    out.iterations.push_back({eps, out.cost, clock_.elapsed_ms() / 1000.0, expansions_});
+    out.iterations.push_back({eps, out.cost, clock_.elapsed_s(), expansions_});
   }
 
   SearchGraph& graph_;
@@ -209,7 +224,7 @@ class Search {
   std::vector<std::int32_t> incons_;
   std::int32_t goal_ = -1;
   std::size_t expansions_ = 0;
-  Stopwatch clock_;
+  SearchClock clock_;
 };
 
 }  // namespace

@@ -21,12 +21,31 @@ class SearchGraph {
   virtual bool is_goal(std::int32_t state) = 0;
 };
 
+// The clock of a search's time limit and reported times: wall time (the default, what a robot
+// waits for) or the calling thread's CPU time (benchmarks on a shared machine: the same limit
+// buys the same search whatever the load).
+enum class SearchClockKind { kWall, kThreadCpu };
+const char* search_clock_name(SearchClockKind k);
+
+class SearchClock {
+ public:
+  explicit SearchClock(SearchClockKind kind = SearchClockKind::kWall);
+  double elapsed_s() const { return now_s() - start_s_; }
+  SearchClockKind kind() const { return kind_; }
+
+ private:
+  double now_s() const;
+  SearchClockKind kind_;
+  double start_s_;
+};
+
 struct AraStarParams {
   double initial_epsilon = 8.0;
   double epsilon_decrease = 0.5;  // eps <- 1 + (eps - 1) * factor after each improved solution
   double time_limit_s = 5.0;      // 0: no limit (search down to target_epsilon)
   double target_epsilon = 1.0;    // stop once a solution with this bound is proven
   std::size_t max_expansions = 20'000'000;
+  SearchClockKind clock = SearchClockKind::kWall;  // of time_limit_s and the reported times
 
   void validate() const;
 };

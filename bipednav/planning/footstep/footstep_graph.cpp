@@ -61,12 +61,54 @@ FootstepGraph::FootstepGraph(const ActionLattice& lattice, const TerrainGrid& te
   const auto cell = terrain.geometry().world_to_cell_unbounded(start.pose.x, start.pose.y);
   const StateKey k{cell ? cell->x : 0, cell ? cell->y : 0, lattice.bin_of(start.pose.theta), start.foot};
   start_ = intern(k, static_cast<float>(start.z_m));
+  const auto& actions = lattice.actions().actions;
+  min_duration_s_ = std::numeric_limits<double>::infinity();
+  for (std::size_t a = 0; a < actions.size(); ++a) {
+    min_duration_s_ = std::min(min_duration_s_, actions[a].duration_s);
+    for (Foot f : {Foot::kLeft, Foot::kRight})
+      max_turn_bins_ = std::max(max_turn_bins_, std::abs(lattice.transition(f, static_cast<int>(a), 0).ditheta));
+  }
+}
+
+FootstepGraph::StateIndex::StateIndex() : slots_(std::size_t{1} << 12), shift_(64 - 12) {}
+
+std::int32_t FootstepGraph::StateIndex::find_or_insert(std::uint64_t key, std::int32_t fresh_id, bool* fresh) {
+  // The packed key never reaches 2^64 - 1 (its top bits are 20-bit coordinates), so key + 1 > 0.
+  const std::uint64_t stored = key + 1;
+  const std::size_t mask = slots_.size() - 1;
+  for (std::size_t i = home(key);; i = (i + 1) & mask) {
+    Slot& s = slots_[i];
+    if (s.key_plus_one == stored) {
+      *fresh = false;
+      return s.id;
+    }
+    if (s.key_plus_one == 0) {
+      s = {stored, fresh_id};
+      *fresh = true;
+      if (2 * ++used_ > slots_.size()) grow();  // load factor at most 1/2
+      return fresh_id;
+    }
+  }
+}
+
+void FootstepGraph::StateIndex::grow() {
+  std::vector<Slot> old(slots_.size() * 2);
+  old.swap(slots_);
+  --shift_;
+  const std::size_t mask = slots_.size() - 1;
+  for (const Slot& s : old) {
+    if (s.key_plus_one == 0) continue;
+    std::size_t i = home(s.key_plus_one - 1);
+    while (slots_[i].key_plus_one != 0) i = (i + 1) & mask;
+    slots_[i] = s;
+  }
 }
 
 std::int32_t FootstepGraph::intern(const StateKey& k, float z) {
-  auto [it, fresh] = index_.try_emplace(k.packed(), static_cast<std::int32_t>(states_.size()));
+  bool fresh = false;
+  const std::int32_t id = index_.find_or_insert(k.packed(), static_cast<std::int32_t>(states_.size()), &fresh);
   if (fresh) states_.push_back({k, z});
-  return it->second;
+  return id;
 }
 
 Pose2 FootstepGraph::pose_of(const StateKey& k) const {
@@ -168,7 +210,15 @@ void FootstepGraph::successors(std::int32_t s, std::vector<Edge>& out) {
 
 double FootstepGraph::heuristic(std::int32_t s) {
   const Pose2 c = body_centre(s);
-  return heuristic_.seconds_to_goal(c.x, c.y);
+  const double h = heuristic_.seconds_to_goal(c.x, c.y);
+  if (max_turn_bins_ == 0) return h;
+  // Each action turns the (discrete) heading by at most max_turn_bins_ bins, so reaching the
+  // goal's heading tolerance takes at least this many actions.
+  const double turn = std::abs(angle_diff(lattice_.theta_of(states_[s].key.itheta), goal_.body.theta));
+  const double need = turn - goal_.tolerance_rad;
+  if (need <= 0.0) return h;
+  const double per_action = max_turn_bins_ * 2.0 * std::numbers::pi / lattice_.theta_bins();
+  return std::max(h, std::ceil(need / per_action - 1e-9) * min_duration_s_);
 }
 
 bool FootstepGraph::is_goal(std::int32_t s) {

@@ -1,7 +1,6 @@
 #pragma once
 
 #include <memory>
-#include <unordered_map>
 #include <vector>
 
 #include "bipednav/planning/footstep/ara_star.hpp"
@@ -61,7 +60,11 @@ struct FootstepGoal {
 
 // The footstep search space on a terrain: states are lattice keys, edges are the safe actions
 // of section V-B (flat footprint, dz within the action's interval (eq. 4), whole-body check
-// against the inverse heightmap (eq. 5)), costs are action durations.
+// against the inverse heightmap (eq. 5)), costs are action durations. The heuristic is the
+// larger of the position heuristic (eq. 6) and the time the heading needs to come within the
+// goal's tolerance at the fastest turn per action: both are lower bounds of the remaining time,
+// so their maximum is too, and the search no longer has to flood the goal's surroundings with
+// every heading the position heuristic cannot tell apart.
 class FootstepGraph : public SearchGraph {
  public:
   FootstepGraph(const ActionLattice& lattice, const TerrainGrid& terrain, const Heuristic& heuristic,
@@ -84,6 +87,25 @@ class FootstepGraph : public SearchGraph {
     StateKey key;
     float z = 0.0f;
   };
+  // Packed state key -> state id: open addressing with linear probing (a std::unordered_map's
+  // node chasing was a third of the search time).
+  class StateIndex {
+   public:
+    StateIndex();
+    // The id stored for `key`, or `fresh_id` (stored, *fresh = true) when the key is new.
+    std::int32_t find_or_insert(std::uint64_t key, std::int32_t fresh_id, bool* fresh);
+
+   private:
+    struct Slot {
+      std::uint64_t key_plus_one = 0;  // 0: empty
+      std::int32_t id = -1;
+    };
+    std::size_t home(std::uint64_t key) const { return (key * 0x9E3779B97F4A7C15ull) >> shift_; }
+    void grow();
+    std::vector<Slot> slots_;
+    std::size_t used_ = 0;
+    int shift_ = 0;
+  };
   std::int32_t intern(const StateKey& k, float z);
   bool footprint_height(int ix, int iy, int itheta, float stance_z, float* z) const;
   bool clear_of_rising_edges(int ix, int iy, int itheta, float top) const;  // the landing margin
@@ -95,9 +117,12 @@ class FootstepGraph : public SearchGraph {
   const Heuristic& heuristic_;
   FootstepGoal goal_;
   std::vector<State> states_;
-  std::unordered_map<std::uint64_t, std::int32_t> index_;
+  StateIndex index_;
   std::int32_t start_ = 0;
   std::size_t ihm_checks_ = 0;
+  // Heading term of the heuristic: the most heading bins one action turns, the shortest action.
+  int max_turn_bins_ = 0;
+  double min_duration_s_ = 0.0;
 };
 
 }  // namespace bipednav::footstep

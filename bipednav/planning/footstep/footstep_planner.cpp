@@ -63,6 +63,7 @@ FootstepPlan FootstepPlanner::plan(const mapping::Heightmap& map, const Footstep
     out.result = {Outcome::INVALID_GOAL, "start or goal is not finite"};
     return out;
   }
+  const SearchClock setup_clock(params_.search.clock);
   const TerrainGrid terrain(map, params_.lattice_resolution_m);
   const auto& g = terrain.geometry();
   if (!g.world_to_cell(start.pose.x, start.pose.y)) {
@@ -81,6 +82,7 @@ FootstepPlan FootstepPlanner::plan(const mapping::Heightmap& map, const Footstep
   const auto heuristic = make_heuristic(params_, terrain, actions, goal);
   FootstepGraph graph(*lattice_, terrain, *heuristic, {goal, params_.goal_tolerance_m, params_.goal_tolerance_rad},
                       start);
+  out.setup_s = setup_clock.elapsed_s();
   const AraStarResult r = ara_star(graph, params_.search);
   out.expansions = r.expansions;
   out.time_s = r.time_s;

@@ -32,7 +32,8 @@ struct FootstepPlan {
   std::vector<Footstep> steps;       // the start stance foot first, then every landed foot
   std::vector<std::string> actions;  // actions[i] moves from steps[i] to steps[i + 1]
   double cost_s = 0.0;               // travel time
-  double first_solution_s = 0.0;     // wall time to the first solution
+  double setup_s = 0.0;              // terrain pooling and heuristic before the search
+  double first_solution_s = 0.0;     // search time to the first solution (search.clock, as all times)
   double first_solution_cost_s = 0.0;
   double final_epsilon = 0.0;  // proven suboptimality bound of `cost_s`
   std::size_t expansions = 0;

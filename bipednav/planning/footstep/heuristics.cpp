@@ -107,7 +107,10 @@ double DijkstraHeuristic::seconds_to_goal(double x, double y) const {
   if (!std::isfinite(d)) return std::numeric_limits<double>::infinity();
   // The body centre and the goal may each sit half a cell diagonal from their cell centres.
   const double slack = g.resolution_m * std::numbers::sqrt2;
-  return std::max(0.0, d - tolerance_m_ - slack) / v_max_;
+  // The octile scaling that keeps d(s) admissible everywhere makes it up to 7.6 % shorter than
+  // the straight line in the open; the straight line is a lower bound too, so take the larger.
+  const double straight = std::hypot(x - goal_.x, y - goal_.y);
+  return std::max(0.0, std::max(d - slack, straight) - tolerance_m_) / v_max_;
 }
 
 }  // namespace bipednav::footstep
