@@ -20,15 +20,29 @@ void CorrectedOdometryParams::validate() const {
 
 Eigen::Matrix3d planar_information(const GicpCloud& source, const GicpCloud& target, const SE3& T_target_source,
                                    const Eigen::Vector3d& pivot, double max_correspondence_m) {
-  if (target.index.empty()) return Eigen::Matrix3d::Zero();
+  std::vector<std::uint32_t> matches(source.size(), kGicpNoMatch);
+  if (!target.index.empty()) {
+    const auto bound_sq = static_cast<float>(max_correspondence_m * max_correspondence_m);
+    for (std::size_t i = 0; i < source.size(); ++i) {
+      float d2 = 0.0f;
+      const Eigen::Vector3d p = T_target_source * source.points[i].cast<double>();
+      if (!target.index.nearest(p.cast<float>(), bound_sq, matches[i], d2)) matches[i] = kGicpNoMatch;
+    }
+  }
+  return planar_information(source, target, T_target_source, pivot, matches);
+}
+
+Eigen::Matrix3d planar_information(const GicpCloud& source, const GicpCloud& target, const SE3& T_target_source,
+                                   const Eigen::Vector3d& pivot, const std::vector<std::uint32_t>& matches) {
+  if (matches.size() != source.size()) throw Error("planar_information: one match entry per source point expected");
   Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
   const Eigen::Matrix3d R = T_target_source.rotation();
-  const auto bound_sq = static_cast<float>(max_correspondence_m * max_correspondence_m);
   for (std::size_t i = 0; i < source.size(); ++i) {
+    const std::uint32_t j = matches[i];
+    if (j == kGicpNoMatch) continue;
+    if (j >= target.size() || j >= target.covariances.size() || i >= source.covariances.size())
+      throw Error("planar_information: a match names no target point");
     const Eigen::Vector3d p = T_target_source * source.points[i].cast<double>();
-    std::uint32_t j = 0;
-    float d2 = 0.0f;
-    if (!target.index.nearest(p.cast<float>(), bound_sq, j, d2)) continue;
     const Eigen::Matrix3d C =
         target.covariances[j].cast<double>() + R * source.covariances[i].cast<double>() * R.transpose();
     Eigen::Matrix<double, 3, 3> J;  // d p / d (x, y, yaw about the pivot)
@@ -54,15 +68,15 @@ void CorrectedOdometry::reset() {
 }
 
 SE3 CorrectedOdometry::constrained_correction(const GicpCloud& current, const SE3& T_odom_base,
-                                              CorrectionUpdate& u) const {
+                                              const std::vector<std::uint32_t>& pairs, CorrectionUpdate& u) const {
   // Directions of (x, y, yaw) that the matched surfaces hardly constrain (a corridor's walls say
   // nothing about the position along it; a 5 cm riser seen by a few points barely does) keep the
   // kinematic odometry: GICP moves freely along them with the noise of the depth images, by
   // centimetres per view, while the legs drift by millimetres per step. Per match, a direction
   // has information 0.5 from a plane it runs along and 1 / (2 epsilon) from a plane facing it.
   const Eigen::Vector3d pivot = (T_corr_ * T_odom_base).translation();
-  const Eigen::Matrix3d H =
-      planar_information(current, *previous_, u.gicp.T_target_source, pivot, p_.gicp.max_correspondence_m);
+  // GICP's own correspondences at its result (no second search).
+  const Eigen::Matrix3d H = planar_information(current, *previous_, u.gicp.T_target_source, pivot, pairs);
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(H);
   const double matches = static_cast<double>(std::max<std::size_t>(u.gicp.correspondences, 1));
   const double facing = 1.0 / (2.0 * p_.gicp.covariance_epsilon);
@@ -110,14 +124,15 @@ CorrectionUpdate CorrectedOdometry::update(const SE3& T_odom_base, const PointCl
     u.reason = "first cloud";
     return u;
   }
-  u.gicp = gicp_align(current, *previous_, T_corr_, p_.gicp);
+  std::vector<std::uint32_t> matches;
+  u.gicp = gicp_align(current, *previous_, T_corr_, p_.gicp, &matches);
   const SE3 step = T_corr_.inverse() * u.gicp.T_target_source;
   const bool small = step.translation().norm() <= p_.max_correction_step_m &&
                      Eigen::AngleAxisd(step.rotation()).angle() <= p_.max_correction_step_rad;
   if (!u.gicp.T_target_source.matrix().allFinite() || !small || u.gicp.fitness > p_.max_fitness_m2) {
     u.reason = !small ? "GICP correction step too large, rejected" : "GICP fitness too poor, rejected";
   } else {
-    T_corr_ = constrained_correction(current, T_odom_base, u);
+    T_corr_ = constrained_correction(current, T_odom_base, matches, u);
     u.corrected = true;
   }
   u.T_corr = T_corr_;

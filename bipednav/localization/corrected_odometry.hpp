@@ -2,6 +2,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "bipednav/common/point_cloud.hpp"
 #include "bipednav/common/se3.hpp"
@@ -33,8 +34,13 @@ SE3 kinematic_pose(const Odometry& odom, double z_m = 0.0);
 
 // The GICP information (Gauss-Newton Hessian of the Mahalanobis cost) of source matched into
 // target at T_target_source, over a planar motion (x, y, yaw about `pivot`) of the target frame.
+// The correspondences are each source point's nearest target point within max_correspondence_m.
 Eigen::Matrix3d planar_information(const GicpCloud& source, const GicpCloud& target, const SE3& T_target_source,
                                    const Eigen::Vector3d& pivot, double max_correspondence_m);
+// The same with the correspondences given: matches[i] is the target point of source point i or
+// kGicpNoMatch (gicp_align's `matches` at T_target_source).
+Eigen::Matrix3d planar_information(const GicpCloud& source, const GicpCloud& target, const SE3& T_target_source,
+                                   const Eigen::Vector3d& pivot, const std::vector<std::uint32_t>& matches);
 
 struct CorrectionUpdate {
   SE3 T_corrected_base = SE3::Identity();  // T_corr^t * T_odom^t (base frame)
@@ -57,8 +63,10 @@ class CorrectedOdometry {
   void reset();
 
  private:
-  // The GICP result with its poorly constrained planar directions reset to the last correction.
-  SE3 constrained_correction(const GicpCloud& current, const SE3& T_odom_base, CorrectionUpdate& u) const;
+  // The GICP result with its poorly constrained planar directions reset to the last correction;
+  // `pairs` are its correspondences at that result (gicp_align's `matches`).
+  SE3 constrained_correction(const GicpCloud& current, const SE3& T_odom_base,
+                             const std::vector<std::uint32_t>& pairs, CorrectionUpdate& u) const;
 
   CorrectedOdometryParams p_;
   SE3 T_base_sensor_;

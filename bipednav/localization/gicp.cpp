@@ -16,7 +16,7 @@ namespace {
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
 using Vector6d = Eigen::Matrix<double, 6, 1>;
 
-constexpr std::uint32_t kNoMatch = 0xffffffffu;
+constexpr std::uint32_t kNoMatch = kGicpNoMatch;
 
 // Runs fn(begin, end, worker) over [0, n) split into `threads` contiguous chunks.
 template <class Fn>
@@ -117,6 +117,16 @@ bool find_match(const GicpIndex& target, const Eigen::Vector3f& q, float max_d, 
   return d2 < max_d2;
 }
 
+// The correspondence search's distances: pairs are kept up to max_d (squared: max_d2, "<" the next
+// float up); searching a little beyond the maximum (cap) lets unmatched points skip too.
+struct MatchBounds {
+  float max_d, max_d2, cap;
+  explicit MatchBounds(const GicpParams& p)
+      : max_d(static_cast<float>(p.max_correspondence_m)),
+        max_d2(std::nextafter(max_d * max_d, std::numeric_limits<float>::infinity())),
+        cap(1.1f * max_d) {}
+};
+
 // Normal equations of the plane-to-plane cost at T (left perturbation T <- exp(delta) T), with
 // exact nearest-neighbour correspondences found through `state` (one per source point).
 Linearization linearize(const GicpCloud& source, const GicpCloud& target, const SE3& T, const GicpParams& p,
@@ -124,17 +134,14 @@ Linearization linearize(const GicpCloud& source, const GicpCloud& target, const 
   const int threads = std::max(1, p.threads);
   std::vector<Linearization> parts(static_cast<std::size_t>(threads));
   const Eigen::Matrix3d R = T.linear();
-  // The searches keep distances "< bound": the next float up keeps pairs at exactly the maximum.
-  const float max_d = static_cast<float>(p.max_correspondence_m);
-  const float max_d2 = std::nextafter(max_d * max_d, std::numeric_limits<float>::infinity());
-  const float cap = 1.1f * max_d;  // searching a little beyond the maximum lets unmatched points skip too
+  const MatchBounds b(p);
   parallel_chunks(source.size(), threads, [&](std::size_t begin, std::size_t end, std::size_t w) {
     Linearization& L = parts[w];
     for (std::size_t i = begin; i < end; ++i) {
       const Eigen::Vector3d q = T * source.points[i].cast<double>();
       std::uint32_t j = 0;
       float d2 = 0.0f;
-      if (!find_match(target.index, q.cast<float>(), max_d, max_d2, cap, state[i], j, d2)) continue;
+      if (!find_match(target.index, q.cast<float>(), b.max_d, b.max_d2, b.cap, state[i], j, d2)) continue;
       const Eigen::Matrix3d RCs = R * source.covariances[i].cast<double>();
       Eigen::Matrix3d C = target.covariances[j].cast<double>();
       C.noalias() += RCs * R.transpose();
@@ -240,7 +247,8 @@ GicpCloud transform_gicp_cloud(const GicpCloud& cloud, const SE3& T) {
   return out;
 }
 
-GicpResult gicp_align(const GicpCloud& source, const GicpCloud& target, const SE3& guess, const GicpParams& p) {
+GicpResult gicp_align(const GicpCloud& source, const GicpCloud& target, const SE3& guess, const GicpParams& p,
+                      std::vector<std::uint32_t>* matches) {
   p.validate();
   Stopwatch sw;
   const std::size_t min_points = static_cast<std::size_t>(p.covariance_neighbours);
@@ -271,6 +279,19 @@ GicpResult gicp_align(const GicpCloud& source, const GicpCloud& target, const SE
   }
   res.iterations = std::min(res.iterations, p.max_iterations);
   res.T_target_source = T;
+  if (matches) {  // at the returned pose, which the last update moved by less than the convergence step
+    matches->assign(source.size(), kNoMatch);
+    const MatchBounds b(p);
+    parallel_chunks(source.size(), std::max(1, p.threads), [&](std::size_t begin, std::size_t end, std::size_t) {
+      for (std::size_t i = begin; i < end; ++i) {
+        std::uint32_t j = 0;
+        float d2 = 0.0f;
+        if (find_match(target.index, (T * source.points[i].cast<double>()).cast<float>(), b.max_d, b.max_d2, b.cap,
+                       state[i], j, d2))
+          (*matches)[i] = j;
+      }
+    });
+  }
   res.time_ms = sw.elapsed_ms();
   return res;
 }

@@ -60,10 +60,17 @@ GicpCloud prepare_gicp_cloud(const PointCloud& cloud, const GicpParams& p);
 // The same cloud moved by T (covariances rotated, tree rebuilt).
 GicpCloud transform_gicp_cloud(const GicpCloud& cloud, const SE3& T);
 
+// No target point within max_correspondence_m (gicp_align's `matches`).
+inline constexpr std::uint32_t kGicpNoMatch = 0xffffffffu;
+
 // Aligns source to target starting from `guess` (T_target_source): Gauss-Newton with LM damping
 // on the Mahalanobis distances d_i^T (C_t + R C_s R^T)^-1 d_i, correspondences re-found every
 // iteration. Throws Error when either cloud has fewer than covariance_neighbours points.
-GicpResult gicp_align(const GicpCloud& source, const GicpCloud& target, const SE3& guess, const GicpParams& p);
+// `matches` (optional) receives per source point its nearest target point within
+// max_correspondence_m at the returned pose (kGicpNoMatch: none): the iterations' searches carry
+// over, so most are proven unchanged without a search.
+GicpResult gicp_align(const GicpCloud& source, const GicpCloud& target, const SE3& guess, const GicpParams& p,
+                      std::vector<std::uint32_t>* matches = nullptr);
 GicpResult gicp_align(const PointCloud& source, const PointCloud& target, const SE3& guess, const GicpParams& p = {});
 
 // Removes the ground before alignment (the dominant plane would otherwise decide it, reference

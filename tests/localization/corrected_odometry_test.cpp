@@ -54,6 +54,39 @@ TEST(CorrectedOdometry, KeepsTheOdometryAlongACorridor) {
   EXPECT_NEAR(u.T_corrected_base.translation().x(), 0.22, 0.002);
 }
 
+TEST(CorrectedOdometry, GicpReturnsTheCorrespondencesOfItsResult) {
+  // The matches gicp_align returns are each source point's nearest target point within the
+  // correspondence distance at the returned pose, so the information built from them equals the
+  // one built by searching again.
+  Rng rng(7);
+  GicpParams p;
+  p.max_correspondence_m = 0.1;
+  const GicpCloud target = prepare_gicp_cloud(corridor_view(SE3::Identity(), rng), p);
+  const GicpCloud source = prepare_gicp_cloud(corridor_view(make_se3(0.03, 0.01, 0, 0, 0, 0.02), rng), p);
+  std::vector<std::uint32_t> matches;
+  const GicpResult r = gicp_align(source, target, SE3::Identity(), p, &matches);
+  ASSERT_EQ(matches.size(), source.size());
+  std::size_t matched = 0;
+  const auto bound_sq = static_cast<float>(p.max_correspondence_m * p.max_correspondence_m);
+  for (std::size_t i = 0; i < source.size(); ++i) {
+    std::uint32_t j = kGicpNoMatch;
+    float d2 = 0.0f;
+    const Eigen::Vector3f q = (r.T_target_source * source.points[i].cast<double>()).cast<float>();
+    if (!target.index.nearest(q, bound_sq, j, d2)) j = kGicpNoMatch;
+    EXPECT_EQ(matches[i], j) << "source point " << i;
+    matched += j != kGicpNoMatch;
+  }
+  EXPECT_GT(matched, source.size() / 2);
+  const Eigen::Vector3d pivot(0.1, -0.2, 0.0);
+  EXPECT_EQ(planar_information(source, target, r.T_target_source, pivot, matches),
+            planar_information(source, target, r.T_target_source, pivot, p.max_correspondence_m));
+  // Matches that do not fit the clouds are an error, not a crash.
+  EXPECT_THROW(planar_information(source, target, r.T_target_source, pivot, std::vector<std::uint32_t>(3, 0)), Error);
+  std::vector<std::uint32_t> bad(source.size(), kGicpNoMatch);
+  bad[0] = static_cast<std::uint32_t>(target.size());
+  EXPECT_THROW(planar_information(source, target, r.T_target_source, pivot, bad), Error);
+}
+
 TEST(CorrectedOdometry, RejectsABadConstrainingFraction) {
   CorrectedOdometryParams p;
   p.min_constraining_fraction = 1.5;
