@@ -1,4 +1,5 @@
 // `bipednav run`: the closed loop in the simulator, and `bipednav bench scenarios`.
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -79,6 +80,9 @@ nlohmann::json to_json(const runner::RunResult& r) {
   j["recoveries"] = r.recoveries;
   j["real_time_factor"] = r.real_time_factor;
   j["wall_s"] = r.wall_s;
+  j["cpu_s"] = r.cpu_s;
+  j["cpu_real_time_factor"] = r.cpu_real_time_factor;
+  j["stage_cpu_ms"] = r.stage_cpu_ms;
   j["goals_given"] = r.goals_given;
   const sim::FaultCounters& f = r.faults;
   j["faults"] = {{"sweeps_dropped", f.sweeps_dropped},     {"depth_points_nan", f.depth_points_nan},
@@ -95,7 +99,12 @@ void print_summary(const runner::RunResult& r) {
               r.min_clearance_m, r.collisions);
   std::printf("  goal error %.3f m / %.3f rad, localization error %.3f m\n", r.goal_error_m, r.goal_error_rad,
               r.localization_error_m);
-  std::printf("  replans %zu, recoveries %zu, real-time factor %.1fx\n", r.replans, r.recoveries, r.real_time_factor);
+  std::printf("  replans %zu, recoveries %zu, real-time factor %.1fx (wall), %.1fx (CPU: %.2f s)\n", r.replans,
+              r.recoveries, r.real_time_factor, r.cpu_real_time_factor, r.cpu_s);
+  std::string stages;
+  for (const auto& [name, ms] : r.stage_cpu_ms)
+    stages += (stages.empty() ? "" : ", ") + name + " " + std::to_string(static_cast<long>(std::lround(ms)));
+  std::printf("  CPU ms per stage: %s\n", stages.c_str());
 }
 
 struct RunArgs {

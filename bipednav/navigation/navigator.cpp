@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "bipednav/common/clock.hpp"
+#include "bipednav/common/cpu_time.hpp"
 
 namespace bipednav::navigation {
 
@@ -75,17 +76,34 @@ void Navigator::cancel() {
   status_ = {NavState::IDLE, {Outcome::CTRL_CANCELED, "navigation canceled"}, ""};
 }
 
-Twist Navigator::tick(const SensorFrame& raw) {
-  const SensorFrame frame = gate_.admit(raw);  // stale, out-of-order and NaN-only data dropped
-  if (frame.stamp_s < now_s_) return cmd_;     // a frame from the past changes nothing
-  now_s_ = frame.stamp_s;
-  Stopwatch sw;
-  if (frame.odometry) localizer_.add_odometry(*frame.odometry);
-  if (frame.lidar) localizer_.add_sweep(*frame.lidar);
-  timings_.localization_ms = sw.elapsed_ms();
-  perceive(frame);
+Twist Navigator::tick(const SensorFrame& frame) {
+  Admission admitted;
+  {
+    const CpuScope cpu(cpu_.sensor_gate_ms);
+    admitted = gate_.check(frame);  // stale, out-of-order and NaN-only data dropped (no copies)
+  }
+  if (admitted.stamp_s < now_s_) return cmd_;  // a frame from the past changes nothing
+  now_s_ = admitted.stamp_s;
+  {
+    const CpuScope cpu(cpu_.localization_ms);
+    Stopwatch sw;
+    if (admitted.odometry) localizer_.add_odometry(*frame.odometry);
+    if (admitted.lidar) localizer_.add_sweep(*frame.lidar);
+    timings_.localization_ms = sw.elapsed_ms();
+  }
+  perception_in_.stamp_s = admitted.stamp_s;
+  perception_in_.lidar = admitted.lidar ? &*frame.lidar : nullptr;
+  perception_in_.depth.clear();
+  for (std::size_t i = 0; i < frame.depth.size(); ++i)
+    if (admitted.depth[i]) perception_in_.depth.push_back(&frame.depth[i]);
+  perceive(perception_in_);
+  perception_in_.lidar = nullptr;  // the pointers are only valid during this tick
+  perception_in_.depth.clear();
   update_maps();
-  if (control_gate_.ready(now_s_)) control();
+  if (control_gate_.ready(now_s_)) {
+    const CpuScope cpu(cpu_.control_ms);
+    control();
+  }
   return cmd_;
 }
 
@@ -103,9 +121,16 @@ mapping::Observation observation_for(const perception::SensorSource& src, const 
 
 void append_points(std::vector<mapping::Observation>& obs, const std::vector<perception::SensorSource>& sources,
                    const PointCloud& cloud, const std::vector<std::uint8_t>& source_of, const SE3& T_map_base,
-                   bool marking) {
+                   bool marking, std::vector<std::vector<Eigen::Vector3f>>& spare) {
   const std::size_t first = obs.size();
-  for (const auto& s : sources) obs.push_back(observation_for(s, T_map_base, marking));
+  for (const auto& s : sources) {
+    obs.push_back(observation_for(s, T_map_base, marking));
+    if (!spare.empty()) {  // a buffer of an earlier observation: no allocation (and page faults) again
+      obs.back().points_map = std::move(spare.back());
+      obs.back().points_map.clear();
+      spare.pop_back();
+    }
+  }
   const Eigen::Matrix3f R = T_map_base.linear().cast<float>();
   const Eigen::Vector3f t = T_map_base.translation().cast<float>();
   for (std::size_t i = 0; i < cloud.size(); ++i) {
@@ -114,42 +139,52 @@ void append_points(std::vector<mapping::Observation>& obs, const std::vector<per
   }
 }
 
+// Empties `obs`, keeping the point buffers in `spare`.
+void recycle(std::vector<mapping::Observation>& obs, std::vector<std::vector<Eigen::Vector3f>>& spare) {
+  for (auto& o : obs)
+    if (o.points_map.capacity() > 0 && spare.size() < 64) spare.push_back(std::move(o.points_map));
+  obs.clear();
+}
+
 }  // namespace
 
-void Navigator::perceive(const SensorFrame& frame) {
-  if (!frame.lidar && frame.depth.empty()) return;
+void Navigator::perceive(const perception::PerceptionInput& in) {
+  if (!in.lidar && in.depth.empty()) return;
+  const CpuScope cpu(cpu_.perception_ms);
   Stopwatch sw;
-  perception_out_ = perception_.process(frame, robot_);
+  perception_.process(in, robot_, perception_out_);
   timings_.perception_ms = sw.elapsed_ms();
   const SE3 T_map_base = se3_from_pose2(localizer_.T_map_base());
   // Obstacles mark and clear; ground returns only clear (so a moved obstacle leaves no trail).
   const std::size_t first = local_obs_.size();
   append_points(local_obs_, perception_out_.sources, perception_out_.obstacles, perception_out_.obstacle_source,
-                T_map_base, true);
-  if (frame.lidar) {
+                T_map_base, true, spare_points_);
+  if (in.lidar) {
     // The global map takes the LiDAR's obstacle observation of this frame, already in the map frame.
-    lidar_obs_.clear();
+    recycle(lidar_obs_, spare_points_);
     for (std::size_t i = 0; i < perception_out_.sources.size(); ++i)
       if (perception_out_.sources[i].name == lidar_name_) lidar_obs_.push_back(local_obs_[first + i]);
   }
   append_points(local_obs_, perception_out_.sources, perception_out_.ground, perception_out_.ground_source, T_map_base,
-                false);
+                false, spare_points_);
 }
 
 void Navigator::update_maps() {
   const Pose2 pose = localizer_.T_map_base();
   if (local_gate_.ready(now_s_)) {
+    const CpuScope cpu(cpu_.local_map_ms);
     Stopwatch sw;
     track_moving_obstacles();
     local_.update(pose, local_obs_);
-    local_obs_.clear();
+    recycle(local_obs_, spare_points_);
     timings_.local_map_ms = sw.elapsed_ms();
   }
   if (global_gate_.ready(now_s_)) {
+    const CpuScope cpu(cpu_.global_map_ms);
     Stopwatch sw;
     map_ready_ = map_ready_ || !lidar_obs_.empty() || now_s_ >= 1.0;
     server_->add_global_changes(global_.update(pose, lidar_obs_, &local_));
-    lidar_obs_.clear();
+    recycle(lidar_obs_, spare_points_);
     timings_.global_map_ms = sw.elapsed_ms();
   }
 }

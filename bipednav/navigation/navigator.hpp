@@ -55,6 +55,16 @@ struct NavigatorTimings {
   double perception_ms = 0.0, localization_ms = 0.0, local_map_ms = 0.0, global_map_ms = 0.0, control_ms = 0.0;
 };
 
+// Process CPU time per stage summed over every tick so far (cpu_time.hpp). `control` is the
+// behavior tree with the planners it runs (D* Lite, TEB) and the moving-obstacle yield.
+struct NavigatorCpu {
+  double sensor_gate_ms = 0.0, localization_ms = 0.0, perception_ms = 0.0, local_map_ms = 0.0, global_map_ms = 0.0,
+         control_ms = 0.0;
+  double total_ms() const {
+    return sensor_gate_ms + localization_ms + perception_ms + local_map_ms + global_map_ms + control_ms;
+  }
+};
+
 // The navigation pipeline of ARCHITECTURE.md. Each tick reads one step of sensor data and runs
 // perceive -> localize -> map -> plan -> control, every stage at its own rate on the frames'
 // clock. Planning and control are driven by the behavior tree (move_base) through the
@@ -81,7 +91,8 @@ class Navigator {
   const std::optional<Pose2>& goal() const { return goal_; }
   std::size_t replans() const { return server_->plans(); }
   std::size_t recoveries() const { return server_->recoveries(); }
-  const NavigatorTimings& timings() const { return timings_; }
+  const NavigatorTimings& timings() const { return timings_; }  // wall time of the last run of each stage
+  const NavigatorCpu& cpu() const { return cpu_; }
   const BehaviorTree& tree() const { return *tree_; }
   bool localization_healthy() const { return localizer_.healthy(now_s_); }
   const SensorGate& sensor_gate() const { return gate_; }
@@ -89,7 +100,7 @@ class Navigator {
   const planning::local::MovingObstacleTracker& moving_obstacles() const { return *moving_; }
 
  private:
-  void perceive(const SensorFrame& frame);
+  void perceive(const perception::PerceptionInput& in);
   void update_maps();
   void track_moving_obstacles();
   Twist yield_to_moving_obstacles(const Twist& cmd) const;
@@ -110,11 +121,14 @@ class Navigator {
   std::unique_ptr<BehaviorTree> tree_;
   RateGate local_gate_, global_gate_, control_gate_;
   perception::PerceptionOutput perception_out_;
+  perception::PerceptionInput perception_in_;  // this tick's admitted clouds (buffer kept between ticks)
   std::vector<mapping::Observation> local_obs_, lidar_obs_;
+  std::vector<std::vector<Eigen::Vector3f>> spare_points_;  // point buffers of used observations, for reuse
   std::optional<Pose2> goal_;
   Path global_path_;
   NavStatus status_;
   NavigatorTimings timings_;
+  NavigatorCpu cpu_;
   Twist cmd_;
   double now_s_ = 0.0;
   std::string lidar_name_;  // the profile's vlp16 mount

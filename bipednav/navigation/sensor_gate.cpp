@@ -10,11 +10,17 @@ namespace {
 constexpr const char* kOdometry = "odometry";
 constexpr const char* kLidar = "lidar";
 
-double valid_ratio(const PointCloud& cloud) {
-  if (cloud.points.empty()) return 0.0;
+// At least `min_ratio` of the points are finite (counting stops once that is certain).
+bool enough_valid(const PointCloud& cloud, double min_ratio) {
+  const std::size_t n = cloud.points.size();
+  if (n == 0) return min_ratio <= 0.0;
+  const double need = min_ratio * static_cast<double>(n);
   std::size_t finite = 0;
-  for (const auto& p : cloud.points) finite += p.allFinite() ? 1 : 0;
-  return static_cast<double>(finite) / static_cast<double>(cloud.points.size());
+  for (std::size_t i = 0; i < n; ++i) {
+    if (static_cast<double>(finite) >= need) return true;
+    finite += cloud.points[i].allFinite() ? 1 : 0;
+  }
+  return static_cast<double>(finite) >= need;
 }
 
 }  // namespace
@@ -49,9 +55,10 @@ bool SensorGate::fresh(double stamp_s, double now_s, double& last_s) {
   return true;
 }
 
-SensorFrame SensorGate::admit(const SensorFrame& frame) {
-  SensorFrame out;
+Admission SensorGate::check(const SensorFrame& frame) {
+  Admission out;
   out.stamp_s = frame.stamp_s;
+  out.depth.assign(frame.depth.size(), 0);
   if (!std::isfinite(frame.stamp_s) || frame.stamp_s < last_frame_s_) {
     ++counters_.frames_out_of_order;
     out.stamp_s = last_frame_s_;
@@ -65,25 +72,37 @@ SensorFrame SensorGate::admit(const SensorFrame& frame) {
   const double now = frame.stamp_s;
   if (frame.odometry) {
     auto& last = last_stamp_s_.try_emplace(kOdometry, -1e300).first->second;
-    if (fresh(frame.odometry->stamp_s, now, last)) out.odometry = frame.odometry;
+    out.odometry = fresh(frame.odometry->stamp_s, now, last);
   }
   if (frame.lidar) {
     auto& last = last_stamp_s_.try_emplace(kLidar, -1e300).first->second;
     if (fresh(frame.lidar->stamp_s, now, last)) {
-      out.lidar = frame.lidar;
+      out.lidar = true;
       if (!lidar_.empty()) last_valid_s_[lidar_] = now;
     }
   }
-  for (const DepthCloud& d : frame.depth) {
+  for (std::size_t i = 0; i < frame.depth.size(); ++i) {
+    const DepthCloud& d = frame.depth[i];
     auto& last = last_stamp_s_.try_emplace("depth:" + d.camera, -1e300).first->second;
     if (!fresh(d.cloud.stamp_s, now, last)) continue;
-    if (valid_ratio(d.cloud) < params_.min_valid_ratio) {
+    if (!enough_valid(d.cloud, params_.min_valid_ratio)) {
       ++counters_.invalid;
       continue;
     }
-    out.depth.push_back(d);
+    out.depth[i] = 1;
     if (auto it = last_valid_s_.find(d.camera); it != last_valid_s_.end()) it->second = now;
   }
+  return out;
+}
+
+SensorFrame SensorGate::admit(const SensorFrame& frame) {
+  const Admission a = check(frame);
+  SensorFrame out;
+  out.stamp_s = a.stamp_s;
+  if (a.odometry) out.odometry = frame.odometry;
+  if (a.lidar) out.lidar = frame.lidar;
+  for (std::size_t i = 0; i < frame.depth.size(); ++i)
+    if (a.depth[i]) out.depth.push_back(frame.depth[i]);
   return out;
 }
 

@@ -20,6 +20,13 @@ struct SensorGateCounters {
   std::size_t stale = 0, out_of_order = 0, invalid = 0, frames_out_of_order = 0;
 };
 
+// Which parts of a frame the gate admitted, without copies of the clouds.
+struct Admission {
+  double stamp_s = 0.0;  // the frame's stamp; a frame from the past gets the previous frame's
+  bool odometry = false, lidar = false;
+  std::vector<std::uint8_t> depth;  // one per frame.depth entry: 1 = admitted
+};
+
 // Admits sensor data into the navigator: drops messages that are stale, stamped before the
 // previous message of the same source, or not finite, and depth clouds that are (almost)
 // all NaN; tracks when each range sensor last delivered valid data.
@@ -28,8 +35,10 @@ class SensorGate {
   // `lidar` names the LiDAR mount (empty: none); `depth_cameras` the depth mounts.
   SensorGate(SensorGateParams params, const std::string& lidar, const std::vector<std::string>& depth_cameras);
 
-  // The admitted part of `frame` (same stamp). Frames stamped before the previous frame are
-  // dropped whole.
+  // Which parts of `frame` are admitted (same stamp). Frames stamped before the previous frame
+  // are dropped whole.
+  Admission check(const SensorFrame& frame);
+  // The admitted part of `frame` as a copy (check() plus the copies).
   SensorFrame admit(const SensorFrame& frame);
   // Every range sensor delivered valid data within the timeout (all count as fresh at start).
   bool all_alive(double now_s) const;

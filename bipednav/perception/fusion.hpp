@@ -7,6 +7,7 @@
 
 #include "bipednav/common/point_cloud.hpp"
 #include "bipednav/common/se3.hpp"
+#include "bipednav/perception/pass_through.hpp"
 
 namespace bipednav::perception {
 
@@ -28,9 +29,9 @@ struct FusedCloud {
 };
 
 // Transforms `in` (in the sensor frame) by T_base_sensor and appends it to `out` with a new source
-// entry; non-finite points are skipped. Returns the index of the source. Throws Error beyond 255
-// sources.
+// entry; non-finite points, and those failing `crop` (in the sensor frame) when given, are skipped.
+// Returns the index of the source. Throws Error beyond 255 sources.
 std::size_t append_sensor_cloud(FusedCloud& out, const PointCloud& in, const SE3& T_base_sensor,
-                                const std::string& name, double max_range_m);
+                                const std::string& name, double max_range_m, const PassThroughTest* crop = nullptr);
 
 }  // namespace bipednav::perception

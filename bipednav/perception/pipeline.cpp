@@ -10,6 +10,8 @@ namespace bipednav::perception {
 void PerceptionParams::validate() const {
   depth_voxel.validate();
   ransac.validate();
+  require(depth_decimation >= 1 && depth_decimation <= 8, "depth_decimation", "in [1, 8] (1 = off)");
+  require(depth_image_width >= 1, "depth_image_width", ">= 1 pixel");
   require(depth_max_range_m > 0.0, "depth_max_range_m", "> 0 m");
   require(lidar_min_range_m >= 0.0 && lidar_min_range_m < lidar_max_range_m, "lidar_min_range_m",
           ">= 0 and < lidar_max_range_m");
@@ -33,18 +35,26 @@ void PerceptionPipeline::add_depth(FusedCloud& fused, const DepthCloud& depth, c
   if (!mount)
     throw Error("perception: depth cloud from camera '" + depth.camera + "', which robot profile '" + robot.name +
                 "' does not mount");
-  for (const auto& p : depth.cloud.points) out.depth_points_in += p.allFinite() ? 1u : 0u;
+  const PointCloud* cloud = &depth.cloud;
+  const auto width = static_cast<std::size_t>(params_.depth_image_width);
+  if (params_.depth_decimation > 1 && !cloud->empty() && cloud->size() % width == 0) {
+    out.depth_points_in += decimate_depth(*cloud, params_.depth_image_width, params_.depth_decimation, decimated_);
+    cloud = &decimated_;
+  } else {  // not decimated (off, or not an organised cloud of this width): every point goes on
+    for (const auto& p : cloud->points) out.depth_points_in += p.allFinite() ? 1u : 0u;
+  }
+  out.depth_points_decimated += cloud == &decimated_ ? decimated_.size() : cloud->size();
   // Range first (section 4.2.2), then the voxel grid (4.2.1): the far, sparse points that the range
   // limit drops would each fill a voxel of their own, so this order does the same work cheaper.
   PassThroughParams range;
   range.max_range_m = params_.depth_max_range_m;
   const PassThroughTest crop(range);
-  depth_voxel_.filter(depth.cloud, voxels_, &crop);
+  depth_voxel_.filter(*cloud, voxels_, &crop);
   out.depth_points_voxel += voxels_.size();
   append_sensor_cloud(fused, voxels_, mount->T_base_sensor(), mount->name, params_.depth_max_range_m);
 }
 
-void PerceptionPipeline::add_lidar(FusedCloud& fused, const PointCloud& sweep, const RobotProfile& robot) const {
+void PerceptionPipeline::add_lidar(FusedCloud& fused, const PointCloud& sweep, const RobotProfile& robot) {
   const SensorMount* mount = robot.sensor("lidar");
   for (const auto& s : robot.sensors)
     if (!mount && s.type == "vlp16") mount = &s;
@@ -52,13 +62,16 @@ void PerceptionPipeline::add_lidar(FusedCloud& fused, const PointCloud& sweep, c
   PassThroughParams range;
   range.min_range_m = params_.lidar_min_range_m;
   range.max_range_m = params_.lidar_max_range_m;
-  PointCloud kept = pass_through(sweep, range);
+  const PassThroughTest crop(range);
   if (params_.lidar_voxel_m > 0.0) {
     VoxelGridParams v;
     v.leaf_size_m.setConstant(params_.lidar_voxel_m);
-    kept = voxel_downsample(kept, v);
+    VoxelGrid(v).filter(sweep, lidar_kept_, &crop);
+    append_sensor_cloud(fused, lidar_kept_, mount->T_base_sensor(), mount->name, params_.lidar_max_range_m);
+    return;
   }
-  append_sensor_cloud(fused, kept, mount->T_base_sensor(), mount->name, params_.lidar_max_range_m);
+  // The range filter while fusing: no copy of the sweep (with its time offsets and rings).
+  append_sensor_cloud(fused, sweep, mount->T_base_sensor(), mount->name, params_.lidar_max_range_m, &crop);
 }
 
 void PerceptionPipeline::choose_plane(const PlaneFit& fit, PerceptionOutput& out) const {
@@ -91,17 +104,38 @@ void PerceptionPipeline::classify(const FusedCloud& fused, double robot_height_m
 }
 
 PerceptionOutput PerceptionPipeline::process(const SensorFrame& frame, const RobotProfile& robot) {
-  const Stopwatch total;
+  PerceptionInput in;
+  in.stamp_s = frame.stamp_s;
+  in.lidar = frame.lidar ? &*frame.lidar : nullptr;
+  for (const DepthCloud& d : frame.depth) in.depth.push_back(&d);
   PerceptionOutput out;
+  process(in, robot, out);
+  return out;
+}
+
+void PerceptionPipeline::process(const PerceptionInput& in, const RobotProfile& robot, PerceptionOutput& out) {
+  const Stopwatch total;
+  for (PointCloud* c : {&out.obstacles, &out.ground}) {
+    c->clear();
+    c->frame_id = "base_link";
+    c->stamp_s = in.stamp_s;
+  }
+  out.obstacle_source.clear();
+  out.ground_source.clear();
+  out.ground_plane = ground_plane_z0();
+  out.plane_from_ransac = false;
+  out.ground_inliers = out.depth_points_in = out.depth_points_decimated = out.depth_points_voxel = 0;
+  out.timings = {};
   FusedCloud& fused = fused_;
   fused.cloud.clear();
   fused.source.clear();
   fused.sources.clear();
   Stopwatch sw;
-  for (const DepthCloud& d : frame.depth) add_depth(fused, d, robot, out);
+  for (const DepthCloud* d : in.depth)
+    if (d) add_depth(fused, *d, robot, out);
   out.timings.depth_ms = sw.elapsed_ms();
   sw.restart();
-  if (frame.lidar) add_lidar(fused, *frame.lidar, robot);
+  if (in.lidar) add_lidar(fused, *in.lidar, robot);
   out.timings.lidar_ms = sw.elapsed_ms();
   sw.restart();
   RansacParams ransac = params_.ransac;
@@ -110,15 +144,10 @@ PerceptionOutput PerceptionPipeline::process(const SensorFrame& frame, const Rob
   choose_plane(fit, out);
   out.timings.segmentation_ms = sw.elapsed_ms();
   sw.restart();
-  for (PointCloud* c : {&out.obstacles, &out.ground}) {
-    c->frame_id = "base_link";
-    c->stamp_s = frame.stamp_s;
-  }
   classify(fused, robot.height_m, out);
   out.sources = fused.sources;
   out.timings.classification_ms = sw.elapsed_ms();
   out.timings.total_ms = total.elapsed_ms();
-  return out;
 }
 
 }  // namespace bipednav::perception

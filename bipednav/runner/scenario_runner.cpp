@@ -1,8 +1,10 @@
 #include "bipednav/runner/scenario_runner.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "bipednav/common/clock.hpp"
+#include "bipednav/common/cpu_time.hpp"
 #include "bipednav/common/progress.hpp"
 #include "bipednav/io/robot_profile_yaml.hpp"
 
@@ -60,6 +62,7 @@ bool path_changed(const Path& before, const Path& after) {
 }  // namespace
 
 RunResult run_scenario(const sim::Scenario& scenario, const RunOptions& o) {
+  const double cpu_start_ms = process_cpu_ms();
   RunResult out;
   out.scenario = scenario.name;
   const RobotProfile robot = load_robot(o.robot.empty() ? scenario.robot : o.robot, o.config_dir);
@@ -83,14 +86,21 @@ RunResult run_scenario(const sim::Scenario& scenario, const RunOptions& o) {
   Path last_path;
   double next_trace = 0.0;
   Stopwatch wall;
+  const double cpu_loop_ms = process_cpu_ms();
+  double sim_ms = 0.0, nav_ms = 0.0;
   ProgressBar bar("simulating " + scenario.name, static_cast<std::size_t>(limit * 10), o.progress);
   while (sim.now_s() < limit) {
     for (; next_goal < goals.size() && goals[next_goal].time_s <= sim.now_s(); ++next_goal) {
       ++out.goals_given;
       nav.set_goal(goals[next_goal].pose);
     }
+    const double t0_ms = process_cpu_ms();
     const SensorFrame frame = faults.empty() ? sim.step(cmd) : injector.apply(sim.step(cmd));
+    const double t1_ms = process_cpu_ms();
     cmd = nav.tick(frame);
+    const double t2_ms = process_cpu_ms();
+    sim_ms += t1_ms - t0_ms;
+    nav_ms += t2_ms - t1_ms;
     if (o.on_step) o.on_step(sim, frame, nav, cmd);
     out.path_length_m += distance(last, sim.true_pose());
     last = sim.true_pose();
@@ -116,6 +126,24 @@ RunResult run_scenario(const sim::Scenario& scenario, const RunOptions& o) {
   out.wall_s = wall.elapsed_ms() / 1000.0;
   out.time_s = sim.now_s();
   out.real_time_factor = out.wall_s > 0 ? out.time_s / out.wall_s : 0.0;
+  const double cpu_end_ms = process_cpu_ms();
+  out.cpu_s = (cpu_end_ms - cpu_start_ms) / 1000.0;
+  out.cpu_real_time_factor = out.cpu_s > 0 ? out.time_s / out.cpu_s : 0.0;
+  const sim::SimulationStats& ss = sim.stats();
+  const navigation::NavigatorCpu& nc = nav.cpu();
+  auto& st = out.stage_cpu_ms;
+  st["setup"] = cpu_loop_ms - cpu_start_ms;
+  st["sim_lidar"] = ss.lidar_cpu_ms;
+  st["sim_depth"] = ss.depth_cpu_ms;
+  st["sim_rest"] = std::max(0.0, sim_ms - ss.lidar_cpu_ms - ss.depth_cpu_ms);
+  st["sensor_gate"] = nc.sensor_gate_ms;
+  st["localization"] = nc.localization_ms;
+  st["perception"] = nc.perception_ms;
+  st["local_map"] = nc.local_map_ms;
+  st["global_map"] = nc.global_map_ms;
+  st["control"] = nc.control_ms;
+  // Navigator time outside its stages (building the perception input) goes with the runner.
+  st["runner"] = std::max(0.0, (cpu_end_ms - cpu_loop_ms) - sim_ms - nc.total_ms());
   out.first_collision = sim.first_collision();
   out.collisions = out.first_collision ? 1 : 0;
   out.min_clearance_m = sim.min_clearance_m();

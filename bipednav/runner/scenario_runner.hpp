@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -61,7 +62,14 @@ struct RunResult {
   double goal_error_m = 0.0, goal_error_rad = 0.0;
   double localization_error_m = 0.0;  // estimated vs true pose at the end
   std::size_t replans = 0, recoveries = 0;
-  double real_time_factor = 0.0, wall_s = 0.0;
+  double real_time_factor = 0.0, wall_s = 0.0;  // simulated time / wall time (says little on a shared machine)
+  // Process CPU time of the run (setup and loop; not the figure) and simulated time / cpu_s.
+  double cpu_s = 0.0, cpu_real_time_factor = 0.0;
+  // Process CPU per stage in ms, summing to at most cpu_s: setup (world, sensors, navigator),
+  // sim_lidar, sim_depth, sim_rest (robot, odometry, collisions, fault injection), sensor_gate,
+  // localization, perception (with the split into observations), local_map, global_map,
+  // control (behavior tree, D* Lite, TEB) and runner (recording the run).
+  std::map<std::string, double> stage_cpu_ms;
   std::size_t goals_given = 0;
   sim::FaultCounters faults;  // what the fault injector did
   std::vector<TraceSample> trace;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "bipednav/common/cpu_time.hpp"
 #include "bipednav/common/error.hpp"
 
 namespace bipednav::sim {
@@ -78,6 +79,7 @@ SensorFrame Simulation::step(const Twist& cmd) {
   if (lidar_) {
     const SE3 T_base_lidar = lidar_mount_->T_base_sensor();
     const Stopwatch sw;
+    const CpuScope cpu(stats_.lidar_cpu_ms);
     frame.lidar = lidar_->fire_until(t1, caster_, [&](double t) { return pose_at(t) * T_base_lidar; });
     stats_.lidar_ms += sw.elapsed_ms();
     if (frame.lidar) ++stats_.lidar_sweeps;
@@ -85,6 +87,7 @@ SensorFrame Simulation::step(const Twist& cmd) {
   for (Camera& c : cameras_) {
     while (c.camera.next_capture_s() < t1) {
       const Stopwatch sw;
+      const CpuScope cpu(stats_.depth_cpu_ms);
       const double t = c.camera.next_capture_s();
       frame.depth.push_back(DepthCloud{c.mount.name, c.camera.capture(pose_at(t) * c.mount.T_base_sensor(), caster_)});
       stats_.depth_ms += sw.elapsed_ms();

@@ -44,13 +44,15 @@ struct CollisionEvent {
   double penetration_m = 0.0;   // -clearance at detection (>= 0)
 };
 
-// Wall-clock cost of the sensors, for benchmarks.
+// Cost of the sensors, for benchmarks: wall clock, and process CPU time (see cpu_time.hpp).
 struct SimulationStats {
   std::uint64_t steps = 0;
   std::uint64_t lidar_sweeps = 0;
   double lidar_ms = 0.0;  // total time firing LiDAR columns
   std::uint64_t depth_images = 0;
-  double depth_ms = 0.0;  // total time rendering depth images
+  double depth_ms = 0.0;      // total time rendering depth images
+  double lidar_cpu_ms = 0.0;  // the same two in process CPU time
+  double depth_cpu_ms = 0.0;
 };
 
 // The built-in simulator on simulated time. Each step(): the actors move to the step's start
