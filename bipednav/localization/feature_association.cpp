@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 #include <array>
 #include <cmath>
+#include <limits>
 
 #include "bipednav/common/error.hpp"
 
@@ -21,19 +22,41 @@ struct LocalFit {
   Eigen::Matrix3d eigenvectors = Eigen::Matrix3d::Identity();
 };
 
-bool fit_neighbours(const KdTree3f& tree, const Eigen::Vector3d& q, const AssociationParams& p, LocalFit& f) {
+// The k nearest reference points, all within max_correspondence_m: false when there are fewer.
+bool nearest_within(const KdTree3f& tree, const Eigen::Vector3f& q, std::size_t k, float max_sq, std::uint32_t* idx,
+                    float* d2) {
+  return tree.knn(q, k, idx, d2) == k && d2[k - 1] <= max_sq;
+}
+
+bool nearest_within(const PointKdTree& tree, const Eigen::Vector3f& q, std::size_t k, float max_sq, std::uint32_t* idx,
+                    float* d2) {
+  // knn() keeps points strictly closer than the bound; points at exactly max_correspondence_m count.
+  return tree.knn(q, k, idx, d2, std::nextafter(max_sq, std::numeric_limits<float>::infinity())) == k;
+}
+
+bool nearest_within(const MovedPoints& moved, const Eigen::Vector3f& q, std::size_t k, float max_sq, std::uint32_t* idx,
+                    float* d2) {
+  if (moved.tree->size() != moved.positions->size()) return false;
+  return nearest_within(*moved.tree, q, k, max_sq, idx, d2);
+}
+
+template <class Tree>
+bool fit_neighbours(const Tree& tree, const Eigen::Vector3d& q, const AssociationParams& p, LocalFit& f) {
   std::array<float, kMaxNeighbours> d2{};
   const std::size_t k = std::min<std::size_t>(static_cast<std::size_t>(p.neighbours), kMaxNeighbours);
-  f.n = tree.knn(q.cast<float>(), k, f.idx.data(), d2.data());
-  if (f.n < k || d2[f.n - 1] > static_cast<float>(p.max_correspondence_m * p.max_correspondence_m)) return false;
-  for (std::size_t i = 0; i < f.n; ++i) f.mean += tree.point(f.idx[i]).cast<double>();
+  const auto max_sq = static_cast<float>(p.max_correspondence_m * p.max_correspondence_m);
+  if (!nearest_within(tree, q.cast<float>(), k, max_sq, f.idx.data(), d2.data())) return false;
+  f.n = k;
+  for (std::size_t i = 0; i < f.n; ++i) f.mean += tree.point(f.idx[i]).template cast<double>();
   f.mean /= static_cast<double>(f.n);
   Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
   for (std::size_t i = 0; i < f.n; ++i) {
-    const Eigen::Vector3d d = tree.point(f.idx[i]).cast<double>() - f.mean;
-    cov += d * d.transpose();
+    const Eigen::Vector3d d = tree.point(f.idx[i]).template cast<double>() - f.mean;
+    cov.noalias() += d * d.transpose();
   }
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(cov / static_cast<double>(f.n));
+  // The closed-form 3x3 solver: the iterative one costs several times more per correspondence.
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
+  es.computeDirect(cov / static_cast<double>(f.n));
   f.eigenvalues = es.eigenvalues();
   f.eigenvectors = es.eigenvectors();
   return true;
@@ -60,8 +83,11 @@ void AssociationParams::validate() const {
   require(edge_weight >= 0.0 && edge_weight <= 1.0, "edge_weight", "in [0, 1]");
 }
 
-bool edge_correspondence(const KdTree3f& edges, const Eigen::Vector3d& point, double s, const Eigen::Vector3d& q,
-                         const AssociationParams& p, Constraint& out, const ViewCheck* view) {
+namespace {
+
+template <class Tree>
+bool edge_match(const Tree& edges, const Eigen::Vector3d& point, double s, const Eigen::Vector3d& q,
+                const AssociationParams& p, Constraint& out, const ViewCheck* view) {
   LocalFit f;
   if (edges.empty() || !fit_neighbours(edges, q, p, f)) return false;
   if (f.eigenvalues(2) < p.min_line_ratio * f.eigenvalues(1)) return false;
@@ -76,13 +102,15 @@ bool edge_correspondence(const KdTree3f& edges, const Eigen::Vector3d& point, do
   return true;
 }
 
-bool planar_correspondence(const KdTree3f& planars, const Eigen::Vector3d& point, double s, const Eigen::Vector3d& q,
-                           const AssociationParams& p, Constraint& out, const ViewCheck* view) {
+template <class Tree>
+bool planar_match(const Tree& planars, const Eigen::Vector3d& point, double s, const Eigen::Vector3d& q,
+                  const AssociationParams& p, Constraint& out, const ViewCheck* view) {
   LocalFit f;
   if (planars.empty() || !fit_neighbours(planars, q, p, f)) return false;
   const Eigen::Vector3d normal = f.eigenvectors.col(0);
   for (std::size_t t = 0; t < f.n; ++t)
-    if (std::abs(normal.dot(planars.point(f.idx[t]).cast<double>() - f.mean)) > p.max_plane_deviation_m) return false;
+    if (std::abs(normal.dot(planars.point(f.idx[t]).template cast<double>() - f.mean)) > p.max_plane_deviation_m)
+      return false;
   if (!seen_from_this_side(f, normal, view)) return false;
   out.point = point;  // the patch's plane (eq. 4.7) through its centroid
   out.s = s;
@@ -91,6 +119,38 @@ bool planar_correspondence(const KdTree3f& planars, const Eigen::Vector3d& point
   out.is_line = false;
   out.weight = 1.0;
   return true;
+}
+
+}  // namespace
+
+bool edge_correspondence(const KdTree3f& edges, const Eigen::Vector3d& point, double s, const Eigen::Vector3d& q,
+                         const AssociationParams& p, Constraint& out, const ViewCheck* view) {
+  return edge_match(edges, point, s, q, p, out, view);
+}
+
+bool edge_correspondence(const PointKdTree& edges, const Eigen::Vector3d& point, double s, const Eigen::Vector3d& q,
+                         const AssociationParams& p, Constraint& out, const ViewCheck* view) {
+  return edge_match(edges, point, s, q, p, out, view);
+}
+
+bool planar_correspondence(const KdTree3f& planars, const Eigen::Vector3d& point, double s, const Eigen::Vector3d& q,
+                           const AssociationParams& p, Constraint& out, const ViewCheck* view) {
+  return planar_match(planars, point, s, q, p, out, view);
+}
+
+bool planar_correspondence(const PointKdTree& planars, const Eigen::Vector3d& point, double s, const Eigen::Vector3d& q,
+                           const AssociationParams& p, Constraint& out, const ViewCheck* view) {
+  return planar_match(planars, point, s, q, p, out, view);
+}
+
+bool edge_correspondence(const MovedPoints& edges, const Eigen::Vector3d& point, double s, const Eigen::Vector3d& q,
+                         const AssociationParams& p, Constraint& out, const ViewCheck* view) {
+  return edge_match(edges, point, s, q, p, out, view);
+}
+
+bool planar_correspondence(const MovedPoints& planars, const Eigen::Vector3d& point, double s, const Eigen::Vector3d& q,
+                           const AssociationParams& p, Constraint& out, const ViewCheck* view) {
+  return planar_match(planars, point, s, q, p, out, view);
 }
 
 }  // namespace bipednav::localization

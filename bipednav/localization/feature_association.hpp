@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "bipednav/localization/kdtree.hpp"
+#include "bipednav/localization/point_kdtree.hpp"
 #include "bipednav/localization/registration_lm.hpp"
 
 namespace bipednav::localization {
@@ -33,9 +34,30 @@ struct ViewCheck {
 // constraint keeps `point` and `s` (the motion is applied to them by the solver). With `view`,
 // a patch is rejected unless all its points were seen from the side of its plane the sensor is
 // on now (an edge: from the same half-space).
+// Points indexed by a kd-tree built on earlier positions of the same points (indexed alike):
+// neighbours are searched in the tree, then fitted at `positions`. For points that moved a little
+// since (the reference sweep re-de-skewed with a refined motion): rebuilding the tree every
+// correspondence round would cost more than the association itself.
+struct MovedPoints {
+  const PointKdTree* tree = nullptr;
+  const std::vector<Eigen::Vector3f>* positions = nullptr;
+  bool empty() const { return tree == nullptr || positions == nullptr || tree->empty(); }
+  const Eigen::Vector3f& point(std::size_t i) const { return (*positions)[i]; }
+};
+
+// Either kd-tree gives the same neighbours (PointKdTree bounds its search by the correspondence
+// distance, so a feature without a match costs little).
 bool edge_correspondence(const KdTree3f& edges, const Eigen::Vector3d& point, double s, const Eigen::Vector3d& q,
                          const AssociationParams& p, Constraint& out, const ViewCheck* view = nullptr);
+bool edge_correspondence(const PointKdTree& edges, const Eigen::Vector3d& point, double s, const Eigen::Vector3d& q,
+                         const AssociationParams& p, Constraint& out, const ViewCheck* view = nullptr);
 bool planar_correspondence(const KdTree3f& planars, const Eigen::Vector3d& point, double s, const Eigen::Vector3d& q,
+                           const AssociationParams& p, Constraint& out, const ViewCheck* view = nullptr);
+bool planar_correspondence(const PointKdTree& planars, const Eigen::Vector3d& point, double s, const Eigen::Vector3d& q,
+                           const AssociationParams& p, Constraint& out, const ViewCheck* view = nullptr);
+bool edge_correspondence(const MovedPoints& edges, const Eigen::Vector3d& point, double s, const Eigen::Vector3d& q,
+                         const AssociationParams& p, Constraint& out, const ViewCheck* view = nullptr);
+bool planar_correspondence(const MovedPoints& planars, const Eigen::Vector3d& point, double s, const Eigen::Vector3d& q,
                            const AssociationParams& p, Constraint& out, const ViewCheck* view = nullptr);
 
 }  // namespace bipednav::localization

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 
 #include "bipednav/common/error.hpp"
 
@@ -59,17 +58,26 @@ struct RegionSelection {
   std::vector<int> sharp, map;
 };
 
-// Picks up to max and max * factor points of one sub-region, in the order of `order`.
-RegionSelection select(const std::vector<int>& order, const std::vector<double>& c, bool edges,
-                       const std::vector<Eigen::Vector3f>& pts, const FeatureParams& p, std::vector<char>& picked) {
+// Picks up to max and max * factor points of one sub-region from `candidates` (the points past
+// the threshold), best first: the candidates are ordered lazily, a chunk at a time, since the
+// selection usually stops long before it has seen them all.
+template <class Better>
+RegionSelection select(std::vector<int>& candidates, Better better, bool edges, const std::vector<Eigen::Vector3f>& pts,
+                       const FeatureParams& p, std::vector<char>& picked) {
   RegionSelection sel;
   const int max_sharp = edges ? p.max_edges_per_region : p.max_planars_per_region;
-  const int max_map = max_sharp * p.map_feature_factor;
-  for (int i : order) {
-    if (static_cast<int>(sel.map.size()) >= max_map) break;
-    const double ci = c[static_cast<std::size_t>(i)];
-    if (picked[static_cast<std::size_t>(i)] || ci < 0.0) continue;
-    if (edges ? ci <= p.edge_threshold : ci >= p.planar_threshold) break;
+  const auto max_map = static_cast<std::size_t>(max_sharp * p.map_feature_factor);
+  std::size_t sorted = 0;
+  for (std::size_t n = 0; n < candidates.size() && sel.map.size() < max_map; ++n) {
+    if (n == sorted) {
+      const std::size_t chunk = std::min(candidates.size() - sorted, std::max<std::size_t>(2 * max_map, 16));
+      const auto first = candidates.begin() + static_cast<std::ptrdiff_t>(sorted);
+      const auto middle = first + static_cast<std::ptrdiff_t>(chunk);
+      std::partial_sort(first, middle, candidates.end(), better);
+      sorted += chunk;
+    }
+    const int i = candidates[n];
+    if (picked[static_cast<std::size_t>(i)]) continue;
     if (static_cast<int>(sel.sharp.size()) < max_sharp) sel.sharp.push_back(i);
     sel.map.push_back(i);
     picked[static_cast<std::size_t>(i)] = 1;
@@ -88,16 +96,27 @@ void process_ring(const PointCloud& sweep, const std::vector<std::uint32_t>& idx
   const std::vector<double> c = ring_smoothness(pts, k);
   std::vector<char> picked(idx.size(), 0);
   mark_unreliable(pts, p, picked);
+  std::vector<int> sharp, flat;
   for (int r = 0; r < p.sub_regions; ++r) {
     const int begin = k + (n - 2 * k) * r / p.sub_regions;
     const int end = k + (n - 2 * k) * (r + 1) / p.sub_regions;
-    std::vector<int> order(static_cast<std::size_t>(std::max(0, end - begin)));
-    std::iota(order.begin(), order.end(), begin);
-    std::sort(order.begin(), order.end(),
-              [&](int a, int b) { return c[static_cast<std::size_t>(a)] > c[static_cast<std::size_t>(b)]; });
-    const RegionSelection e = select(order, c, true, pts, p, picked);
-    std::reverse(order.begin(), order.end());
-    const RegionSelection f = select(order, c, false, pts, p, picked);
+    // Edges: the sharpest points above edge_threshold; planars: the flattest below
+    // planar_threshold (points without a smoothness, c < 0, are neither).
+    sharp.clear();
+    flat.clear();
+    for (int i = begin; i < end; ++i) {
+      const double ci = c[static_cast<std::size_t>(i)];
+      if (ci > p.edge_threshold)
+        sharp.push_back(i);
+      else if (ci >= 0.0 && ci < p.planar_threshold)
+        flat.push_back(i);
+    }
+    const RegionSelection e = select(
+        sharp, [&](int a, int b) { return c[static_cast<std::size_t>(a)] > c[static_cast<std::size_t>(b)]; }, true, pts,
+        p, picked);
+    const RegionSelection f = select(
+        flat, [&](int a, int b) { return c[static_cast<std::size_t>(a)] < c[static_cast<std::size_t>(b)]; }, false, pts,
+        p, picked);
     for (int i : e.sharp) out.edges.push_back_from(sweep, idx[static_cast<std::size_t>(i)]);
     for (int i : e.map) out.map_edges.push_back_from(sweep, idx[static_cast<std::size_t>(i)]);
     for (int i : f.sharp) out.planars.push_back_from(sweep, idx[static_cast<std::size_t>(i)]);
@@ -125,13 +144,19 @@ void FeatureParams::validate() const {
 std::vector<double> ring_smoothness(const std::vector<Eigen::Vector3f>& ring, int k) {
   const int n = static_cast<int>(ring.size());
   std::vector<double> c(ring.size(), -1.0);
+  if (k < 1 || n < 2 * k + 1) return c;
+  // sum_{j != i} (x_i - x_j) over the window = (2k + 1) x_i - (window sum), the window sums from
+  // prefix sums: O(n) instead of O(n k).
+  std::vector<Eigen::Vector3d> prefix(ring.size() + 1);
+  prefix[0].setZero();
+  for (std::size_t i = 0; i < ring.size(); ++i) prefix[i + 1] = prefix[i] + ring[i].cast<double>();
   for (int i = k; i + k < n; ++i) {
-    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-    const Eigen::Vector3d xi = ring[static_cast<std::size_t>(i)].cast<double>();
-    for (int j = i - k; j <= i + k; ++j)
-      if (j != i) sum += xi - ring[static_cast<std::size_t>(j)].cast<double>();
+    const auto u = static_cast<std::size_t>(i);
+    const Eigen::Vector3d xi = ring[u].cast<double>();
+    const Eigen::Vector3d sum =
+        (2.0 * k + 1.0) * xi - (prefix[u + static_cast<std::size_t>(k) + 1] - prefix[u - static_cast<std::size_t>(k)]);
     const double r = xi.norm();
-    if (r > 0.0) c[static_cast<std::size_t>(i)] = sum.norm() / (2.0 * k * r);  // eq. 4.5
+    if (r > 0.0) c[u] = sum.norm() / (2.0 * k * r);  // eq. 4.5
   }
   return c;
 }
@@ -174,11 +199,16 @@ LoamFeatures extract_features(const PointCloud& sweep, const FeatureParams& p) {
   std::vector<float> key(sweep.size());
   for (std::size_t i = 0; i < sweep.size(); ++i)
     key[i] = sweep.has_time() ? sweep.time_offsets_s[i] : std::atan2(sweep.points[i].y(), sweep.points[i].x());
-  PointCloud with_rings = sweep;
-  with_rings.rings = rings;
+  PointCloud with_rings;
+  if (!sweep.has_ring()) {
+    with_rings = sweep;
+    with_rings.rings = rings;
+  }
+  const PointCloud& source = sweep.has_ring() ? sweep : with_rings;
+  const auto earlier = [&](std::uint32_t a, std::uint32_t b) { return key[a] < key[b]; };
   for (auto& idx : per_ring) {
-    std::stable_sort(idx.begin(), idx.end(), [&](std::uint32_t a, std::uint32_t b) { return key[a] < key[b]; });
-    process_ring(with_rings, idx, p, out);
+    if (!std::is_sorted(idx.begin(), idx.end(), earlier)) std::stable_sort(idx.begin(), idx.end(), earlier);
+    process_ring(source, idx, p, out);
   }
   return out;
 }

@@ -58,8 +58,8 @@ LoamMapping::LoamMapping(MappingParams p) : p_(std::move(p)), edge_map_(p_.edge_
 void LoamMapping::reset() {
   edge_map_.clear();
   planar_map_.clear();
-  edge_tree_ = KdTree3f();
-  planar_tree_ = KdTree3f();
+  edge_tree_ = PointKdTree();
+  planar_tree_ = PointKdTree();
 }
 
 std::vector<Constraint> LoamMapping::associate(const PointCloud& edges, const PointCloud& planars, const SE3& T) const {
@@ -85,8 +85,8 @@ void LoamMapping::insert(const PointCloud& edges, const PointCloud& planars, con
   for (const auto& p : planars.points) planar_map_.insert((T * p.cast<double>()).cast<float>(), centre);
   edge_map_.crop(centre, p_.map_radius_m);
   planar_map_.crop(centre, p_.map_radius_m);
-  edge_tree_ = KdTree3f(edge_map_.points());
-  planar_tree_ = KdTree3f(planar_map_.points());
+  edge_tree_ = PointKdTree(edge_map_.points());
+  planar_tree_ = PointKdTree(planar_map_.points());
 }
 
 namespace {

@@ -8,7 +8,7 @@
 #include "bipednav/common/point_cloud.hpp"
 #include "bipednav/common/se3.hpp"
 #include "bipednav/localization/feature_association.hpp"
-#include "bipednav/localization/kdtree.hpp"
+#include "bipednav/localization/point_kdtree.hpp"
 #include "bipednav/localization/registration_lm.hpp"
 
 namespace bipednav::localization {
@@ -87,7 +87,7 @@ class LoamMapping {
 
   MappingParams p_;
   VoxelPointMap edge_map_, planar_map_;
-  KdTree3f edge_tree_, planar_tree_;
+  PointKdTree edge_tree_, planar_tree_;
 };
 
 }  // namespace bipednav::localization

@@ -25,9 +25,16 @@ PointCloud deskew_to_end(const PointCloud& cloud, const SE3& T_start_end, double
   const Vector6d x = se3_to_motion(T_start_end);
   const SE3 T_end_start = T_start_end.inverse();
   PointCloud out = cloud;
+  // One transform per distinct time: a VLP-16 sweep comes column by column, 16 points at a time.
+  double last_s = -1.0;
+  SE3 A = SE3::Identity();
   for (std::size_t i = 0; i < out.size(); ++i) {
     const double s = time_fraction(cloud, i, scan_period_s);
-    out.points[i] = (T_end_start * apply_motion(x, s, cloud.points[i].cast<double>())).cast<float>();
+    if (s != last_s) {
+      A = T_end_start * motion_to_se3(x, s);
+      last_s = s;
+    }
+    out.points[i] = (A * cloud.points[i].cast<double>()).cast<float>();
   }
   return out;
 }
@@ -45,22 +52,48 @@ void LoamOdometry::set_reference(const LoamFeatures& f, const SE3& T_start_end) 
   ref_planars_ = deskew_to_end(f.map_planars, T_start_end, p_.scan_period_s);
 }
 
+namespace {
+
+// The reference's features de-skewed with the motion being estimated, and kd-trees over them.
+// The trees are rebuilt only when a point moved more than kRebuildM since they were built:
+// neighbours are searched among the tree's positions and fitted at the current ones.
+struct MovingReference {
+  static constexpr float kRebuildM = 0.05f;
+  PointKdTree tree;
+  std::vector<Eigen::Vector3f> positions;
+
+  void update(const PointCloud& raw, const SE3& T, double scan_period_s) {
+    positions = deskew_to_end(raw, T, scan_period_s).points;
+    bool rebuild = tree.size() != positions.size();
+    for (std::size_t i = 0; i < positions.size() && !rebuild; ++i)
+      rebuild = (positions[i] - tree.point(i)).squaredNorm() > kRebuildM * kRebuildM;
+    if (rebuild) tree = PointKdTree(positions);
+  }
+  MovedPoints points() const { return {&tree, &positions}; }
+};
+
+}  // namespace
+
 std::vector<Constraint> LoamOdometry::associate(const LoamFeatures& f, const Vector6d& x) const {
+  // Kept between calls (rounds and sweeps): a tree is reused only while update() finds every
+  // point within kRebuildM of where the tree has it, whatever cloud it was built from.
+  thread_local MovingReference edge_ref, planar_ref;
   const SE3 T = motion_to_se3(x);
-  const KdTree3f edge_tree(deskew_to_end(raw_edges_, T, p_.scan_period_s).points);
-  const KdTree3f planar_tree(deskew_to_end(raw_planars_, T, p_.scan_period_s).points);
+  edge_ref.update(raw_edges_, T, p_.scan_period_s);
+  planar_ref.update(raw_planars_, T, p_.scan_period_s);
+  const MovedPoints edge_points = edge_ref.points(), planar_points = planar_ref.points();
   std::vector<Constraint> cs;
   cs.reserve(f.edges.size() + f.planars.size());
   Constraint c;
   for (std::size_t i = 0; i < f.edges.size(); ++i) {
     const Eigen::Vector3d p = f.edges.points[i].cast<double>();
     const double s = time_fraction(f.edges, i, p_.scan_period_s);
-    if (edge_correspondence(edge_tree, p, s, apply_motion(x, s, p), p_.association, c)) cs.push_back(c);
+    if (edge_correspondence(edge_points, p, s, apply_motion(x, s, p), p_.association, c)) cs.push_back(c);
   }
   for (std::size_t i = 0; i < f.planars.size(); ++i) {
     const Eigen::Vector3d p = f.planars.points[i].cast<double>();
     const double s = time_fraction(f.planars, i, p_.scan_period_s);
-    if (planar_correspondence(planar_tree, p, s, apply_motion(x, s, p), p_.association, c)) cs.push_back(c);
+    if (planar_correspondence(planar_points, p, s, apply_motion(x, s, p), p_.association, c)) cs.push_back(c);
   }
   return cs;
 }

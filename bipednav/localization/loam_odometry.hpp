@@ -3,8 +3,8 @@
 #include "bipednav/common/point_cloud.hpp"
 #include "bipednav/common/se3.hpp"
 #include "bipednav/localization/feature_association.hpp"
-#include "bipednav/localization/kdtree.hpp"
 #include "bipednav/localization/loam_features.hpp"
+#include "bipednav/localization/point_kdtree.hpp"
 #include "bipednav/localization/registration_lm.hpp"
 
 namespace bipednav::localization {

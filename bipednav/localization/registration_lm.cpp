@@ -15,10 +15,35 @@ Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
   return K;
 }
 
+// exp(theta^) = I + a theta^ + b theta^2 (Rodrigues) with a = sin|theta| / |theta| and
+// b = (1 - cos|theta|) / |theta|^2. Per-sweep rotations are small, where the series (truncation
+// below 1e-13) replaces sin and cos: this runs once per point and constraint.
+struct RodriguesCoefficients {
+  double a = 1.0, b = 0.5;
+  explicit RodriguesCoefficients(const Eigen::Vector3d& theta) {
+    const double t2 = theta.squaredNorm();
+    if (t2 < 0.0625) {  // |theta| < 0.25 rad
+      a = 1.0 - t2 / 6.0 * (1.0 - t2 / 20.0 * (1.0 - t2 / 42.0 * (1.0 - t2 / 72.0)));
+      b = 0.5 * (1.0 - t2 / 12.0 * (1.0 - t2 / 30.0 * (1.0 - t2 / 56.0 * (1.0 - t2 / 90.0))));
+    } else {
+      const double angle = std::sqrt(t2);
+      a = std::sin(angle) / angle;
+      b = (1.0 - std::cos(angle)) / t2;
+    }
+  }
+};
+
 Eigen::Matrix3d rodrigues(const Eigen::Vector3d& theta) {
-  const double angle = theta.norm();
-  if (angle < 1e-12) return Eigen::Matrix3d::Identity() + skew(theta);
-  return Eigen::AngleAxisd(angle, theta / angle).toRotationMatrix();
+  const RodriguesCoefficients c(theta);
+  const Eigen::Matrix3d K = skew(theta);
+  return Eigen::Matrix3d::Identity() + c.a * K + c.b * K * K;
+}
+
+// exp(theta^) p without forming the matrix.
+Eigen::Vector3d rotate(const Eigen::Vector3d& theta, const Eigen::Vector3d& p) {
+  const RodriguesCoefficients c(theta);
+  const Eigen::Vector3d tp = theta.cross(p);
+  return p + c.a * tp + c.b * theta.cross(tp);
 }
 
 // Derivative of the constraint distance with respect to the moved point.
@@ -45,7 +70,7 @@ NormalEquations linearize(const std::vector<Constraint>& cs, const Vector6d& x, 
     ne.g.noalias() += prior.weight * prior.A.transpose() * r;
   }
   for (const auto& k : cs) {
-    const Eigen::Vector3d rp = rodrigues(k.s * x.tail<3>()) * k.point;
+    const Eigen::Vector3d rp = rotate(k.s * x.tail<3>(), k.point);
     const Eigen::Vector3d q = rp + k.s * x.head<3>();
     const double r = constraint_distance(k, q);
     const double w = k.weight * bisquare_weight(r, c);
@@ -63,7 +88,7 @@ NormalEquations linearize(const std::vector<Constraint>& cs, const Vector6d& x, 
 }  // namespace
 
 Eigen::Vector3d apply_motion(const Vector6d& x, double s, const Eigen::Vector3d& p) {
-  return rodrigues(s * x.tail<3>()) * p + s * x.head<3>();
+  return rotate(s * x.tail<3>(), p) + s * x.head<3>();
 }
 
 SE3 motion_to_se3(const Vector6d& x, double s) {
