@@ -233,4 +233,63 @@ TEST(MovingObstacles, OfSeveralSafeCommandsTheClosestToThePlannersIsKept) {
   EXPECT_FALSE(y.target.linear_x == cmd.linear_x && y.target.angular_z == cmd.angular_z);
 }
 
+TEST(MovingObstacles, TheLaneRemembersWhereMovingObstaclesWereAndTheSweepAddsTheirPredictions) {
+  // A box running 1.5 m along x at 0.3 m/s next to a static post: the lane holds samples along
+  // the box's track (not at the post), at most one per lane_spacing_m; the sweep adds its
+  // prediction up to max_prediction_s ahead. Samples older than lane_memory_s are forgotten.
+  MovingObstacleParams params = enabled_tracking();
+  params.lane_memory_s = 6.0;
+  MovingObstacleTracker tracker(params);
+  const Eigen::Vector2d v(0.3, 0.0);
+  for (int k = 0; k <= 50; ++k) {
+    std::vector<Eigen::Vector2d> pts;
+    add_square(pts, Eigen::Vector2d(-1.0, 0.5) + v * (0.1 * k), 0.15, k);
+    add_square(pts, {0.0, -1.0}, 0.3, k);
+    tracker.update(pts, {0.0, 0.0}, 0.1 * k);
+  }
+  const auto& lane = tracker.lane();
+  ASSERT_GE(lane.size(), 8u);
+  EXPECT_LE(lane.size(), 16u);  // 1.5 m of track, 0.1 m spacing
+  for (const auto& s : lane) {
+    EXPECT_NEAR(s.position.y(), 0.5, 0.05);
+    EXPECT_GE(s.position.x(), -1.0);
+    EXPECT_LE(s.position.x(), 0.55);
+  }
+  const auto sweep = tracker.sweep(5.0);
+  double furthest = -1e9;
+  for (const auto& s : sweep) furthest = std::max(furthest, s.position.x());
+  EXPECT_NEAR(furthest, 0.5 + 0.3 * params.max_prediction_s, 0.1);
+  // Twelve seconds later nothing moving was seen for longer than the memory.
+  tracker.update({}, {0.0, 0.0}, 12.0);
+  EXPECT_TRUE(tracker.lane().empty());
+  EXPECT_TRUE(tracker.sweep(12.0).empty());
+}
+
+TEST(MovingObstacles, TheYieldPrefersWaitingOutsideTheObstaclesLane) {
+  // In a 0.9 m corridor a box comes head-on (1.9 m ahead, 0.3 m/s) along the lane it has run in
+  // before (x >= 0.3). Stopping or creeping is safe for the horizon but waits where the box will
+  // pass; with the lane known the robot backs out of it (hexagon_dynamic: back out of the box's
+  // lane between the cylinders rather than wait in it).
+  auto map = test::empty_costmap(0.0, 0.0, 8.0);
+  test::add_box(map, -3.0, 0.45, 3.0, 0.7);
+  test::add_box(map, -3.0, -0.7, 3.0, -0.45);
+  DynamicAvoidanceParams p;
+  p.robot_radius_m = 0.2;
+  const auto tracker = tracker_with({2.5, 0.0}, {-0.3, 0.0}, 2.0);
+  const auto moving = tracker->moving(2.0);
+  ASSERT_EQ(moving.size(), 1u);
+  std::vector<LaneSample> lane;
+  for (double x = 0.3; x <= 3.0; x += 0.1) lane.push_back({{x, 0.0}, 0.1, 0.0});
+  const CommandLimits lim{0.5, 0.25, 0.8, 0.5, 1.0};
+  const Twist cmd{0.5, 0.0, 0.0};
+  const auto without = yield_to_moving_obstacles(cmd, {0, 0, 0}, {}, moving, map, lim, 0.1, 2.0, p);
+  const auto with = yield_to_moving_obstacles(cmd, {0, 0, 0}, {}, moving, map, lim, 0.1, 2.0, p, &lane);
+  ASSERT_TRUE(without.modified);
+  ASSERT_TRUE(with.modified);
+  EXPECT_TRUE(std::isinf(without.ttc_s));
+  EXPECT_TRUE(std::isinf(with.ttc_s));
+  EXPECT_GE(without.target.linear_x, 0.0) << without.target.linear_x << " " << without.target.angular_z;
+  EXPECT_LT(with.target.linear_x, 0.0) << with.target.linear_x << " " << with.target.angular_z;
+}
+
 }  // namespace bipednav::planning::local
