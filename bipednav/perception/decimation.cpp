@@ -17,11 +17,16 @@ inline float range2_or_inf(const Eigen::Vector3f& p) {
   return r2 <= std::numeric_limits<float>::max() && p.allFinite() ? r2 : std::numeric_limits<float>::infinity();
 }
 
+// Compare-exchange without branches (the order of the ranges in a block is random: branches
+// would mispredict half the time).
 inline void sort2(float& a, std::uint32_t& ia, float& b, std::uint32_t& ib) {
-  if (b < a) {
-    std::swap(a, b);
-    std::swap(ia, ib);
-  }
+  const bool swap = b < a;
+  const float lo = swap ? b : a, hi = swap ? a : b;
+  const std::uint32_t ilo = swap ? ib : ia, ihi = swap ? ia : ib;
+  a = lo;
+  b = hi;
+  ia = ilo;
+  ib = ihi;
 }
 
 // Factor 2, the common case: each 2 x 2 block is sorted by a 5-comparator network (the non-finite
