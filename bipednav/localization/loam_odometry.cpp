@@ -30,11 +30,17 @@ PointCloud deskew_to_end(const PointCloud& cloud, const SE3& T_start_end, double
   SE3 A = SE3::Identity();
   for (std::size_t i = 0; i < out.size(); ++i) {
     const double s = time_fraction(cloud, i, scan_period_s);
+    const Eigen::Vector3d p = cloud.points[i].cast<double>();
     if (s != last_s) {
+      const bool shared = i + 1 < out.size() && time_fraction(cloud, i + 1, scan_period_s) == s;
+      if (!shared) {  // a time of its own (feature clouds): move the point, no transform to compose
+        out.points[i] = (T_end_start * apply_motion(x, s, p)).cast<float>();
+        continue;
+      }
       A = T_end_start * motion_to_se3(x, s);
       last_s = s;
     }
-    out.points[i] = (A * cloud.points[i].cast<double>()).cast<float>();
+    out.points[i] = (A * p).cast<float>();
   }
   return out;
 }

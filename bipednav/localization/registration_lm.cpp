@@ -35,8 +35,10 @@ struct RodriguesCoefficients {
 
 Eigen::Matrix3d rodrigues(const Eigen::Vector3d& theta) {
   const RodriguesCoefficients c(theta);
-  const Eigen::Matrix3d K = skew(theta);
-  return Eigen::Matrix3d::Identity() + c.a * K + c.b * K * K;
+  // theta^ theta^ = theta theta^T - |theta|^2 I
+  Eigen::Matrix3d R = c.b * theta * theta.transpose() + c.a * skew(theta);
+  R.diagonal().array() += 1.0 - c.b * theta.squaredNorm();
+  return R;
 }
 
 // exp(theta^) p without forming the matrix.
