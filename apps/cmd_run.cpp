@@ -107,10 +107,24 @@ void print_summary(const runner::RunResult& r) {
   std::printf("  CPU ms per stage: %s\n", stages.c_str());
 }
 
+// The run's 10 Hz trace as CSV: true and estimated pose, command and the behavior tree's active leaf.
+void write_trace_csv(const std::filesystem::path& file, const std::vector<runner::TraceSample>& trace) {
+  std::ofstream out(file);
+  if (!out) throw Error("cannot write " + file.string());
+  out << "t_s,x_m,y_m,yaw_rad,est_x_m,est_y_m,est_yaw_rad,cmd_vx_mps,cmd_vy_mps,cmd_wz_radps,active_leaf\n";
+  char row[320];
+  for (const auto& t : trace) {
+    std::snprintf(row, sizeof row, "%.2f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,", t.t_s, t.true_pose.x,
+                  t.true_pose.y, t.true_pose.theta, t.estimated_pose.x, t.estimated_pose.y, t.estimated_pose.theta,
+                  t.cmd.linear_x, t.cmd.linear_y, t.cmd.angular_z);
+    out << row << t.active_leaf << "\n";
+  }
+}
+
 struct RunArgs {
   std::string scenario = "hexagon_static";
   std::string out = "out";
-  std::string world, start = "0,0,0", goal, bag, replay;
+  std::string world, start = "0,0,0", goal, bag, replay, trace;
   runner::RunOptions options;
   std::vector<std::string> faults;  // type:start_s:duration_s[:value]
   std::uint64_t seed = 0;
@@ -153,6 +167,7 @@ void run_command(const RunArgs& a) {
   const auto dir = std::filesystem::path(a.out);
   std::ofstream(dir / "run.json") << to_json(r).dump(2) << "\n";
   runner::write_run_figure(dir / "run.png", s, r);
+  if (!a.trace.empty()) write_trace_csv(a.trace, r.trace);
   print_summary(r);
   std::printf("  wrote %s and %s\n", (dir / "run.json").c_str(), (dir / "run.png").c_str());
   if (replay) {
@@ -219,6 +234,8 @@ void add_run_commands(CLI::App& app, CLI::App& bench) {
       "(value dx,dy,dyaw), odometry_slip, stale_timestamps, out_of_order_timestamps, goal_flood); repeatable");
   run->add_option("--bag", args->bag, "Record the run as a rosbag (ROS build only)");
   run->add_option("--replay", args->replay, "Write a self-contained HTML replay of the run to this file");
+  run->add_option("--trace", args->trace,
+                  "Write the 10 Hz trace (true and estimated pose, command, active tree leaf) to this CSV file");
   run->callback([args] {
     if (!args->world.empty() && args->goal.empty()) throw Error("--world needs --goal x,y,yaw");
     run_command(*args);

@@ -11,17 +11,7 @@ void Costmap2D::shift_origin(double new_origin_x_m, double new_origin_y_m, std::
   const int dx = static_cast<int>(std::floor((new_origin_x_m - geometry_.origin_x_m) / res + 0.5));
   const int dy = static_cast<int>(std::floor((new_origin_y_m - geometry_.origin_y_m) / res + 0.5));
   if (dx == 0 && dy == 0) return;
-  std::vector<std::uint8_t> shifted(cost_.size(), fill);
-  for (int y = 0; y < geometry_.height; ++y) {
-    const int sy = y + dy;
-    if (sy < 0 || sy >= geometry_.height) continue;
-    for (int x = 0; x < geometry_.width; ++x) {
-      const int sx = x + dx;
-      if (sx < 0 || sx >= geometry_.width) continue;
-      shifted[geometry_.index(x, y)] = cost_[geometry_.index(sx, sy)];
-    }
-  }
-  cost_.swap(shifted);
+  shift_cells(cost_, geometry_, dx, dy, fill);
   geometry_.origin_x_m += dx * res;
   geometry_.origin_y_m += dy * res;
 }

@@ -13,6 +13,24 @@ inline constexpr std::uint8_t kInscribed = 253;
 inline constexpr std::uint8_t kLethal = 254;
 inline constexpr std::uint8_t kUnknown = 255;
 
+// Moves a row-major grid of cells by (dx, dy) whole cells: the cell (x, y) takes the value of
+// (x + dx, y + dy), and cells shifted in from outside take `fill` (a rolling window's move).
+template <typename T>
+void shift_cells(std::vector<T>& cells, const GridGeometry& g, int dx, int dy, const T& fill) {
+  if (dx == 0 && dy == 0) return;
+  std::vector<T> shifted(cells.size(), fill);
+  for (int y = 0; y < g.height; ++y) {
+    const int sy = y + dy;
+    if (sy < 0 || sy >= g.height) continue;
+    for (int x = 0; x < g.width; ++x) {
+      const int sx = x + dx;
+      if (sx < 0 || sx >= g.width) continue;
+      shifted[g.index(x, y)] = cells[g.index(sx, sy)];
+    }
+  }
+  cells.swap(shifted);
+}
+
 // A changed cell: its coordinates and the cost before and after the update.
 struct CellChange {
   Cell cell;

@@ -80,6 +80,7 @@ CellRect GlobalCostmap::merge_local(const LocalCostmap& local) {
   const CellRect win = CellRect{lo->x, lo->y, hi->x + 1, hi->y + 1}.clipped(g);
   if (win.empty()) return changed;
   merge_.assign(static_cast<std::size_t>(win.width()) * win.height(), 0);
+  merge_bands_.assign(merge_.size(), HeightBand{});
   const auto& seen = local.observed();
   for (int y = 0; y < lg.height; ++y) {
     for (int x = 0; x < lg.width; ++x) {
@@ -88,14 +89,21 @@ CellRect GlobalCostmap::merge_local(const LocalCostmap& local) {
       const Eigen::Vector2d w = lg.cell_center(x, y);
       const auto c = g.world_to_cell(w.x(), w.y());
       if (!c || !win.contains(c->x, c->y)) continue;
-      merge_[static_cast<std::size_t>(c->y - win.y0) * win.width() + (c->x - win.x0)] |= v == kLethal ? 2 : 1;
+      const std::size_t k = static_cast<std::size_t>(c->y - win.y0) * win.width() + (c->x - win.x0);
+      merge_[k] |= v == kLethal ? 2 : 1;
+      if (v == kLethal) merge_bands_[k].include(local.obstacle_band(x, y));
     }
   }
   for (int y = win.y0; y < win.y1; ++y) {
     for (int x = win.x0; x < win.x1; ++x) {
-      const std::uint8_t f = merge_[static_cast<std::size_t>(y - win.y0) * win.width() + (x - win.x0)];
+      const std::size_t k = static_cast<std::size_t>(y - win.y0) * win.width() + (x - win.x0);
+      const std::uint8_t f = merge_[k];
       if (f == 0) continue;
       const std::uint8_t target = (f & 2) ? kLethal : kFree;
+      // The local obstacle's heights come along, so the global LiDAR rays clear it only where
+      // they cross those heights.
+      if (target == kLethal)
+        obstacle_layer_.include_band(occupancy_, x, y, merge_bands_[k], occupancy_.cost(x, y) != kLethal);
       if (occupancy_.cost(x, y) != target) {
         occupancy_.set_cost(x, y, target);
         changed.include(x, y);

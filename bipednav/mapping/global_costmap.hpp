@@ -24,8 +24,9 @@ struct GlobalCostmapParams {
   double cost_scaling_factor = 3.0;
   double obstacle_max_range_m = 10.0;
   double raytrace_max_range_m = 12.0;
-  bool lidar_clearing = true;  // clear along LiDAR rays (false: LiDAR only marks)
-  bool merge_local = true;     // copy the local map's obstacles and free cells in
+  bool height_aware_clearing = false;  // see ObstacleLayerParams
+  bool lidar_clearing = true;          // clear along LiDAR rays (false: LiDAR only marks)
+  bool merge_local = true;             // copy the local map's obstacles and free cells in
   std::string unknown_cost_mode = "free";
   double rate_hz = 2.0;
 
@@ -33,7 +34,9 @@ struct GlobalCostmapParams {
   static GlobalCostmapParams for_robot(const RobotProfile& robot);
   UnknownCostMode unknown_mode() const { return parse_unknown_cost_mode(unknown_cost_mode); }
   InflationParams inflation() const { return {inscribed_radius_m, inflation_radius_m, cost_scaling_factor}; }
-  ObstacleLayerParams obstacle_layer() const { return {obstacle_max_range_m, raytrace_max_range_m}; }
+  ObstacleLayerParams obstacle_layer() const {
+    return {obstacle_max_range_m, raytrace_max_range_m, height_aware_clearing};
+  }
 };
 
 // A fixed grid holding walls and large obstructions. Its occupancy layer is three-state
@@ -74,8 +77,9 @@ class GlobalCostmap {
   Inflator inflator_;
   Costmap2D occupancy_;
   Costmap2D costmap_;
-  Costmap2D next_;                   // scratch: recomputed final costs of the dirty region
-  std::vector<std::uint8_t> merge_;  // scratch: per global cell, local free (1) / lethal (2) seen
+  Costmap2D next_;                       // scratch: recomputed final costs of the dirty region
+  std::vector<std::uint8_t> merge_;      // scratch: per global cell, local free (1) / lethal (2) seen
+  std::vector<HeightBand> merge_bands_;  // scratch: per global cell, the heights of the local obstacles
 };
 
 }  // namespace bipednav::mapping

@@ -19,13 +19,16 @@ struct LocalCostmapParams {
   double cost_scaling_factor = 3.0;
   double obstacle_max_range_m = 4.0;
   double raytrace_max_range_m = 5.0;
+  bool height_aware_clearing = false;  // see ObstacleLayerParams
   double rate_hz = 10.0;
 
   void validate() const;
   // Defaults with the inscribed radius taken from the robot's footprint.
   static LocalCostmapParams for_robot(const RobotProfile& robot);
   InflationParams inflation() const { return {inscribed_radius_m, inflation_radius_m, cost_scaling_factor}; }
-  ObstacleLayerParams obstacle_layer() const { return {obstacle_max_range_m, raytrace_max_range_m}; }
+  ObstacleLayerParams obstacle_layer() const {
+    return {obstacle_max_range_m, raytrace_max_range_m, height_aware_clearing};
+  }
 };
 
 // Obstacle layer (marking + ray-trace clearing) and inflation on an axis-aligned window of the
@@ -43,6 +46,8 @@ class LocalCostmap {
   const Costmap2D& obstacles() const { return obstacles_; }  // kLethal at obstacles, kFree elsewhere
   // Three-state layer: kUnknown (not seen since the cell entered the window), kFree, kLethal.
   const Costmap2D& observed() const { return layer_; }
+  // The heights an obstacle cell of observed() was seen at (empty when not known).
+  const HeightBand& obstacle_band(int x, int y) const { return obstacle_layer_.band(x, y); }
   const GridGeometry& geometry() const { return costmap_.geometry(); }
   const LocalCostmapParams& params() const { return params_; }
 

@@ -2,6 +2,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "bipednav/mapping/cell_rect.hpp"
@@ -17,13 +18,38 @@ struct Observation {
   double max_range_m = 1e9;  // the sensor's own range: returns farther than this are ignored
   bool marking = true;
   bool clearing = true;
+  // Keep the heights the returns were seen at (height-aware clearing, see ObstacleLayer). Off for
+  // moving obstacles: a walker seen only at leg height by a depth camera must be cleared by the
+  // LiDAR rays that cross its old cells higher up, or it leaves a trail.
+  bool keep_heights = true;
 };
 
 struct ObstacleLayerParams {
   double obstacle_max_range_m = 4.0;  // mark only returns closer than this (3D distance to the origin)
   double raytrace_max_range_m = 5.0;  // clear along rays at most this long (longer rays are clipped)
+  // Keep each obstacle cell's band of seen heights and let a ray clear it only where it crosses
+  // that band (see ObstacleLayer). Off by default: it keeps low obstacles the LiDAR passes over
+  // (turtlebot3_world's 0.5 m cylinders), but also low false marks only a depth camera can clear,
+  // and the walkers' runs got worse with it (README, "Mapping").
+  bool height_aware_clearing = false;
 
   void validate() const;
+};
+
+// The heights (map frame) at which the returns that marked a cell were seen; empty = not known.
+struct HeightBand {
+  float lo = std::numeric_limits<float>::infinity();
+  float hi = -std::numeric_limits<float>::infinity();
+
+  bool empty() const { return lo > hi; }
+  void include(float z) {
+    lo = std::min(lo, z);
+    hi = std::max(hi, z);
+  }
+  void include(const HeightBand& b) {
+    lo = std::min(lo, b.lo);
+    hi = std::max(hi, b.hi);
+  }
 };
 
 // Marking and ray-trace clearing on a three-state grid (kUnknown = never seen, kFree = seen free,
@@ -32,6 +58,12 @@ struct ObstacleLayerParams {
 // from the sensor to the return, not the return's own cell; a ray longer than the raytrace range
 // (or leaving the grid) is clipped and frees its whole clipped length. Returns outside the grid,
 // beyond the ranges, or with a NaN coordinate are ignored.
+//
+// With height_aware_clearing (a 2.5D voxel layer), each obstacle cell keeps the band of heights its
+// returns were seen at, and a ray frees it only where the ray crosses the cell within that band.
+// A LiDAR ray passing over a 0.5 m cylinder seen by a depth camera says nothing about the
+// cylinder, and a plain 2D ray trace would erase it. Obstacle cells with no known band (set by
+// someone else) are freed by any ray, as in 2D.
 class ObstacleLayer {
  public:
   explicit ObstacleLayer(const ObstacleLayerParams& params = {});
@@ -42,11 +74,20 @@ class ObstacleLayer {
 
   const ObstacleLayerParams& params() const { return params_; }
 
+  // The height band of cell (x, y) of the grid last updated (empty when unknown).
+  const HeightBand& band(int x, int y) const;
+  // Widens cell (x, y)'s band: obstacles copied into the grid from elsewhere keep their heights.
+  // With `reset` the cell's old band is dropped first (the cell was not an obstacle before).
+  void include_band(const Costmap2D& grid, int x, int y, const HeightBand& b, bool reset);
+
  private:
+  void follow(const Costmap2D& grid);  // bands follow the grid's size and rolling-window moves
   void clear_observation(Costmap2D& grid, const Observation& obs, CellRect& changed);
-  void mark_observation(Costmap2D& grid, const Observation& obs, CellRect& changed) const;
+  void mark_observation(Costmap2D& grid, const Observation& obs, CellRect& changed);
 
   ObstacleLayerParams params_;
+  GridGeometry band_geometry_;
+  std::vector<HeightBand> bands_;      // per cell of band_geometry_
   std::vector<std::uint32_t> traced_;  // per cell: stamp of the last observation that traced a ray to it
   std::uint32_t stamp_ = 0;
 };

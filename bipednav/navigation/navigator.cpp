@@ -1,5 +1,6 @@
 #include "bipednav/navigation/navigator.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "bipednav/common/clock.hpp"
@@ -204,13 +205,34 @@ void Navigator::track_moving_obstacles() {
   const auto moving = moving_->moving(now_s_);
   if (moving.empty()) return;
   const double margin_m = params_.moving_obstacles.global_map_margin_m;
-  for (auto& o : lidar_obs_) {
-    std::erase_if(o.points_map, [&](const Eigen::Vector3f& p) {
-      const Eigen::Vector2d q(p.x(), p.y());
-      for (const auto& m : moving)
-        if ((q - m.position).norm() <= m.radius_m + margin_m) return true;
-      return false;
-    });
+  const auto on_mover = [&](const Eigen::Vector3f& p) {
+    const Eigen::Vector2d q(p.x(), p.y());
+    for (const auto& m : moving)
+      if ((q - m.position).norm() <= m.radius_m + margin_m) return true;
+    return false;
+  };
+  for (auto& o : lidar_obs_) std::erase_if(o.points_map, on_mover);
+  // In a height-aware local map a mover's cells keep no heights, so rays at any height clear them
+  // once it has gone (a person seen at leg height by a depth camera, crossed higher up by the LiDAR).
+  if (!params_.local_map.height_aware_clearing) return;
+  const std::size_t n = local_obs_.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!local_obs_[i].marking) continue;
+    auto& pts = local_obs_[i].points_map;
+    const auto split = std::stable_partition(pts.begin(), pts.end(), [&](const auto& p) { return !on_mover(p); });
+    if (split == pts.end()) continue;
+    mapping::Observation mover;
+    mover.origin_map = local_obs_[i].origin_map;
+    mover.max_range_m = local_obs_[i].max_range_m;
+    mover.keep_heights = false;
+    if (!spare_points_.empty()) {
+      mover.points_map = std::move(spare_points_.back());
+      spare_points_.pop_back();
+      mover.points_map.clear();
+    }
+    mover.points_map.insert(mover.points_map.end(), split, pts.end());
+    pts.erase(split, pts.end());
+    local_obs_.push_back(std::move(mover));
   }
 }
 

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "bipednav/common/error.hpp"
+#include "bipednav/mapping/global_costmap.hpp"
 
 using namespace bipednav::mapping;
 using bipednav::Pose2;
@@ -136,4 +137,90 @@ TEST(LocalCostmap, RejectsBadParams) {
   p = {};
   p.raytrace_max_range_m = -1;
   EXPECT_THROW(LocalCostmap{p}, bipednav::ParamError);
+}
+
+namespace {
+
+// A 0.3 x 0.4 m obstacle seen by a depth camera at heights 0.1-0.5 m (a low cylinder or box).
+Observation low_obstacle_seen() {
+  Observation obs;
+  obs.origin_map = {0, 0, 0.95};
+  for (float y = -0.2f; y <= 0.2f; y += 0.02f)
+    for (float z : {0.1f, 0.3f, 0.5f}) obs.points_map.emplace_back(1.0f, y, z);
+  return obs;
+}
+
+// Rays from (0, 0, origin_z) to the points (x, x y, z), y in [-0.25, 0.25]: they cross all the
+// obstacle's cells at x = 1.0-1.05 m.
+Observation rays_beyond(double origin_z, float x, float z) {
+  Observation obs;
+  obs.origin_map = {0, 0, origin_z};
+  obs.marking = false;
+  for (float y = -0.25f; y <= 0.25f; y += 0.005f) obs.points_map.emplace_back(x, y * x, z);  // (1, y) on the way
+  return obs;
+}
+
+int lethal_count(const LocalCostmap& m) {
+  return static_cast<int>(std::count(m.obstacles().data().begin(), m.obstacles().data().end(), kLethal));
+}
+
+}  // namespace
+
+LocalCostmapParams height_aware() {
+  LocalCostmapParams p;
+  p.height_aware_clearing = true;
+  return p;
+}
+
+TEST(LocalCostmap, RaysPassingAboveALowObstacleKeepIt) {
+  LocalCostmap plain;  // 2D clearing (the default): the LiDAR rays erase it
+  plain.update({0.0, 0.0, 0.0}, {low_obstacle_seen()});
+  EXPECT_GE(lethal_count(plain), 8);
+  plain.update({0.0, 0.0, 0.0}, {rays_beyond(1.47, 2.5f, 0.9f)});
+  EXPECT_EQ(lethal_count(plain), 0);
+
+  LocalCostmap local(height_aware());
+  local.update({0.0, 0.0, 0.0}, {low_obstacle_seen()});
+  const int marked = lethal_count(local);
+  EXPECT_GE(marked, 8);
+  // LiDAR rays from 1.47 m to returns at 0.9 m, 2.5 m away: over the obstacle they are 1.24 m high.
+  // (Rays to the floor 2.5 m away would pass at 0.57 m, above it, too.)
+  local.update({0.0, 0.0, 0.0}, {rays_beyond(1.47, 2.5f, 0.9f)});
+  EXPECT_EQ(lethal_count(local), marked);
+  // The window moves (the bands move with it): still kept by the same rays, seen from the new place.
+  local.update({0.5, 0.0, 0.0}, {});
+  local.update({0.5, 0.0, 0.0}, {rays_beyond(1.47, 2.5f, 0.9f)});
+  EXPECT_EQ(lethal_count(local), marked);
+  // Rays to the floor 1.6 m away cross its cells at 0.33-0.36 m, inside 0.1-0.5 m: it is gone.
+  local.update({0.5, 0.0, 0.0}, {rays_beyond(0.95, 1.6f, 0.0f)});
+  EXPECT_EQ(lethal_count(local), 0);
+}
+
+TEST(LocalCostmap, AMovingObstacleKeepsNoHeights) {
+  LocalCostmap local(height_aware());
+  Observation person = low_obstacle_seen();
+  person.keep_heights = false;  // the navigator's tracker says it moves
+  local.update({0.0, 0.0, 0.0}, {person});
+  EXPECT_GE(lethal_count(local), 8);
+  local.update({0.0, 0.0, 0.0}, {rays_beyond(1.47, 2.5f, 0.9f)});
+  EXPECT_EQ(lethal_count(local), 0);
+}
+
+TEST(LocalCostmap, GlobalMapKeepsTheHeightsOfMergedObstacles) {
+  LocalCostmap local(height_aware());
+  local.update({0.0, 0.0, 0.0}, {low_obstacle_seen()});
+  GlobalCostmapParams gp;
+  gp.height_aware_clearing = true;
+  GlobalCostmap global({100, 100, 0.1, -5.0, -5.0}, gp);
+  global.update({0, 0, 0}, {}, &local);
+  const auto lethal = [&] {
+    return std::count(global.occupancy().data().begin(), global.occupancy().data().end(), kLethal);
+  };
+  const auto merged = lethal();
+  EXPECT_GE(merged, 4);
+  // The robot walks away (no local window over the obstacle); the LiDAR rays pass over it.
+  global.update({-3.0, 0.0, 0.0}, {rays_beyond(1.47, 2.5f, 0.9f)}, nullptr);
+  EXPECT_EQ(lethal(), merged);
+  global.update({-3.0, 0.0, 0.0}, {rays_beyond(0.95, 1.6f, 0.0f)}, nullptr);
+  EXPECT_EQ(lethal(), 0);
 }
