@@ -16,7 +16,6 @@ void ServerParams::validate() const {
   require(path_check_distance_m > 0.0, "path_check_distance_m", "> 0");
   require(relaxed_cost_weight_factor > 0.0 && relaxed_cost_weight_factor <= 1.0, "relaxed_cost_weight_factor",
           "in (0, 1]");
-  require(moving_lane_cost >= 0 && moving_lane_cost < mapping::kInscribed, "moving_lane_cost", "in [0, 252]");
 }
 
 NavigationServer::NavigationServer(ServerParams params, RobotProfile robot, mapping::GlobalCostmap& global,
@@ -39,33 +38,6 @@ void NavigationServer::make_global_planner(bool relaxed) {
   global_planner_ = planning::make_global_planner(params_.global_planner, p);
   relaxed_ = relaxed;
   pending_changes_.clear();
-  lane_cells_.clear();
-}
-
-bool NavigationServer::build_lane_map() {
-  const auto& tracker = params_.local.moving_obstacles;
-  if (params_.moving_lane_cost <= 0 || !tracker || !tracker->params().enabled) return false;
-  const auto sweep = tracker->sweep(view_.now_s);
-  if (sweep.empty()) return false;
-  lane_map_ = global_.costmap();
-  const auto& g = lane_map_.geometry();
-  const auto lane_cost = static_cast<std::uint8_t>(params_.moving_lane_cost);
-  const double widen_m = params_.local.avoidance.robot_radius_m + params_.local.avoidance.safety_margin_m;
-  for (const auto& s : sweep) {
-    const double r = s.radius_m + widen_m;
-    const auto lo = g.world_to_cell_unbounded(s.position.x() - r, s.position.y() - r);
-    const auto hi = g.world_to_cell_unbounded(s.position.x() + r, s.position.y() + r);
-    if (!lo || !hi) continue;  // a non-finite sample
-    for (int y = std::max(lo->y, 0); y <= std::min(hi->y, g.height - 1); ++y) {
-      for (int x = std::max(lo->x, 0); x <= std::min(hi->x, g.width - 1); ++x) {
-        const std::uint8_t c = lane_map_.cost(x, y);
-        if (c >= lane_cost || c >= mapping::kInscribed) continue;  // obstacles and unknown stay
-        if ((g.cell_center(x, y) - s.position).squaredNorm() > r * r) continue;
-        lane_map_.set_cost(x, y, lane_cost);
-      }
-    }
-  }
-  return true;
 }
 
 void NavigationServer::add_global_changes(const mapping::ChangeSet& changes) {
@@ -80,23 +52,7 @@ void NavigationServer::on_new_goal() {
 }
 
 planning::PlanResult NavigationServer::get_path(const Pose2& goal) {
-  if (build_lane_map()) {
-    // The cells whose lane cost came or went are changes for the planner too.
-    mapping::ChangeSet changes = pending_changes_;
-    for (const auto& c : lane_cells_) changes.push_back({c, 0, 0});
-    lane_cells_.clear();
-    const auto& base = global_.costmap().data();
-    const auto& g = lane_map_.geometry();
-    for (int y = 0; y < g.height; ++y)
-      for (int x = 0; x < g.width; ++x)
-        if (lane_map_.data()[g.index(x, y)] != base[g.index(x, y)]) lane_cells_.push_back({x, y});
-    for (const auto& c : lane_cells_) changes.push_back({c, 0, 0});
-    last_plan_ = global_planner_->plan(lane_map_, view_.pose, goal, changes);
-  } else {
-    for (const auto& c : lane_cells_) pending_changes_.push_back({c, 0, 0});
-    lane_cells_.clear();
-    last_plan_ = global_planner_->plan(global_.costmap(), view_.pose, goal, pending_changes_);
-  }
+  last_plan_ = global_planner_->plan(global_.costmap(), view_.pose, goal, pending_changes_);
   pending_changes_.clear();
   ++plans_;
   return last_plan_;

@@ -29,11 +29,6 @@ struct ServerParams {
   double path_check_distance_m = 4.0;    // IsPathValid looks this far along the path
   double blocked_goal_timeout_s = 6.0;   // exe_path gives up on a goal blocked this long
   double relaxed_cost_weight_factor = 0.3;
-  // The global planner sees the lane of the tracked moving obstacles (their remembered positions
-  // and predictions, MovingObstacleTracker::sweep) widened by the robot's radius, the blob's and
-  // the safety margin, at this cost (0: off): it routes around a box's lane where another way
-  // exists and crosses it where none does (below kInscribed, so never blocked by it).
-  int moving_lane_cost = 252;
 
   void validate() const;
 };
@@ -95,9 +90,6 @@ class NavigationServer {
 
  private:
   void make_global_planner(bool relaxed);
-  // The global map with the moving obstacles' lane costs (lane_map_) and the cells they touched
-  // (lane_cells_); false when there is no lane.
-  bool build_lane_map();
 
   ServerParams params_;
   RobotProfile robot_;
@@ -110,8 +102,6 @@ class NavigationServer {
   control::OscillationChecker oscillation_;
   RobotView view_;
   mapping::ChangeSet pending_changes_;
-  mapping::Costmap2D lane_map_;
-  std::vector<mapping::Cell> lane_cells_;  // cells raised in the map of the last plan
   Twist cmd_;
   Path trajectory_;
   planning::PlanResult last_plan_;

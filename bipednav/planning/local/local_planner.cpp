@@ -30,8 +30,7 @@ void LocalPlanner::yield(LocalPlanResult& r, const Pose2& pose, const Twist& cur
       r.result.outcome != Outcome::OSCILLATION)
     return;
   const Twist cmd = failed ? Twist{} : r.cmd;
-  last_yield_ = yield_to_moving_obstacles(cmd, pose, current, moving, costmap, lim, period_s, now_s, avoidance_,
-                                          &moving_->lane());
+  last_yield_ = yield_to_moving_obstacles(cmd, pose, current, moving, costmap, lim, period_s, now_s, avoidance_);
   if (!last_yield_.modified) return;
   if (failed) {
     // Standing still would be run into: move away instead of failing.

@@ -66,8 +66,6 @@ void MovingObstacleParams::validate() const {
   require(positive(max_prediction_s), "moving_obstacles.max_prediction_s", "> 0");
   require(std::isfinite(global_map_margin_m) && global_map_margin_m >= 0.0, "moving_obstacles.global_map_margin_m",
           ">= 0");
-  require(std::isfinite(lane_memory_s) && lane_memory_s >= 0.0, "moving_obstacles.lane_memory_s", ">= 0");
-  require(positive(lane_spacing_m), "moving_obstacles.lane_spacing_m", "> 0");
 }
 
 void DynamicAvoidanceParams::validate() const {
@@ -146,8 +144,6 @@ MovingObstacleTracker::MovingObstacleTracker(MovingObstacleParams params) : para
 
 void MovingObstacleTracker::clear() {
   tracks_.clear();
-  confirmed_.clear();
-  lane_.clear();
   last_stamp_s_ = -1e300;
 }
 
@@ -211,46 +207,15 @@ void MovingObstacleTracker::update_blobs(const std::vector<Blob>& blobs, double 
     t.cov_y = t.cov_x;
     tracks_.push_back(t);
   }
-  confirmed_.clear();
-  for (const auto& t : tracks_) {
-    if (t.hits < params_.min_hits || t.velocity.norm() < params_.min_moving_speed_mps) continue;
-    if ((t.position - t.origin).norm() < params_.min_displacement_m) continue;
-    confirmed_.push_back(t);
-  }
-  remember_lane(stamp_s);
-}
-
-void MovingObstacleTracker::remember_lane(double stamp_s) {
-  std::erase_if(lane_, [&](const LaneSample& s) { return stamp_s - s.stamp_s > params_.lane_memory_s; });
-  if (params_.lane_memory_s <= 0.0) return;
-  const double d2 = params_.lane_spacing_m * params_.lane_spacing_m;
-  for (const auto& t : confirmed_) {
-    if (t.last_seen_s != stamp_s) continue;  // only where it was seen, not where it was predicted
-    auto near = std::find_if(lane_.begin(), lane_.end(),
-                             [&](const LaneSample& s) { return (s.position - t.position).squaredNorm() < d2; });
-    if (near == lane_.end()) {
-      lane_.push_back({t.position, t.radius_m, stamp_s});
-    } else {
-      near->stamp_s = stamp_s;
-      near->radius_m = std::max(near->radius_m, t.radius_m);
-    }
-  }
 }
 
 std::vector<TrackedObstacle> MovingObstacleTracker::moving(double now_s) const {
   std::vector<TrackedObstacle> out;
-  for (const auto& t : confirmed_)
-    if (now_s - t.last_seen_s <= params_.max_track_age_s) out.push_back(t);
-  return out;
-}
-
-std::vector<LaneSample> MovingObstacleTracker::sweep(double now_s) const {
-  std::vector<LaneSample> out = lane_;
-  for (const auto& t : moving(now_s)) {
-    const double speed = t.velocity.norm();
-    const double dt = std::min(params_.lane_spacing_m / std::max(speed, 1e-6), params_.max_prediction_s);
-    for (double h = 0.0; h <= params_.max_prediction_s + 1e-9; h += dt)
-      out.push_back({t.predict(now_s + h), t.radius_m, now_s + h});
+  for (const auto& t : tracks_) {
+    if (t.hits < params_.min_hits || now_s - t.last_seen_s > params_.max_track_age_s) continue;
+    if (t.velocity.norm() < params_.min_moving_speed_mps) continue;
+    if ((t.position - t.origin).norm() < params_.min_displacement_m) continue;
+    out.push_back(t);
   }
   return out;
 }
@@ -316,7 +281,7 @@ double time_to_collision(const Pose2& pose, const Twist& cmd, const std::vector<
 YieldDecision yield_to_moving_obstacles(const Twist& cmd, const Pose2& pose, const Twist& current,
                                         const std::vector<TrackedObstacle>& moving, const mapping::Costmap2D& costmap,
                                         const CommandLimits& lim, double period_s, double now_s,
-                                        const DynamicAvoidanceParams& p, const std::vector<LaneSample>* lane) {
+                                        const DynamicAvoidanceParams& p) {
   YieldDecision out;
   out.cmd = out.target = cmd;
   out.ttc_s = kInf;
@@ -340,29 +305,18 @@ YieldDecision yield_to_moving_obstacles(const Twist& cmd, const Pose2& pose, con
   };
   // A collision-free candidate (against the predictions and the costmap) closest to the command;
   // when there is none, the one that keeps the largest gap to the moving obstacles.
-  // Rank 0: free and ending outside the lane, 1: free, 2: run into.
-  const auto in_lane = [&](const Pose2& end) {
-    if (lane == nullptr) return true;
-    for (const auto& s : *lane) {
-      const double reach = p.robot_radius_m + s.radius_m + p.safety_margin_m;
-      if ((s.position - end.position()).squaredNorm() < reach * reach) return true;
-    }
-    return false;
-  };
   const Twist* best = nullptr;
-  int best_rank = 3;
+  bool best_free = false;
   double best_dev = kInf, best_gap = -kInf;
   std::vector<Pose2> arc;
   for (const auto& c : cand) {
     const RolloutCheck rc = rollout_check(pose, cur, c, moving, lim, now_s, p, &arc);
     if (!poses_feasible(arc, costmap)) continue;
     const bool free = !std::isfinite(rc.ttc_s);
-    // Where the robot would wait: the end of the arc checked against the costmap.
-    const int rank = free ? (in_lane(arc.back()) ? 1 : 0) : 2;
     const double dev = deviation(c);
-    const bool better = rank < best_rank || (rank == best_rank && rank < 2 && dev < best_dev) ||
-                        (rank == best_rank && rank == 2 && rc.min_gap_m > best_gap);
-    if (better) best = &c, best_rank = rank, best_dev = dev, best_gap = rc.min_gap_m;
+    const bool better = best == nullptr || (free && !best_free) || (free && best_free && dev < best_dev) ||
+                        (!free && !best_free && rc.min_gap_m > best_gap);
+    if (better) best = &c, best_free = free, best_dev = dev, best_gap = rc.min_gap_m;
   }
   out.modified = true;
   if (best == nullptr) {

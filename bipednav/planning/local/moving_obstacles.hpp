@@ -32,13 +32,7 @@ struct MovingObstacleParams {
   // ... and so do tracks whose centroid has not travelled this far from where it was first seen
   // (a static object's centroid wanders while the robot sees more or less of it).
   double min_displacement_m = 0.25;
-  double max_prediction_s = 4.0;  // predictions are never extrapolated further (see sweep())
-  // The lane of the moving obstacles: positions of moving tracks are remembered this long (a lap
-  // of hexagon_dynamic's box is 17.6 s, of three_rooms' cubes 27-31 s), one sample per
-  // lane_spacing_m; a revisited sample is refreshed. The global planner keeps out of the lane
-  // where it can (NavigationServer), and the yield prefers waiting outside it.
-  double lane_memory_s = 35.0;
-  double lane_spacing_m = 0.1;
+  double max_prediction_s = 4.0;  // predictions are never extrapolated further
   // Obstacle points within a moving track's radius plus this margin are kept out of the global map
   // (the navigator's use: a moving obstacle's trail would block the lanes it crossed).
   double global_map_margin_m = 0.1;
@@ -62,13 +56,6 @@ struct TrackedObstacle {
 
   // Constant-velocity prediction of the centroid at time t_s.
   Eigen::Vector2d predict(double t_s) const { return position + velocity * (t_s - stamp_s); }
-};
-
-// A remembered or predicted position of a moving obstacle (map frame).
-struct LaneSample {
-  Eigen::Vector2d position = Eigen::Vector2d::Zero();
-  double radius_m = 0.0;
-  double stamp_s = 0.0;  // when it was (last) there, or the predicted time
 };
 
 // A blob of one cycle: centroid and bounding radius of its points.
@@ -96,23 +83,13 @@ class MovingObstacleTracker {
   void clear();
 
   const std::vector<TrackedObstacle>& tracks() const { return tracks_; }
-  // Tracks that are confirmed (min_hits), fresh at now_s and faster than min_moving_speed_mps
-  // (the confirmed ones are kept per update; only the freshness depends on now_s).
+  // Tracks that are confirmed (min_hits), fresh at now_s and faster than min_moving_speed_mps.
   std::vector<TrackedObstacle> moving(double now_s) const;
-  // Where moving obstacles have been within lane_memory_s (refreshed samples, see the params).
-  const std::vector<LaneSample>& lane() const { return lane_; }
-  // The lane plus the constant-velocity predictions of the moving tracks at now_s, every
-  // lane_spacing_m up to max_prediction_s ahead: the cells a moving obstacle may sweep.
-  std::vector<LaneSample> sweep(double now_s) const;
   const MovingObstacleParams& params() const { return params_; }
 
  private:
   MovingObstacleParams params_;
-  void remember_lane(double stamp_s);
-
   std::vector<TrackedObstacle> tracks_;
-  std::vector<TrackedObstacle> confirmed_;  // moving tracks of the latest update
-  std::vector<LaneSample> lane_;
   int next_id_ = 1;
   double last_stamp_s_ = -1e300;
 };
@@ -151,14 +128,10 @@ struct YieldDecision {
 
 // Keeps `cmd` when no collision with a moving obstacle is predicted, else returns the safest
 // candidate (see DynamicAvoidanceParams). The result is within the velocity and acceleration
-// limits from `current`. With the obstacles' lane (MovingObstacleTracker::lane), a
-// collision-free candidate whose arc ends outside the lane at static_check_s (a place to wait
-// that the obstacle does not sweep: stepping aside or backing out of its lane) goes before one
-// that ends in it.
+// limits from `current`.
 YieldDecision yield_to_moving_obstacles(const Twist& cmd, const Pose2& pose, const Twist& current,
                                         const std::vector<TrackedObstacle>& moving, const mapping::Costmap2D& costmap,
                                         const CommandLimits& lim, double period_s, double now_s,
-                                        const DynamicAvoidanceParams& params,
-                                        const std::vector<LaneSample>* lane = nullptr);
+                                        const DynamicAvoidanceParams& params);
 
 }  // namespace bipednav::planning::local
