@@ -65,8 +65,8 @@ class CorrectedOdometry {
  private:
   // The GICP result with its poorly constrained planar directions reset to the last correction;
   // `pairs` are its correspondences at that result (gicp_align's `matches`).
-  SE3 constrained_correction(const GicpCloud& current, const SE3& T_odom_base,
-                             const std::vector<std::uint32_t>& pairs, CorrectionUpdate& u) const;
+  SE3 constrained_correction(const GicpCloud& current, const SE3& T_odom_base, const std::vector<std::uint32_t>& pairs,
+                             CorrectionUpdate& u) const;
 
   CorrectedOdometryParams p_;
   SE3 T_base_sensor_;
