@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "bipednav/common/cpu_time.hpp"
+
 namespace bipednav::navigation {
 
 void ServerParams::validate() const {
@@ -52,7 +54,10 @@ void NavigationServer::on_new_goal() {
 }
 
 planning::PlanResult NavigationServer::get_path(const Pose2& goal) {
-  last_plan_ = global_planner_->plan(global_.costmap(), view_.pose, goal, pending_changes_);
+  {
+    const CpuScope cpu(global_planner_cpu_ms_);
+    last_plan_ = global_planner_->plan(global_.costmap(), view_.pose, goal, pending_changes_);
+  }
   pending_changes_.clear();
   ++plans_;
   return last_plan_;
@@ -83,7 +88,11 @@ ActionStep NavigationServer::exe_path(const Path& path, bool first) {
     cmd_ = {};
     return {ActionStep::State::SUCCEEDED, {Outcome::SUCCESS, "goal reached"}};
   }
-  const auto r = local_planner_->compute(view_.pose, view_.velocity, path, local_.costmap(), view_.now_s);
+  planning::local::LocalPlanResult r;
+  {
+    const CpuScope cpu(local_planner_cpu_ms_);
+    r = local_planner_->compute(view_.pose, view_.velocity, path, local_.costmap(), view_.now_s);
+  }
   last_ctrl_ = r.result;
   trajectory_ = r.trajectory;
   cmd_ = r.result.ok() ? r.cmd : Twist{};

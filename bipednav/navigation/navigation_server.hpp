@@ -87,6 +87,9 @@ class NavigationServer {
   std::size_t plans() const { return plans_; }
   std::size_t recoveries() const { return recoveries_; }
   const Result& last_controller_result() const { return last_ctrl_; }
+  // Process CPU time spent in the global planner (get_path) and the local planner (exe_path).
+  double global_planner_cpu_ms() const { return global_planner_cpu_ms_; }
+  double local_planner_cpu_ms() const { return local_planner_cpu_ms_; }
 
  private:
   void make_global_planner(bool relaxed);
@@ -111,6 +114,7 @@ class NavigationServer {
   bool relaxed_ = false;
   std::size_t plans_ = 0;
   std::size_t recoveries_ = 0;
+  double global_planner_cpu_ms_ = 0.0, local_planner_cpu_ms_ = 0.0;
   // Recovery state.
   Pose2 recovery_start_pose_;
   double recovery_start_s_ = 0.0;

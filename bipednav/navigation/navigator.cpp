@@ -102,8 +102,12 @@ Twist Navigator::tick(const SensorFrame& frame) {
   perception_in_.depth.clear();
   update_maps();
   if (control_gate_.ready(now_s_)) {
-    const CpuScope cpu(cpu_.control_ms);
-    control();
+    {
+      const CpuScope cpu(cpu_.control_ms);
+      control();
+    }
+    cpu_.global_planner_ms = server_->global_planner_cpu_ms();
+    cpu_.local_planner_ms = server_->local_planner_cpu_ms();
   }
   return cmd_;
 }

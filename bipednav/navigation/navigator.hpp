@@ -58,8 +58,10 @@ struct NavigatorTimings {
 // Process CPU time per stage summed over every tick so far (cpu_time.hpp). `control` is the
 // behavior tree with the planners it runs (D* Lite, TEB) and the moving-obstacle yield.
 struct NavigatorCpu {
+  // control_ms is the whole control step; global_planner_ms and local_planner_ms are its parts in
+  // D* Lite / A* and in TEB / the tracker (not added again by total_ms).
   double sensor_gate_ms = 0.0, localization_ms = 0.0, perception_ms = 0.0, local_map_ms = 0.0, global_map_ms = 0.0,
-         control_ms = 0.0;
+         control_ms = 0.0, global_planner_ms = 0.0, local_planner_ms = 0.0;
   double total_ms() const {
     return sensor_gate_ms + localization_ms + perception_ms + local_map_ms + global_map_ms + control_ms;
   }

@@ -16,12 +16,12 @@ TEST(StageCpu, EveryStageIsReportedAndTheyAddUpToAtMostTheRunsCpu) {
   EXPECT_NEAR(r.cpu_real_time_factor, r.time_s / r.cpu_s, 1e-9);
   double sum_ms = 0.0;
   for (const char* name : {"setup", "sim_lidar", "sim_depth", "sim_rest", "sensor_gate", "localization", "perception",
-                           "local_map", "global_map", "control", "runner"}) {
+                           "local_map", "global_map", "global_planner", "local_planner", "control", "runner"}) {
     ASSERT_TRUE(r.stage_cpu_ms.contains(name)) << name;
     EXPECT_GE(r.stage_cpu_ms.at(name), 0.0) << name;
     sum_ms += r.stage_cpu_ms.at(name);
   }
-  EXPECT_EQ(r.stage_cpu_ms.size(), 11u);
+  EXPECT_EQ(r.stage_cpu_ms.size(), 13u);
   EXPECT_LE(sum_ms, r.cpu_s * 1000.0 + 1e-6);
   // The sensors rendered and the pipeline ran: those stages took some CPU.
   for (const char* name : {"sim_lidar", "sim_depth", "perception", "localization"})
