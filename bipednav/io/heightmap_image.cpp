@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <memory>
+#include <system_error>
 
 #include "bipednav/common/error.hpp"
 #include "bipednav/io/param_reader.hpp"
@@ -20,7 +21,7 @@ void HeightmapImageParams::validate() const {
 namespace {
 
 mapping::Heightmap read_png(const std::filesystem::path& png, const HeightmapImageParams& p) {
-  if (!std::filesystem::exists(png)) throw FileError(png.string(), "", "file not found");
+  if (std::error_code ec; !std::filesystem::exists(png, ec)) throw FileError(png.string(), "", "file not found");
   std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)> s(cairo_image_surface_create_from_png(png.c_str()),
                                                                        &cairo_surface_destroy);
   if (cairo_surface_status(s.get()) != CAIRO_STATUS_SUCCESS)
@@ -77,7 +78,7 @@ mapping::Heightmap read_heightmap_image(const std::filesystem::path& file, const
     throw FileError(file.string(), "", e.what());
   }
   const std::filesystem::path png = file.parent_path() / image;
-  if (!std::filesystem::is_regular_file(png))
+  if (std::error_code ec; !std::filesystem::is_regular_file(png, ec))
     throw FileError(file.string(), "image", "the image '" + png.string() + "' does not exist");
   return read_png(png, p);
 }

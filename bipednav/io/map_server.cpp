@@ -8,6 +8,7 @@
 #include <fstream>
 #include <memory>
 #include <sstream>
+#include <system_error>
 
 #include "bipednav/common/error.hpp"
 
@@ -99,7 +100,8 @@ GrayImage read_pgm(const std::filesystem::path& path) {
 
 GrayImage read_png_gray(const std::filesystem::path& path) {
   const std::string f = path.string();
-  if (!std::filesystem::exists(path)) throw FileError(f, "", "cannot open the file for reading (does it exist?)");
+  if (std::error_code ec; !std::filesystem::exists(path, ec))
+    throw FileError(f, "", "cannot open the file for reading (does it exist?)");
   std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)> s(cairo_image_surface_create_from_png(f.c_str()),
                                                                        cairo_surface_destroy);
   if (cairo_surface_status(s.get()) != CAIRO_STATUS_SUCCESS)
@@ -159,7 +161,8 @@ double yaml_number(const YAML::Node& root, const std::string& key, const std::st
 
 MapServerMetadata parse_metadata(const std::filesystem::path& yaml_path) {
   const std::string f = yaml_path.string();
-  if (!std::filesystem::exists(yaml_path)) throw FileError(f, "", "cannot open the file for reading (does it exist?)");
+  if (std::error_code ec; !std::filesystem::exists(yaml_path, ec))
+    throw FileError(f, "", "cannot open the file for reading (does it exist?)");
   YAML::Node root;
   try {
     root = YAML::LoadFile(f);
@@ -231,7 +234,7 @@ Costmap2D read_map_server(const std::filesystem::path& yaml_path, MapServerMetad
   const MapServerMetadata m = parse_metadata(yaml_path);
   std::filesystem::path image = m.image;
   if (image.is_relative()) image = yaml_path.parent_path() / image;
-  if (!std::filesystem::is_regular_file(image))
+  if (std::error_code ec; !std::filesystem::is_regular_file(image, ec))
     throw FileError(yaml_path.string(), "image", "the image '" + image.string() + "' does not exist");
   std::string ext = image.extension().string();
   for (auto& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));

@@ -5,6 +5,7 @@
 #include <assimp/scene.h>
 
 #include <assimp/Importer.hpp>
+#include <system_error>
 
 #include "bipednav/common/error.hpp"
 
@@ -36,7 +37,8 @@ void append_node(const aiScene& scene, const aiNode& node, const aiMatrix4x4& T_
 }  // namespace
 
 Mesh load_mesh(const std::filesystem::path& file, const Eigen::Vector3d& scale) {
-  if (!std::filesystem::is_regular_file(file)) throw FileError(file.string(), "", "mesh file not found");
+  if (std::error_code ec; !std::filesystem::is_regular_file(file, ec))
+    throw FileError(file.string(), "", "mesh file not found");
   Assimp::Importer importer;
   importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
   const aiScene* scene =

@@ -5,6 +5,7 @@
 #include <new>
 #include <sdf/sdf.hh>
 #include <string>
+#include <system_error>
 
 #include "bipednav/common/error.hpp"
 #include "bipednav/sim/mesh_loader.hpp"
@@ -173,7 +174,7 @@ fs::path resolve_model_uri(const std::string& uri, const fs::path& base_dir, con
 }
 
 World load_sdf_world(const fs::path& file, const std::vector<fs::path>& model_paths) {
-  if (!fs::is_regular_file(file)) throw FileError(file.string(), "", "SDF file not found");
+  if (std::error_code ec; !fs::is_regular_file(file, ec)) throw FileError(file.string(), "", "SDF file not found");
   Context ctx{file, model_paths};
   for (const fs::path& extra : {file.parent_path() / "models", file.parent_path().parent_path() / "models"})
     if (fs::is_directory(extra)) ctx.model_paths.push_back(extra);

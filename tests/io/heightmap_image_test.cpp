@@ -47,5 +47,8 @@ TEST(HeightmapImage, YamlSidecarAndBadInput) {
   } catch (const FileError& e) {
     EXPECT_NE(std::string(e.what()).find("abs.yaml"), std::string::npos) << e.what();
   }
+  // An image name longer than the system allows is a missing image, not a filesystem_error.
+  std::ofstream(dir / "long.yaml") << "image: " << std::string(5000, 'x') << ".png\nresolution_m: 0.01\n";
+  EXPECT_THROW(io::read_heightmap_image(dir / "long.yaml"), FileError);
   std::filesystem::remove_all(dir);
 }
