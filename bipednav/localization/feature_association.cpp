@@ -23,11 +23,6 @@ struct LocalFit {
 };
 
 // The k nearest reference points, all within max_correspondence_m: false when there are fewer.
-bool nearest_within(const KdTree3f& tree, const Eigen::Vector3f& q, std::size_t k, float max_sq, std::uint32_t* idx,
-                    float* d2) {
-  return tree.knn(q, k, idx, d2) == k && d2[k - 1] <= max_sq;
-}
-
 bool nearest_within(const PointKdTree& tree, const Eigen::Vector3f& q, std::size_t k, float max_sq, std::uint32_t* idx,
                     float* d2) {
   // knn() keeps points strictly closer than the bound; points at exactly max_correspondence_m count.
@@ -123,19 +118,9 @@ bool planar_match(const Tree& planars, const Eigen::Vector3d& point, double s, c
 
 }  // namespace
 
-bool edge_correspondence(const KdTree3f& edges, const Eigen::Vector3d& point, double s, const Eigen::Vector3d& q,
-                         const AssociationParams& p, Constraint& out, const ViewCheck* view) {
-  return edge_match(edges, point, s, q, p, out, view);
-}
-
 bool edge_correspondence(const PointKdTree& edges, const Eigen::Vector3d& point, double s, const Eigen::Vector3d& q,
                          const AssociationParams& p, Constraint& out, const ViewCheck* view) {
   return edge_match(edges, point, s, q, p, out, view);
-}
-
-bool planar_correspondence(const KdTree3f& planars, const Eigen::Vector3d& point, double s, const Eigen::Vector3d& q,
-                           const AssociationParams& p, Constraint& out, const ViewCheck* view) {
-  return planar_match(planars, point, s, q, p, out, view);
 }
 
 bool planar_correspondence(const PointKdTree& planars, const Eigen::Vector3d& point, double s, const Eigen::Vector3d& q,

@@ -45,14 +45,10 @@ struct MovedPoints {
   const Eigen::Vector3f& point(std::size_t i) const { return (*positions)[i]; }
 };
 
-// Either kd-tree gives the same neighbours (PointKdTree bounds its search by the correspondence
-// distance, so a feature without a match costs little).
-bool edge_correspondence(const KdTree3f& edges, const Eigen::Vector3d& point, double s, const Eigen::Vector3d& q,
-                         const AssociationParams& p, Constraint& out, const ViewCheck* view = nullptr);
+// PointKdTree bounds its search by the correspondence distance, so a feature without a match costs
+// little; MovedPoints searches a tree whose points were moved (see above).
 bool edge_correspondence(const PointKdTree& edges, const Eigen::Vector3d& point, double s, const Eigen::Vector3d& q,
                          const AssociationParams& p, Constraint& out, const ViewCheck* view = nullptr);
-bool planar_correspondence(const KdTree3f& planars, const Eigen::Vector3d& point, double s, const Eigen::Vector3d& q,
-                           const AssociationParams& p, Constraint& out, const ViewCheck* view = nullptr);
 bool planar_correspondence(const PointKdTree& planars, const Eigen::Vector3d& point, double s, const Eigen::Vector3d& q,
                            const AssociationParams& p, Constraint& out, const ViewCheck* view = nullptr);
 bool edge_correspondence(const MovedPoints& edges, const Eigen::Vector3d& point, double s, const Eigen::Vector3d& q,

@@ -29,7 +29,7 @@ struct ThinWall {
 
 TEST(FeatureAssociation, APatchSeenFromTheOtherSideOfAThinWallIsNotMatched) {
   const ThinWall wall;
-  const KdTree3f tree(wall.points);
+  const PointKdTree tree(wall.points);
   AssociationParams p;
   Constraint c;
   // A point of the far face, estimated 0.15 m too far back: its nearest neighbours are on the near face.
