@@ -80,7 +80,8 @@ CellRect GlobalCostmap::merge_local(const LocalCostmap& local) {
   const CellRect win = CellRect{lo->x, lo->y, hi->x + 1, hi->y + 1}.clipped(g);
   if (win.empty()) return changed;
   merge_.assign(static_cast<std::size_t>(win.width()) * win.height(), 0);
-  merge_bands_.assign(merge_.size(), HeightBand{});
+  const bool bands = params_.height_aware_clearing;  // otherwise every band stays empty
+  if (bands) merge_bands_.assign(merge_.size(), HeightBand{});
   const auto& seen = local.observed();
   for (int y = 0; y < lg.height; ++y) {
     for (int x = 0; x < lg.width; ++x) {
@@ -91,7 +92,7 @@ CellRect GlobalCostmap::merge_local(const LocalCostmap& local) {
       if (!c || !win.contains(c->x, c->y)) continue;
       const std::size_t k = static_cast<std::size_t>(c->y - win.y0) * win.width() + (c->x - win.x0);
       merge_[k] |= v == kLethal ? 2 : 1;
-      if (v == kLethal) merge_bands_[k].include(local.obstacle_band(x, y));
+      if (bands && v == kLethal) merge_bands_[k].include(local.obstacle_band(x, y));
     }
   }
   for (int y = win.y0; y < win.y1; ++y) {
@@ -102,7 +103,7 @@ CellRect GlobalCostmap::merge_local(const LocalCostmap& local) {
       const std::uint8_t target = (f & 2) ? kLethal : kFree;
       // The local obstacle's heights come along, so the global LiDAR rays clear it only where
       // they cross those heights.
-      if (target == kLethal)
+      if (bands && target == kLethal)
         obstacle_layer_.include_band(occupancy_, x, y, merge_bands_[k], occupancy_.cost(x, y) != kLethal);
       if (occupancy_.cost(x, y) != target) {
         occupancy_.set_cost(x, y, target);
