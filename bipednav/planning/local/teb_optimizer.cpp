@@ -6,95 +6,57 @@
 #include <cmath>
 
 #include "bipednav/common/angles.hpp"
+#include "bipednav/planning/local/teb_lm.hpp"
+#include "bipednav/planning/local/teb_residuals.hpp"
 
 namespace bipednav::planning::local {
 
 namespace {
 
-// Weights read by the cost functors at evaluation time, so outer iterations can adapt them.
-struct Weights {
-  double nh, back, vel_x, vel_th, acc_x, acc_th, time, obstacle, via;
-};
+using Weights = TebWeights;
+using Context = TebResidualContext;
 
-Weights base_weights(const TebOptimizerParams& p) {
-  return {p.weight_kinematics_nh, p.weight_backwards,   p.weight_max_vel_x, p.weight_max_vel_theta, p.weight_acc_lim_x,
-          p.weight_acc_lim_theta, p.weight_optimaltime, p.weight_obstacle,  p.weight_viapoint};
-}
-
-struct Context {
-  const TebLimits* limits;
-  const TebOptimizerParams* params;
-  const Weights* w;
-};
-
-// Terms between s_k and s_{k+1}: eq. 5.16 (non-holonomic), backwards penalty, eq. 5.13 (velocity
-// limits, asymmetric forward/backward), eq. 5.4 (time).
+// Ceres cost functors over the residual blocks of teb_residuals.hpp (automatic Jacobians).
 struct EdgeFunctor {
   Context c;
   template <typename T>
   bool operator()(const T* a, const T* b, const T* dt, T* r) const {
-    using std::sqrt;
-    const auto& L = *c.limits;
-    const double eps = c.params->penalty_epsilon;
-    const T v = linear_velocity(a[0], a[1], a[2], b[0], b[1], dt[0], c.params->sign_gain);
-    const T w = angular_velocity(a[2], b[2], dt[0]);
-    r[0] = sqrt(c.w->nh) * nonholonomic_error(a[0], a[1], a[2], b[0], b[1], b[2]);
-    r[1] = sqrt(c.w->back) * backwards_error(a[0], a[1], a[2], b[0], b[1]);
-    r[2] = sqrt(c.w->vel_x) * penalty_interval(v, -L.max_vel_x_backwards_mps, L.max_vel_x_mps, eps);
-    r[3] = sqrt(c.w->vel_th) * penalty_symmetric(w, L.max_vel_theta_radps, eps);
-    r[4] = sqrt(c.w->time) * time_error(dt[0]);
+    edge_residuals(c, a, b, dt, r);
     return true;
   }
 };
 
-// eq. 5.11-5.12, 5.14 over s_k, s_{k+1}, s_{k+2}.
 struct AccFunctor {
   Context c;
   template <typename T>
   bool operator()(const T* a, const T* b, const T* d, const T* dt1, const T* dt2, T* r) const {
-    using std::sqrt;
-    const double eps = c.params->penalty_epsilon, g = c.params->sign_gain;
-    const T v1 = linear_velocity(a[0], a[1], a[2], b[0], b[1], dt1[0], g);
-    const T v2 = linear_velocity(b[0], b[1], b[2], d[0], d[1], dt2[0], g);
-    const T w1 = angular_velocity(a[2], b[2], dt1[0]);
-    const T w2 = angular_velocity(b[2], d[2], dt2[0]);
-    r[0] = sqrt(c.w->acc_x) * penalty_symmetric(acceleration(v1, v2, dt1[0], dt2[0]), c.limits->acc_lim_x_mps2, eps);
-    r[1] = sqrt(c.w->acc_th) *
-           penalty_symmetric(acceleration(w1, w2, dt1[0], dt2[0]), c.limits->acc_lim_theta_radps2, eps);
+    acc_residuals(c, a, b, d, dt1, dt2, r);
     return true;
   }
 };
 
-// Acceleration of the first interval from the robot's current velocity.
 struct StartAccFunctor {
   Context c;
   Twist v0;
   template <typename T>
   bool operator()(const T* a, const T* b, const T* dt, T* r) const {
-    using std::sqrt;
-    const double eps = c.params->penalty_epsilon;
-    const T v = linear_velocity(a[0], a[1], a[2], b[0], b[1], dt[0], c.params->sign_gain);
-    const T w = angular_velocity(a[2], b[2], dt[0]);
-    r[0] = sqrt(c.w->acc_x) * penalty_symmetric(T((v - T(v0.linear_x)) / dt[0]), c.limits->acc_lim_x_mps2, eps);
-    r[1] = sqrt(c.w->acc_th) * penalty_symmetric(T((w - T(v0.angular_z)) / dt[0]), c.limits->acc_lim_theta_radps2, eps);
+    start_acc_residuals(c, v0, a, b, dt, r);
     return true;
   }
 };
 
-// eq. 5.15 / 5.19 for one pose against its associated nearest obstacles (padded with zeros).
+// One pose against its associated nearest obstacles (padded with zeros).
 struct ObstacleFunctor {
   Context c;
   const std::vector<Obstacle>* obstacles;
   const std::vector<int>* assoc;
   template <typename T>
   bool operator()(const T* p, T* r) const {
-    using std::sqrt;
     const int k = c.params->obstacles_per_pose;
     for (int i = 0; i < k; ++i) {
       r[i] = T(0.0);
       if (i >= static_cast<int>(assoc->size())) continue;
-      const T d = obstacle_distance((*obstacles)[static_cast<std::size_t>((*assoc)[i])], p[0], p[1]);
-      r[i] = sqrt(c.w->obstacle) * penalty_below(d, c.limits->min_obstacle_dist_m, c.params->penalty_epsilon);
+      r[i] = obstacle_residual(c, (*obstacles)[static_cast<std::size_t>((*assoc)[i])], p);
     }
     return true;
   }
@@ -105,9 +67,7 @@ struct ViaFunctor {
   Eigen::Vector2d via;
   template <typename T>
   bool operator()(const T* p, T* r) const {
-    const auto e = via_point_error(p[0], p[1], via);
-    r[0] = sqrt(c.w->via) * e[0];
-    r[1] = sqrt(c.w->via) * e[1];
+    via_residuals(c, via, p, r);
     return true;
   }
 };
@@ -141,6 +101,7 @@ ceres::LinearSolverType solver_type(const std::string& name) {
 // One Levenberg-Marquardt solve over the band stored in x (3 per pose) and dt.
 bool solve_once(std::vector<double>& x, std::vector<double>& dt, const TebProblemInput& input,
                 std::vector<std::vector<int>>& assoc, const Context& ctx, const TebBandParams& bp) {
+  const auto via = assign_via_points(x, dt.size() + 1, input.via_points);
   const std::size_t n = dt.size() + 1;
   ceres::Problem problem;
   for (std::size_t k = 0; k < n; ++k) problem.AddParameterBlock(&x[3 * k], 3);
@@ -170,7 +131,7 @@ bool solve_once(std::vector<double>& x, std::vector<double>& dt, const TebProble
                                &x[3 * k]);
     }
   }
-  for (const auto& [k, v] : assign_via_points(x, n, input.via_points)) {
+  for (const auto& [k, v] : via) {
     problem.AddResidualBlock(new ceres::AutoDiffCostFunction<ViaFunctor, 2, 3>(new ViaFunctor{ctx, v}), nullptr,
                              &x[3 * k]);
   }
@@ -208,6 +169,8 @@ bool optimize_band(TebBand& band, const TebProblemInput& input, const TebLimits&
   TebBand work = band;
   std::vector<double> x, dt;
   std::vector<std::vector<int>> assoc;
+  const bool banded = params.linear_solver == "banded_lm";
+  TebLmSolver lm;  // its buffers are reused over the outer iterations
   for (int outer = 0; outer < params.no_outer_iterations; ++outer) {
     resample_band(work, band_params);
     const std::size_t n = work.size();
@@ -217,7 +180,21 @@ bool optimize_band(TebBand& band, const TebProblemInput& input, const TebLimits&
     }
     dt = work.dt_s;
     associate(x, n, input, params, assoc);
-    if (!solve_once(x, dt, input, assoc, ctx, band_params)) return false;
+    if (banded) {
+      const auto via = assign_via_points(x, n, input.via_points);
+      TebLmProblem lp;
+      lp.ctx = ctx;
+      lp.obstacles = input.obstacles;
+      lp.assoc = &assoc;
+      lp.via = &via;
+      lp.start_velocity = input.start_velocity;
+      lp.dt_min_s = band_params.dt_min_s;
+      lp.max_iterations = params.no_inner_iterations;
+      lp.function_tolerance = params.function_tolerance;
+      if (!lm.solve(lp, x, dt)) return false;
+    } else if (!solve_once(x, dt, input, assoc, ctx, band_params)) {
+      return false;
+    }
     for (std::size_t k = 0; k < n; ++k) work.poses[k] = {x[3 * k], x[3 * k + 1], normalize_angle(x[3 * k + 2])};
     work.dt_s = dt;
     w.obstacle *= params.weight_adapt_factor;  // weight adaptation between outer iterations

@@ -43,9 +43,9 @@ void TebOptimizerParams::validate() const {
   require(no_outer_iterations >= 1, "no_outer_iterations", ">= 1");
   require(obstacles_per_pose >= 0 && obstacles_per_pose <= 8, "obstacles_per_pose", "in [0, 8]");
   require(pos(obstacle_influence_dist_m), "obstacle_influence_dist_m", "> 0");
-  require(linear_solver == "sparse_normal_cholesky" || linear_solver == "dense_normal_cholesky" ||
-              linear_solver == "dense_qr" || linear_solver == "dense_schur",
-          "linear_solver", "sparse_normal_cholesky, dense_normal_cholesky, dense_qr or dense_schur");
+  require(linear_solver == "banded_lm" || linear_solver == "sparse_normal_cholesky" ||
+              linear_solver == "dense_normal_cholesky" || linear_solver == "dense_qr" || linear_solver == "dense_schur",
+          "linear_solver", "banded_lm, sparse_normal_cholesky, dense_normal_cholesky, dense_qr or dense_schur");
 }
 
 void ObstacleParams::validate() const {

@@ -49,8 +49,11 @@ struct TebOptimizerParams {
   double function_tolerance = 1e-4;  // relative cost change ending a solve early (warm starts converge fast)
   int obstacles_per_pose = 2;        // nearest obstacles entering the problem per pose
   double obstacle_influence_dist_m = 1.5;
-  // "sparse_normal_cholesky" (SuiteSparse), "dense_normal_cholesky", "dense_qr" or "dense_schur".
-  std::string linear_solver = "sparse_normal_cholesky";
+  // "banded_lm": the dedicated Levenberg-Marquardt of teb_lm (analytic Jacobians, band Cholesky of the
+  // normal equations); or Ceres' Levenberg-Marquardt with automatic Jacobians and the linear solver
+  // "sparse_normal_cholesky" (SuiteSparse), "dense_normal_cholesky", "dense_qr" or "dense_schur". All
+  // minimise the same objective with the same trust-region schedule.
+  std::string linear_solver = "banded_lm";
 
   void validate() const;
 };
