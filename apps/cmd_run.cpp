@@ -1,8 +1,11 @@
 // `bipednav run`: the closed loop in the simulator, and `bipednav bench scenarios`.
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <mutex>
 #include <nlohmann/json.hpp>
+#include <thread>
 
 #include "apps/cli_pose.hpp"
 #include "apps/cmd_run_footsteps.hpp"
@@ -176,40 +179,113 @@ void run_command(const RunArgs& a) {
   }
 }
 
-void bench_scenarios(int seeds, const std::vector<std::string>& robots, bool json) {
-  const std::vector<std::string> names = {"hexagon_static",   "hexagon_dynamic",   "three_rooms",
-                                          "digit_lab_static", "digit_lab_dynamic", "turtlebot3_world"};
-  nlohmann::json rows = nlohmann::json::array();
-  ProgressBar bar("scenarios", names.size() * robots.size() * seeds, true);
-  std::size_t done = 0, ok_total = 0;
-  for (const auto& name : names) {
-    const sim::Scenario s = sim::load_scenario(resolve_scenario(name));
-    for (const auto& robot : robots) {
-      int ok = 0;
-      double rtf = 0.0;
-      for (int seed = 1; seed <= seeds; ++seed) {
-        runner::RunOptions o;
-        o.robot = robot;
-        o.seed = static_cast<std::uint64_t>(seed);
-        const auto r = runner::run_scenario(s, o);
-        ok += r.success;
-        rtf += r.real_time_factor / seeds;
-        bar.update(++done);
+struct BenchScenarioArgs {
+  int seeds = 1;
+  int jobs = 1;
+  std::vector<std::string> robots{"turtlebot3", "digit"};
+  std::vector<std::string> scenarios{"hexagon_static",   "hexagon_dynamic",   "three_rooms",
+                                     "digit_lab_static", "digit_lab_dynamic", "turtlebot3_world"};
+  bool json = false;
+};
+
+// One closed-loop run of the bench.
+struct BenchRun {
+  std::size_t scenario = 0;
+  std::string robot;
+  int seed = 0;
+  runner::RunResult result;
+  std::string error;  // what a run that threw said (it counts as failed)
+};
+
+void bench_scenarios(const BenchScenarioArgs& a) {
+  require(a.jobs >= 1 && a.jobs <= 64, "--jobs", "in [1, 64]");
+  require(!a.scenarios.empty() && !a.robots.empty(), "--scenarios/--robots", "not empty");
+  std::vector<sim::Scenario> loaded;
+  for (const auto& name : a.scenarios) loaded.push_back(sim::load_scenario(resolve_scenario(name)));
+  std::vector<BenchRun> runs;
+  for (std::size_t k = 0; k < loaded.size(); ++k)
+    for (const auto& robot : a.robots)
+      for (int seed = 1; seed <= a.seeds; ++seed) {
+        BenchRun& b = runs.emplace_back();
+        b.scenario = k;
+        b.robot = robot;
+        b.seed = seed;
       }
-      ok_total += ok;
-      rows.push_back({{"scenario", name}, {"robot", robot}, {"succeeded", ok}, {"runs", seeds}, {"mean_rtf", rtf}});
+  // Runs are independent simulations: --jobs of them at a time, each on one thread. The results do
+  // not depend on --jobs; a run's real-time factor is its own wall time, so it drops when the
+  // jobs share cores.
+  ProgressBar bar("scenarios", runs.size(), true);
+  std::mutex bar_mutex;
+  std::atomic<std::size_t> next{0}, done{0};
+  auto worker = [&] {
+    for (std::size_t i = next++; i < runs.size(); i = next++) {
+      BenchRun& b = runs[i];
+      runner::RunOptions o;
+      o.robot = b.robot;
+      o.seed = static_cast<std::uint64_t>(b.seed);
+      try {
+        b.result = runner::run_scenario(loaded[b.scenario], o);
+      } catch (const std::exception& e) {
+        b.error = e.what();
+      }
+      const std::lock_guard lock(bar_mutex);
+      bar.update(++done);
     }
-  }
+  };
+  std::vector<std::thread> threads;
+  for (int j = 1; j < a.jobs; ++j) threads.emplace_back(worker);
+  worker();
+  for (auto& t : threads) t.join();
   bar.finish();
-  if (json) {
-    std::printf("%s\n", nlohmann::json{{"rows", rows}, {"succeeded", ok_total}, {"runs", done}}.dump(2).c_str());
+
+  nlohmann::json rows = nlohmann::json::array();
+  std::size_t ok_total = 0;
+  for (std::size_t first = 0; first < runs.size(); first += static_cast<std::size_t>(a.seeds)) {
+    int ok = 0;
+    double rtf = 0.0, sim_s = 0.0;
+    nlohmann::json failures = nlohmann::json::array();
+    for (std::size_t i = first; i < first + static_cast<std::size_t>(a.seeds); ++i) {
+      const BenchRun& b = runs[i];
+      const bool success = b.error.empty() && b.result.success;
+      ok += success;
+      rtf += b.result.real_time_factor / a.seeds;
+      sim_s += b.result.time_s / a.seeds;
+      if (success) continue;
+      failures.push_back(b.error.empty()
+                             ? nlohmann::json{{"seed", b.seed},
+                                              {"outcome", std::string(outcome_name(b.result.outcome.outcome))},
+                                              {"collisions", b.result.collisions},
+                                              {"time_s", b.result.time_s},
+                                              {"min_clearance_m", b.result.min_clearance_m}}
+                             : nlohmann::json{{"seed", b.seed}, {"error", b.error}});
+    }
+    ok_total += static_cast<std::size_t>(ok);
+    rows.push_back({{"scenario", a.scenarios[runs[first].scenario]},
+                    {"robot", runs[first].robot},
+                    {"succeeded", ok},
+                    {"runs", a.seeds},
+                    {"mean_rtf", rtf},
+                    {"mean_time_s", sim_s},
+                    {"failures", failures}});
+  }
+  if (a.json) {
+    std::printf("%s\n", nlohmann::json{{"rows", rows}, {"succeeded", ok_total}, {"runs", runs.size()}, {"jobs", a.jobs}}
+                            .dump(2)
+                            .c_str());
     return;
   }
-  std::printf("%-20s %-12s %9s %9s\n", "scenario", "robot", "success", "RTF");
-  for (const auto& r : rows)
-    std::printf("%-20s %-12s %4d / %-3d %8.1fx\n", r["scenario"].get<std::string>().c_str(),
+  std::printf("%-20s %-12s %9s %9s  %s\n", "scenario", "robot", "success", "RTF", "failed seeds");
+  for (const auto& r : rows) {
+    std::string failed;
+    for (const auto& f : r["failures"]) {
+      failed += (failed.empty() ? "" : ", ") + std::to_string(f["seed"].get<int>()) + " (" +
+                (f.contains("error") ? std::string("error") : f["outcome"].get<std::string>()) +
+                (f.contains("collisions") && f["collisions"].get<int>() > 0 ? ", collision" : "") + ")";
+    }
+    std::printf("%-20s %-12s %4d / %-3d %8.1fx  %s\n", r["scenario"].get<std::string>().c_str(),
                 r["robot"].get<std::string>().c_str(), r["succeeded"].get<int>(), r["runs"].get<int>(),
-                r["mean_rtf"].get<double>());
+                r["mean_rtf"].get<double>(), failed.c_str());
+  }
 }
 
 }  // namespace
@@ -241,14 +317,18 @@ void add_run_commands(CLI::App& app, CLI::App& bench) {
     run_command(*args);
   });
 
-  auto seeds = std::make_shared<int>(1);
-  auto robots = std::make_shared<std::vector<std::string>>(std::vector<std::string>{"turtlebot3", "digit"});
-  auto json = std::make_shared<bool>(false);
+  auto b = std::make_shared<BenchScenarioArgs>();
   CLI::App* sc = bench.add_subcommand("scenarios", "Run every scenario with N seeds and both robots");
-  sc->add_option("--seeds", *seeds, "Seeds per scenario and robot")->capture_default_str()->check(CLI::Range(1, 1000));
-  sc->add_option("--robots", *robots, "Robot profiles")->capture_default_str();
-  sc->add_flag("--json", *json, "Print one JSON object");
-  sc->callback([seeds, robots, json] { bench_scenarios(*seeds, *robots, *json); });
+  sc->add_option("--seeds", b->seeds, "Seeds per scenario and robot")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000));
+  sc->add_option("--robots", b->robots, "Robot profiles")->capture_default_str();
+  sc->add_option("--scenarios", b->scenarios, "Scenario names or files")->capture_default_str();
+  sc->add_option("--jobs", b->jobs, "Runs at a time, each on one thread (results do not depend on it)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 64));
+  sc->add_flag("--json", b->json, "Print one JSON object (with the failed seeds of each pair)");
+  sc->callback([b] { bench_scenarios(*b); });
 }
 
 }  // namespace bipednav::app
