@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -27,23 +28,33 @@ class EuclideanHeuristic : public Heuristic {
   double tolerance_m_, v_max_;
 };
 
-// Dijkstra distances from the goal over an 8-connected graph of the lattice whose edges are
-// planar (free), elevating (a step up/down/over: longer) or impassable (steeper than the
-// robot's maximum step), section V-D2. Octile distances are scaled down by the worst-case
-// octile/Euclidean ratio and elevating edges only add what the fastest 3D action must cost
-// over a planar one, so the heuristic stays admissible.
+// Dijkstra distances from the goal over a 16-connected graph of the lattice (the 8 neighbours
+// and the 8 knight moves) whose edges are planar (free), elevating (a step up/down/over:
+// longer) or impassable (steeper than the robot's maximum step), section V-D2, and whose cells
+// are closed to the body centre where the robot's two feet cannot stand beside a tall obstacle
+// (body clearance, heuristics.cpp). Edge lengths are scaled down by the worst-case
+// 16-connected/Euclidean ratio and elevating edges only add what the fastest 3D action must
+// cost over a planar one, so the heuristic stays admissible (the argument is in heuristics.cpp).
 class DijkstraHeuristic : public Heuristic {
  public:
   DijkstraHeuristic(const TerrainGrid& terrain, const ActionSet& actions, const Pose2& goal, double tolerance_m);
   double seconds_to_goal(double x, double y) const override;
   double distance_m(int x, int y) const { return dist_[terrain_->geometry().index(x, y)]; }
   double elevation_penalty_m() const { return elevation_penalty_m_; }
+  // Whether no state can have its body centre in cell (x, y) and take an action (body clearance).
+  bool body_blocked(int x, int y) const { return !blocked_.empty() && blocked_[terrain_->geometry().index(x, y)] != 0; }
+  // The radius around a body centre within which a solid obstacle taller than the robot's feet
+  // can clear closes the cell (0 when the body model leaves no such radius, e.g. Digit's wide stance).
+  double clearance_radius_m() const { return clearance_radius_m_; }
 
  private:
+  void mark_body_blocked(const ActionSet& actions);
+
   const TerrainGrid* terrain_;
   Pose2 goal_;
-  double tolerance_m_, v_max_, elevation_penalty_m_ = 0.0;
+  double tolerance_m_, v_max_, elevation_penalty_m_ = 0.0, clearance_radius_m_ = 0.0;
   std::vector<float> dist_;
+  std::vector<std::uint8_t> blocked_;
 };
 
 // Edge class between two neighbouring lattice cells (for the heuristic and its figure).

@@ -211,6 +211,90 @@ TEST(FootstepPlanner, DijkstraHeuristicIsAdmissibleAndAnytimeBoundHolds) {
   EXPECT_NEAR(any.cost_s, best.cost_s, 1e-9);
 }
 
+namespace {
+
+// h at every state of an exact optimal plan (eps 1 with the Euclidean heuristic, which does not
+// depend on the Dijkstra graph) never exceeds the remaining cost.
+void expect_dijkstra_below_optimal(const mapping::Heightmap& map, const Pose2& start_body, const Pose2& goal) {
+  FootstepPlannerParams p = params_with_bound(1.0);
+  p.search.initial_epsilon = 1.0;
+  p.heuristic = "euclidean";
+  const FootstepPlanner optimal(p);
+  const Footstep start = optimal.stance_for_body(start_body, Foot::kLeft);
+  const FootstepPlan best = optimal.plan(map, start, goal);
+  ASSERT_TRUE(best.result.ok()) << best.result.message;
+  ASSERT_EQ(best.final_epsilon, 1.0);
+  const ActionSet set = nao_action_set();
+  const TerrainGrid terrain(map, p.lattice_resolution_m);
+  const DijkstraHeuristic h(terrain, set, goal, p.goal_tolerance_m);
+  double remaining = best.cost_s;
+  const double half = set.body.nominal_separation_m / 2.0;
+  for (std::size_t i = 0; i < best.steps.size(); ++i) {
+    const Footstep& f = best.steps[i];
+    const Pose2 body = f.pose * Pose2{0.0, f.foot == Foot::kLeft ? -half : half, 0.0};
+    EXPECT_LE(h.seconds_to_goal(body.x, body.y), remaining + 1e-9) << "step " << i;
+    if (i < best.actions.size()) {
+      for (const auto& a : set.actions)
+        if (a.name == best.actions[i]) remaining -= a.duration_s;
+    }
+  }
+  EXPECT_NEAR(remaining, 0.0, 1e-9);
+}
+
+}  // namespace
+
+TEST(FootstepPlanner, DijkstraHeuristicStaysBelowExactOptimalCosts) {
+  auto bar = flat_map(1.0, 0.6, 0.01);
+  add_box(bar, 0.48, 0.0, 0.51, 0.6, 0.04);  // stepped over
+  expect_dijkstra_below_optimal(bar, {0.2, 0.3, 0.0}, {0.8, 0.3, 0.0});
+  auto platform = flat_map(1.0, 0.6, 0.01);
+  add_box(platform, 0.45, 0.0, 1.0, 0.6, 0.03);  // stepped onto
+  expect_dijkstra_below_optimal(platform, {0.2, 0.3, 0.0}, {0.8, 0.3, 0.0});
+  auto blocks = flat_map(1.0, 0.9, 0.01);
+  add_box(blocks, 0.45, 0.0, 0.55, 0.42, 0.4);  // a 7 cm gap between tall blocks, a way around
+  add_box(blocks, 0.45, 0.49, 0.55, 0.75, 0.4);
+  expect_dijkstra_below_optimal(blocks, {0.2, 0.45, 0.0}, {0.8, 0.45, 0.0});
+}
+
+TEST(FootstepPlanner, DijkstraHeuristicClosesAGapNarrowerThanTheBody) {
+  // Two 40 cm blocks 6 cm apart: the point-robot graph passed between them, the body cannot
+  // (its torso alone is 10 cm deep).
+  auto map = flat_map(1.2, 1.4, 0.01);
+  add_box(map, 0.5, 0.3, 0.7, 0.67, 0.4);
+  add_box(map, 0.5, 0.73, 0.7, 1.1, 0.4);
+  const TerrainGrid terrain(map, 0.01);
+  const Pose2 goal{1.0, 0.7, 0.0};
+  const DijkstraHeuristic h(terrain, nao_action_set(), goal, 0.05);
+  EXPECT_GT(h.clearance_radius_m(), 0.04);
+  EXPECT_TRUE(h.body_blocked(60, 70));   // the middle of the gap
+  EXPECT_FALSE(h.body_blocked(20, 70));  // open floor
+  EXPECT_FALSE(h.body_blocked(60, 20));  // beside the blocks
+  // The distance goes around the blocks (at least 0.3 m off the line), not through the gap.
+  const double through = 0.8, around = 2.0 * std::hypot(0.4, 0.4);
+  const double d = h.distance_m(20, 70);
+  EXPECT_GT(d, 0.9 * around);
+  EXPECT_GT(d, through);
+  // A start in a closed cell at the gap's mouth still gets a finite value from its open
+  // neighbours (the start's own sole was never checked); the middle of the gap is cut off.
+  int mouth = 40;
+  while (mouth < 60 && !h.body_blocked(mouth, 70)) ++mouth;
+  ASSERT_LT(mouth, 50);
+  EXPECT_TRUE(std::isfinite(h.seconds_to_goal(0.01 * mouth + 0.005, 0.705)));
+  EXPECT_FALSE(std::isfinite(h.seconds_to_goal(0.605, 0.705)));
+}
+
+TEST(FootstepPlanner, DijkstraHeuristicIsWithinThreePercentOfTheStraightLineInTheOpen) {
+  auto map = flat_map(1.5, 1.5, 0.01);
+  const TerrainGrid terrain(map, 0.01);
+  const Pose2 goal{0.105, 0.105, 0.0};  // cell (10, 10)
+  const DijkstraHeuristic h(terrain, nao_action_set(), goal, 0.05);
+  for (const auto& [dx, dy] : std::vector<std::pair<int, int>>{{100, 0}, {100, 24}, {100, 50}, {90, 70}, {80, 80}}) {
+    const double straight = 0.01 * std::hypot(dx, dy), d = h.distance_m(10 + dx, 10 + dy);
+    EXPECT_LE(d, straight + 1e-5) << dx << "," << dy;
+    EXPECT_GE(d, straight / 1.0275 - 1e-5) << dx << "," << dy;
+  }
+}
+
 TEST(FootstepPlanner, PlanBecomesInvalidWhenAnObstacleAppears) {
   auto map = flat_map(1.4, 0.8, 0.01);
   FootstepPlanner planner(fast_params());
