@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <string>
 #include <utility>
@@ -29,36 +31,111 @@ inline void sort2(float& a, std::uint32_t& ia, float& b, std::uint32_t& ib) {
   ib = ihi;
 }
 
+using F4 = float __attribute__((vector_size(16)));
+using I4 = std::int32_t __attribute__((vector_size(16)));  // comparison results: -1 (true) or 0
+
+inline F4 load4(const float* p) {
+  F4 v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+// Lanes of (a, b) picked by indices 0-3 (a) and 4-7 (b).
+template <int I0, int I1, int I2, int I3>
+inline F4 shuffle(F4 a, F4 b) {
+#if defined(__clang__)
+  return __builtin_shufflevector(a, b, I0, I1, I2, I3);
+#else
+  return __builtin_shuffle(a, b, I4{I0, I1, I2, I3});
+#endif
+}
+
+// range2_or_inf of four consecutive points (12 floats), lane-wise with the same operations:
+// Eigen's squaredNorm of a Vector3f is x^2 + (y^2 + z^2) (tests/perception check it bit for bit).
+inline F4 range2_or_inf4(const float* p) {
+  const F4 a = load4(p), b = load4(p + 4), c = load4(p + 8);  // x0 y0 z0 x1 | y1 z1 x2 y2 | z2 x3 y3 z3
+  const F4 x = shuffle<0, 3, 4, 7>(a, shuffle<2, 3, 4, 5>(b, c));
+  const F4 y = shuffle<0, 1, 4, 5>(shuffle<1, 4, 1, 4>(a, b), shuffle<3, 6, 3, 6>(b, c));
+  const F4 z = shuffle<0, 1, 4, 5>(shuffle<2, 5, 2, 5>(a, b), shuffle<0, 3, 0, 3>(c, c));
+  const F4 r2 = x * x + (y * y + z * z);
+  const float inf = std::numeric_limits<float>::infinity();
+  // NaN and infinite coordinates give a NaN or infinite r2, which fails the test as an overflow does.
+  return r2 <= std::numeric_limits<float>::max() ? r2 : F4{inf, inf, inf, inf};
+}
+
+// sort2 on four blocks at once.
+inline void sort2(F4& a, I4& ia, F4& b, I4& ib) {
+  const I4 swap = b < a;
+  const F4 lo = swap ? b : a, hi = swap ? a : b;
+  const I4 ilo = swap ? ib : ia, ihi = swap ? ia : ib;
+  a = lo;
+  b = hi;
+  ia = ilo;
+  ib = ihi;
+}
+
 // Factor 2, the common case: each 2 x 2 block is sorted by a 5-comparator network (the non-finite
 // points, at +inf, sort last) and the lower median of its n finite points is element (n - 1) / 2.
-std::size_t decimate_by_2(const Eigen::Vector3f* p, std::size_t w, std::size_t h, PointCloud& out) {
-  std::size_t finite = 0;
+// Four neighbouring blocks are sorted at once (lanes); leftover blocks of a row go one by one.
+// The median is kept when its squared range is <= r2_max.
+DecimationCounts decimate_by_2(const Eigen::Vector3f* p, std::size_t w, std::size_t h, float r2_max, PointCloud& out) {
+  DecimationCounts n_out;
+  const float inf = std::numeric_limits<float>::infinity();
   for (std::size_t v = 0; v + 2 <= h; v += 2) {
     const Eigen::Vector3f* row0 = p + v * w;
     const Eigen::Vector3f* row1 = row0 + w;
-    for (std::size_t u = 0; u + 2 <= w; u += 2) {
-      float r[4] = {range2_or_inf(row0[u]), range2_or_inf(row0[u + 1]), range2_or_inf(row1[u]),
-                    range2_or_inf(row1[u + 1])};
-      std::uint32_t id[4] = {0, 1, 2, 3};
-      const int n = (r[0] < std::numeric_limits<float>::infinity()) + (r[1] < std::numeric_limits<float>::infinity()) +
-                    (r[2] < std::numeric_limits<float>::infinity()) + (r[3] < std::numeric_limits<float>::infinity());
-      if (n == 0) continue;
-      finite += static_cast<std::size_t>(n);
+    std::size_t u = 0;
+    for (; u + 8 <= w; u += 8) {
+      const F4 a0 = range2_or_inf4(row0[u].data()), b0 = range2_or_inf4(row0[u + 4].data());
+      const F4 a1 = range2_or_inf4(row1[u].data()), b1 = range2_or_inf4(row1[u + 4].data());
+      // r[k]: lane j holds pixel k (0, 1: top row; 2, 3: bottom row) of block j.
+      F4 r[4] = {shuffle<0, 2, 4, 6>(a0, b0), shuffle<1, 3, 5, 7>(a0, b0), shuffle<0, 2, 4, 6>(a1, b1),
+                 shuffle<1, 3, 5, 7>(a1, b1)};
+      I4 id[4] = {I4{0, 0, 0, 0}, I4{1, 1, 1, 1}, I4{2, 2, 2, 2}, I4{3, 3, 3, 3}};
+      const F4 infs{inf, inf, inf, inf};
+      const I4 n = -((r[0] < infs) + (r[1] < infs) + (r[2] < infs) + (r[3] < infs));
+      if ((n[0] | n[1] | n[2] | n[3]) == 0) continue;
+      n_out.finite += static_cast<std::size_t>(n[0] + n[1] + n[2] + n[3]);
       sort2(r[0], id[0], r[1], id[1]);
       sort2(r[2], id[2], r[3], id[3]);
       sort2(r[0], id[0], r[2], id[2]);
       sort2(r[1], id[1], r[3], id[3]);
       sort2(r[1], id[1], r[2], id[2]);
+      const I4 three = n >= 3;  // (n - 1) / 2 is 1 for n = 3, 4 and 0 for n = 1, 2
+      const F4 r_mid = three ? r[1] : r[0];
+      const I4 id_mid = three ? id[1] : id[0];
+      const I4 some = n > 0;
+      const I4 keep = some & (r_mid <= F4{r2_max, r2_max, r2_max, r2_max});
+      n_out.blocks += static_cast<std::size_t>(-(some[0] + some[1] + some[2] + some[3]));
+      for (int j = 0; j < 4; ++j) {
+        if (!keep[j]) continue;
+        const auto k = static_cast<std::uint32_t>(id_mid[j]);
+        out.points.push_back((k < 2 ? row0 : row1)[u + 2 * static_cast<std::size_t>(j) + (k & 1u)]);
+      }
+    }
+    for (; u + 2 <= w; u += 2) {
+      float r[4] = {range2_or_inf(row0[u]), range2_or_inf(row0[u + 1]), range2_or_inf(row1[u]),
+                    range2_or_inf(row1[u + 1])};
+      std::uint32_t id[4] = {0, 1, 2, 3};
+      const int n = (r[0] < inf) + (r[1] < inf) + (r[2] < inf) + (r[3] < inf);
+      if (n == 0) continue;
+      n_out.finite += static_cast<std::size_t>(n);
+      ++n_out.blocks;
+      sort2(r[0], id[0], r[1], id[1]);
+      sort2(r[2], id[2], r[3], id[3]);
+      sort2(r[0], id[0], r[2], id[2]);
+      sort2(r[1], id[1], r[3], id[3]);
+      sort2(r[1], id[1], r[2], id[2]);
+      if (!(r[(n - 1) / 2] <= r2_max)) continue;
       const std::uint32_t k = id[(n - 1) / 2];
       out.points.push_back((k < 2 ? row0 : row1)[u + (k & 1u)]);
     }
   }
-  return finite;
+  return n_out;
 }
 
-}  // namespace
-
-std::size_t decimate_depth(const PointCloud& in, int width, int factor, PointCloud& out) {
+// Both entry points: the medians with squared range <= r2_max (+inf: all).
+DecimationCounts decimate(const PointCloud& in, int width, int factor, float r2_max, PointCloud& out) {
   if (width < 1 || factor < 1 || factor > 8)
     throw Error("decimate_depth: width must be >= 1 and factor in [1, 8] (got " + std::to_string(width) + ", " +
                 std::to_string(factor) + ")");
@@ -72,28 +149,43 @@ std::size_t decimate_depth(const PointCloud& in, int width, int factor, PointClo
   out.stamp_s = in.stamp_s;
   out.points.reserve((w / k) * (h / k));
   const Eigen::Vector3f* p = in.points.data();
-  std::size_t finite = 0;
-  if (k == 2) finite = decimate_by_2(p, w, h, out);
+  DecimationCounts n;
+  if (k == 2) n = decimate_by_2(p, w, h, r2_max, out);
   std::array<std::pair<float, std::uint32_t>, 64> block{};  // (squared range, index) of the finite points
   for (std::size_t bv = 0; k != 2 && bv + k <= h; bv += k)
     for (std::size_t bu = 0; bu + k <= w; bu += k) {
-      std::size_t n = 0;
+      std::size_t m = 0;
       for (std::size_t v = bv; v < bv + k; ++v)
         for (std::size_t u = bu; u < bu + k; ++u) {
           const std::size_t i = v * w + u;
           const float r2 = range2_or_inf(p[i]);
-          if (r2 < std::numeric_limits<float>::infinity()) block[n++] = {r2, static_cast<std::uint32_t>(i)};
+          if (r2 < std::numeric_limits<float>::infinity()) block[m++] = {r2, static_cast<std::uint32_t>(i)};
         }
-      finite += n;
-      if (n == 0) continue;
-      const auto mid = block.begin() + static_cast<std::ptrdiff_t>((n - 1) / 2);
-      std::nth_element(block.begin(), mid, block.begin() + static_cast<std::ptrdiff_t>(n));
-      out.points.push_back(p[mid->second]);
+      n.finite += m;
+      if (m == 0) continue;
+      ++n.blocks;
+      const auto mid = block.begin() + static_cast<std::ptrdiff_t>((m - 1) / 2);
+      std::nth_element(block.begin(), mid, block.begin() + static_cast<std::ptrdiff_t>(m));
+      if (mid->first <= r2_max) out.points.push_back(p[mid->second]);
     }
   // Points of the dropped edge rows and columns still count as received.
   for (std::size_t v = 0; v < h; ++v)
-    for (std::size_t u = (v < (h / k) * k ? (w / k) * k : 0); u < w; ++u) finite += p[v * w + u].allFinite() ? 1 : 0;
-  return finite;
+    for (std::size_t u = (v < (h / k) * k ? (w / k) * k : 0); u < w; ++u) n.finite += p[v * w + u].allFinite() ? 1 : 0;
+  return n;
+}
+
+}  // namespace
+
+std::size_t decimate_depth(const PointCloud& in, int width, int factor, PointCloud& out) {
+  return decimate(in, width, factor, std::numeric_limits<float>::infinity(), out).finite;
+}
+
+DecimationCounts decimate_depth_within(const PointCloud& in, int width, int factor, double max_range_m,
+                                       PointCloud& out) {
+  if (!(max_range_m > 0.0))
+    throw Error("decimate_depth_within: max_range_m must be > 0 (got " + std::to_string(max_range_m) + ")");
+  // As PassThroughTest: the square in double, then float (an infinite limit stays infinite).
+  return decimate(in, width, factor, static_cast<float>(max_range_m * max_range_m), out);
 }
 
 }  // namespace bipednav::perception

@@ -35,21 +35,25 @@ void PerceptionPipeline::add_depth(FusedCloud& fused, const DepthCloud& depth, c
   if (!mount)
     throw Error("perception: depth cloud from camera '" + depth.camera + "', which robot profile '" + robot.name +
                 "' does not mount");
-  const PointCloud* cloud = &depth.cloud;
   const auto width = static_cast<std::size_t>(params_.depth_image_width);
-  if (params_.depth_decimation > 1 && !cloud->empty() && cloud->size() % width == 0) {
-    out.depth_points_in += decimate_depth(*cloud, params_.depth_image_width, params_.depth_decimation, decimated_);
-    cloud = &decimated_;
+  const PointCloud& cloud = depth.cloud;
+  if (params_.depth_decimation > 1 && !cloud.empty() && cloud.size() % width == 0) {
+    // Decimation and the range limit in one pass (the same points as decimating, then cropping);
+    // range first (section 4.2.2), then the voxel grid (4.2.1): the far, sparse points that the
+    // range limit drops would each fill a voxel of their own.
+    const DecimationCounts n = decimate_depth_within(cloud, params_.depth_image_width, params_.depth_decimation,
+                                                     params_.depth_max_range_m, decimated_);
+    out.depth_points_in += n.finite;
+    out.depth_points_decimated += n.blocks;
+    depth_voxel_.filter(decimated_, voxels_);
   } else {  // not decimated (off, or not an organised cloud of this width): every point goes on
-    for (const auto& p : cloud->points) out.depth_points_in += p.allFinite() ? 1u : 0u;
+    for (const auto& p : cloud.points) out.depth_points_in += p.allFinite() ? 1u : 0u;
+    out.depth_points_decimated += cloud.size();
+    PassThroughParams range;
+    range.max_range_m = params_.depth_max_range_m;
+    const PassThroughTest crop(range);
+    depth_voxel_.filter(cloud, voxels_, &crop);
   }
-  out.depth_points_decimated += cloud == &decimated_ ? decimated_.size() : cloud->size();
-  // Range first (section 4.2.2), then the voxel grid (4.2.1): the far, sparse points that the range
-  // limit drops would each fill a voxel of their own, so this order does the same work cheaper.
-  PassThroughParams range;
-  range.max_range_m = params_.depth_max_range_m;
-  const PassThroughTest crop(range);
-  depth_voxel_.filter(*cloud, voxels_, &crop);
   out.depth_points_voxel += voxels_.size();
   append_sensor_cloud(fused, voxels_, mount->T_base_sensor(), mount->name, params_.depth_max_range_m);
 }
