@@ -163,7 +163,7 @@ void TebLmSolver::project(std::vector<double>& z) const {
 }
 
 void TebLmSolver::add_block(int m, int cols, const double* r, const double* J, const int* idx, Mode mode,
-                            std::vector<double>& grad, double& cost) {
+                            std::vector<double>& grad, std::vector<double>& hband, double& cost) {
   int nzi[11];
   double nzv[11];
   for (int i = 0; i < m; ++i) {
@@ -180,19 +180,26 @@ void TebLmSolver::add_block(int m, int cols, const double* r, const double* J, c
     for (int a = 0; a < cnt; ++a) {
       for (int b = 0; b <= a; ++b) {
         const int hi = std::max(nzi[a], nzi[b]), lo = std::min(nzi[a], nzi[b]);
-        hband_[static_cast<std::size_t>(hi) * kW + static_cast<std::size_t>(hi - lo)] += nzv[a] * nzv[b];
+        hband[static_cast<std::size_t>(hi) * kW + static_cast<std::size_t>(hi - lo)] += nzv[a] * nzv[b];
       }
     }
   }
 }
 
-double TebLmSolver::evaluate(const std::vector<double>& z, Mode mode, std::vector<double>& grad) {
+double TebLmSolver::evaluate(const std::vector<double>& z, Mode mode, std::vector<double>& grad,
+                             std::vector<double>& hband) {
   const TebResidualContext& c = p_->ctx;
   double cost = 0.0;
   if (mode != Mode::kCost) grad.assign(nz_, 0.0);
-  if (mode == Mode::kFull) hband_.assign(nz_ * kW, 0.0);
+  if (mode == Mode::kFull) hband.assign(nz_ * kW, 0.0);
   const double gain = c.params->sign_gain;
-  for (std::size_t k = 0; k + 1 < n_; ++k) iv_[k] = interval_velocity(pose(z, k), pose(z, k + 1), z[4 * k], gain);
+  cos_.resize(n_), sin_.resize(n_);
+  for (std::size_t k = 0; k < n_; ++k) {
+    const double th = pose(z, k)[2];
+    cos_[k] = std::cos(th), sin_[k] = std::sin(th);
+  }
+  for (std::size_t k = 0; k + 1 < n_; ++k)
+    iv_[k] = interval_velocity(pose(z, k), pose(z, k + 1), z[4 * k], gain, cos_[k], sin_[k]);
   double r[5], J[35];
   int idx[11];
   const auto set_pose = [&](int* out, std::size_t k) {
@@ -203,11 +210,11 @@ double TebLmSolver::evaluate(const std::vector<double>& z, Mode mode, std::vecto
     set_pose(idx, k);
     set_pose(idx + 3, k + 1);
     idx[6] = static_cast<int>(4 * k);
-    edge_jacobian(c, pose(z, k), pose(z, k + 1), z[4 * k], iv_[k], r, J);
-    add_block(5, 7, r, J, idx, mode, grad, cost);
+    edge_jacobian(c, pose(z, k), pose(z, k + 1), z[4 * k], iv_[k], cos_[k], sin_[k], cos_[k + 1], sin_[k + 1], r, J);
+    add_block(5, 7, r, J, idx, mode, grad, hband, cost);
     if (k == 0) {
       start_acc_jacobian(c, p_->start_velocity, iv_[0], z[0], r, J);
-      add_block(2, 7, r, J, idx, mode, grad, cost);
+      add_block(2, 7, r, J, idx, mode, grad, hband, cost);
     }
   }
   double Ja[22];
@@ -218,7 +225,7 @@ double TebLmSolver::evaluate(const std::vector<double>& z, Mode mode, std::vecto
     idx[9] = static_cast<int>(4 * k);
     idx[10] = static_cast<int>(4 * k + 4);
     acc_jacobian(c, iv_[k], iv_[k + 1], z[4 * k], z[4 * k + 4], r, Ja);
-    add_block(2, 11, r, Ja, idx, mode, grad, cost);
+    add_block(2, 11, r, Ja, idx, mode, grad, hband, cost);
   }
   const int kobs = c.params->obstacles_per_pose;
   if (p_->obstacles != nullptr && p_->assoc != nullptr && kobs > 0) {
@@ -234,7 +241,7 @@ double TebLmSolver::evaluate(const std::vector<double>& z, Mode mode, std::vecto
         r[0] = wo * penalty_below(d, c.limits->min_obstacle_dist_m, c.params->penalty_epsilon);
         J[0] = d < bound ? -wo * g[0] : 0.0;
         J[1] = d < bound ? -wo * g[1] : 0.0;
-        add_block(1, 2, r, J, idx, mode, grad, cost);
+        add_block(1, 2, r, J, idx, mode, grad, hband, cost);
       }
     }
   }
@@ -246,7 +253,7 @@ double TebLmSolver::evaluate(const std::vector<double>& z, Mode mode, std::vecto
       via_residuals(c, v, q, r);
       J[0] = wv, J[1] = 0.0, J[2] = 0.0, J[3] = wv;
       idx[0] = pose_index(k), idx[1] = idx[0] < 0 ? -1 : idx[0] + 1;
-      add_block(2, 2, r, J, idx, mode, grad, cost);
+      add_block(2, 2, r, J, idx, mode, grad, hband, cost);
     }
   }
   return cost;
@@ -255,7 +262,7 @@ double TebLmSolver::evaluate(const std::vector<double>& z, Mode mode, std::vecto
 double TebLmSolver::evaluate_dense(const TebLmProblem& problem, const std::vector<double>& x,
                                    const std::vector<double>& dt, Eigen::VectorXd* gradient, Eigen::MatrixXd* jtj) {
   bind(problem, x, dt);
-  const double cost = evaluate(z_, Mode::kFull, grad_);
+  const double cost = evaluate(z_, Mode::kFull, grad_, hband_);
   if (gradient != nullptr) *gradient = Eigen::Map<const Eigen::VectorXd>(grad_.data(), static_cast<Eigen::Index>(nz_));
   if (jtj != nullptr) {
     const auto n = static_cast<Eigen::Index>(nz_);
@@ -274,15 +281,15 @@ double TebLmSolver::evaluate_dense(const TebLmProblem& problem, const std::vecto
 // Ceres' projected Armijo line search along delta from z (TrustRegionMinimizer::DoLineSearch): returns
 // the step length to scale delta by (1 when the full step decreases the cost enough or the search fails).
 double TebLmSolver::line_search(const std::vector<double>& z, double cost, const std::vector<double>& grad,
-                                const std::vector<double>& delta) {
+                                const std::vector<double>& delta, bool* first_accepted, double* first_cost) {
   double g0 = 0.0, dmax = 0.0;
   for (std::size_t i = 0; i < nz_; ++i) g0 += grad[i] * delta[i], dmax = std::max(dmax, std::abs(delta[i]));
-  const auto sample = [&](double a) {
+  const auto sample = [&](double a, Mode mode) {
     Sample s;
     s.x = a;
     for (std::size_t i = 0; i < nz_; ++i) trial_[i] = z[i] + a * delta[i];
     project(trial_);
-    s.value = evaluate(trial_, Mode::kGradient, grad_trial_);
+    s.value = evaluate(trial_, mode, grad_trial_, htrial_);
     double slope = 0.0;
     for (std::size_t i = 0; i < nz_; ++i) slope += delta[i] * grad_trial_[i];
     s.slope = slope;
@@ -291,14 +298,18 @@ double TebLmSolver::line_search(const std::vector<double>& z, double cost, const
   };
   const Sample s0{0.0, cost, g0, true};
   Sample prev;
-  Sample cur = sample(1.0);
+  // The full step is usually accepted: evaluate J^T J there too, so an accepted step needs no further
+  // evaluation.
+  Sample cur = sample(1.0, Mode::kFull);
+  *first_accepted = cur.valid && !(cur.value > cost + kSufficientDecrease * g0 * cur.x);
+  *first_cost = cur.value;
   int iterations = 0;
   while (!cur.valid || cur.value > cost + kSufficientDecrease * g0 * cur.x) {
     if (++iterations >= kMaxLineSearchIterations) return 1.0;
     const double a = interpolated_step(s0, prev, cur, kMaxStepContraction * cur.x, kMinStepContraction * cur.x);
     if (a * dmax < kMinLineSearchStep) return 1.0;
     prev = cur;
-    cur = sample(a);
+    cur = sample(a, Mode::kGradient);
   }
   return cur.x;
 }
@@ -326,7 +337,7 @@ bool TebLmSolver::solve(const TebLmProblem& problem, std::vector<double>& x, std
     return m;
   };
   double x_norm = norm(z_);
-  double cost = evaluate(z_, Mode::kFull, grad_);
+  double cost = evaluate(z_, Mode::kFull, grad_, hband_);
   sum.initial_cost = sum.final_cost = cost;
   if (!std::isfinite(cost)) {
     if (summary != nullptr) *summary = sum;
@@ -392,13 +403,16 @@ bool TebLmSolver::solve(const TebLmProblem& problem, std::vector<double>& x, std
     }
     invalid = 0;
     for (std::size_t i = 0; i < nz_; ++i) delta_[i] = step_[i] * scale_[i];
-    const double a = line_search(z_, cost, grad_, delta_);
+    bool first_accepted = false;
+    double cand_cost = 0.0;
+    const double a = line_search(z_, cost, grad_, delta_, &first_accepted, &cand_cost);
     if (a != 1.0) {
       for (double& d : delta_) d *= a;
     }
     for (std::size_t i = 0; i < nz_; ++i) cand_[i] = z_[i] + delta_[i];
     project(cand_);
-    double cand_cost = evaluate(cand_, Mode::kCost, grad_trial_);
+    // With the full step accepted at once, cand_ is the line search's first point (same arithmetic).
+    if (!first_accepted) cand_cost = evaluate(cand_, Mode::kCost, grad_trial_, htrial_);
     if (!std::isfinite(cand_cost)) cand_cost = std::numeric_limits<double>::max();
     double step_norm = 0.0;
     for (std::size_t i = 0; i < nz_; ++i) step_norm += (z_[i] - cand_[i]) * (z_[i] - cand_[i]);
@@ -414,7 +428,13 @@ bool TebLmSolver::solve(const TebLmProblem& problem, std::vector<double>& x, std
     if (rho > kMinRelativeDecrease) {
       z_.swap(cand_);
       x_norm = norm(z_);
-      cost = evaluate(z_, Mode::kFull, grad_);
+      if (first_accepted) {
+        cost = cand_cost;
+        grad_.swap(grad_trial_);
+        hband_.swap(htrial_);
+      } else {
+        cost = evaluate(z_, Mode::kFull, grad_, hband_);
+      }
       gmax = projected_gradient_max_norm();
       radius = std::min(kMaxRadius, radius / std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * rho - 1.0, 3)));
       decrease = 2.0;

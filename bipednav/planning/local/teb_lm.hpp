@@ -55,22 +55,25 @@ class TebLmSolver {
 
  private:
   enum class Mode { kCost, kGradient, kFull };
-  double evaluate(const std::vector<double>& z, Mode mode, std::vector<double>& grad);
-  void add_block(int m, int cols, const double* r, const double* J, const int* idx, Mode mode,
-                 std::vector<double>& grad, double& cost);
+  double evaluate(const std::vector<double>& z, Mode mode, std::vector<double>& grad, std::vector<double>& hband);
+  static void add_block(int m, int cols, const double* r, const double* J, const int* idx, Mode mode,
+                        std::vector<double>& grad, std::vector<double>& hband, double& cost);
   void bind(const TebLmProblem& problem, const std::vector<double>& x, const std::vector<double>& dt);
   void unbind(std::vector<double>& x, std::vector<double>& dt) const;
   void project(std::vector<double>& z) const;
   const double* pose(const std::vector<double>& z, std::size_t k) const;
   int pose_index(std::size_t k) const;
+  // Returns the step length; *first_accepted: the full step satisfied the Armijo condition at once, and
+  // its cost, gradient and J^T J are in (*first_cost, grad_trial_, htrial_).
   double line_search(const std::vector<double>& z, double cost, const std::vector<double>& grad,
-                     const std::vector<double>& delta);
+                     const std::vector<double>& delta, bool* first_accepted, double* first_cost);
 
   const TebLmProblem* p_ = nullptr;
   std::size_t n_ = 0;   // poses
   std::size_t nz_ = 0;  // free variables
   double first_[3]{}, last_[3]{};
-  std::vector<double> z_, cand_, trial_, delta_, step_, grad_, grad_trial_, scale_, hband_, aband_;
+  std::vector<double> z_, cand_, trial_, delta_, step_, grad_, grad_trial_, scale_, hband_, htrial_, aband_;
+  std::vector<double> cos_, sin_;  // of each pose's heading
   std::vector<IntervalVelocity> iv_;
 };
 

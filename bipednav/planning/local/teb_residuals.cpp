@@ -55,9 +55,13 @@ TebWeights base_weights(const TebOptimizerParams& p) {
 }
 
 IntervalVelocity interval_velocity(const double* a, const double* b, double dt, double sign_gain) {
+  return interval_velocity(a, b, dt, sign_gain, std::cos(a[2]), std::sin(a[2]));
+}
+
+IntervalVelocity interval_velocity(const double* a, const double* b, double dt, double sign_gain, double c1,
+                                   double s1) {
   IntervalVelocity iv;
   const double dx = b[0] - a[0], dy = b[1] - a[1];
-  const double c1 = std::cos(a[2]), s1 = std::sin(a[2]);
   const double forward = c1 * dx + s1 * dy;
   const double n = safe_norm(dx, dy);
   const double g = sign_gain * forward;
@@ -81,10 +85,14 @@ IntervalVelocity interval_velocity(const double* a, const double* b, double dt, 
 
 void edge_jacobian(const TebResidualContext& c, const double* a, const double* b, double dt, const IntervalVelocity& iv,
                    double* r, double* J) {
+  edge_jacobian(c, a, b, dt, iv, std::cos(a[2]), std::sin(a[2]), std::cos(b[2]), std::sin(b[2]), r, J);
+}
+
+void edge_jacobian(const TebResidualContext& c, const double* a, const double* b, double dt, const IntervalVelocity& iv,
+                   double c1, double s1, double c2, double s2, double* r, double* J) {
   const auto& L = *c.limits;
   const double eps = c.params->penalty_epsilon;
   const double dx = b[0] - a[0], dy = b[1] - a[1];
-  const double c1 = std::cos(a[2]), s1 = std::sin(a[2]), c2 = std::cos(b[2]), s2 = std::sin(b[2]);
   for (int i = 0; i < 35; ++i) J[i] = 0.0;
   // Non-holonomic: h = (c1 + c2) dy - (s1 + s2) dx.
   const double wn = std::sqrt(c.w->nh);

@@ -100,11 +100,17 @@ struct IntervalVelocity {
   std::array<double, 7> dv{}, dw{};
 };
 IntervalVelocity interval_velocity(const double* a, const double* b, double dt, double sign_gain);
+// The same with cos/sin of a's heading given (the solver computes them once per pose).
+IntervalVelocity interval_velocity(const double* a, const double* b, double dt, double sign_gain, double cos_a,
+                                   double sin_a);
 
 // Row-major Jacobians: J[i * cols + j] = d r_i / d var_j.
 // edge: vars (a[3], b[3], dt); 5 x 7.
 void edge_jacobian(const TebResidualContext& c, const double* a, const double* b, double dt, const IntervalVelocity& iv,
                    double* r, double* J);
+// The same with cos/sin of both headings given.
+void edge_jacobian(const TebResidualContext& c, const double* a, const double* b, double dt, const IntervalVelocity& iv,
+                   double cos_a, double sin_a, double cos_b, double sin_b, double* r, double* J);
 // acc: vars (a[3], b[3], d[3], dt1, dt2); 2 x 11. iv1, iv2: the intervals a-b and b-d.
 void acc_jacobian(const TebResidualContext& c, const IntervalVelocity& iv1, const IntervalVelocity& iv2, double dt1,
                   double dt2, double* r, double* J);
