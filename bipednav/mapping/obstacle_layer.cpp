@@ -78,7 +78,13 @@ void ObstacleLayer::clear_observation(Costmap2D& grid, const Observation& obs, C
     if (!p.allFinite()) continue;
     const Eigen::Vector3d d = p.cast<double>() - obs.origin_map;
     if (d.squaredNorm() > max_range_sq) continue;
-    const auto ray = clipper.clip(p.head<2>().cast<double>());
+    // Most returns lie on the grid within range: their end cell without the clipping (inline).
+    const Eigen::Vector2d q = p.head<2>().cast<double>();
+    std::optional<ClippedRay> ray;
+    if (const auto end = clipper.unclipped_end(q))
+      ray = ClippedRay{clipper.start(), *end, false};
+    else
+      ray = clipper.clip(q);
     if (!ray) continue;
     // Many returns share an end cell: trace each end cell once per observation. (A ray to the same
     // end at another height might free an obstacle this one passed over; it waits for the next update.)

@@ -46,7 +46,7 @@ std::optional<ClippedRay> clip_ray(const GridGeometry& g, const Eigen::Vector2d&
 }
 
 RayClipper::RayClipper(const GridGeometry& g, const Eigen::Vector2d& origin, double max_length_m)
-    : g_(g), origin_(origin), max_length_m_(max_length_m) {
+    : g_(g), origin_(origin), max_length_m_(max_length_m), max_length_sq_(max_length_m * max_length_m * (1.0 - 1e-9)) {
   // Shrink the box by a hair so a clipped end never floors onto the cell past the last one.
   const double eps = 1e-6 * g.resolution_m;
   lo_ = {g.origin_x_m, g.origin_y_m};
@@ -59,11 +59,7 @@ std::optional<ClippedRay> RayClipper::clip(const Eigen::Vector2d& point) const {
   if (!start_ || !point.allFinite()) return std::nullopt;
   // On the grid and shorter than the limit (with a margin for the square root's rounding):
   // the clipping below would leave the ray as it is.
-  if (origin_inside_ && inside(point) &&
-      (point - origin_).squaredNorm() < max_length_m_ * max_length_m_ * (1.0 - 1e-9)) {
-    const auto end = g_.world_to_cell(point.x(), point.y());
-    if (end) return ClippedRay{*start_, *end, false};
-  }
+  if (const auto end = unclipped_end(point)) return ClippedRay{*start_, *end, false};
   Eigen::Vector2d a = origin_, b = point;
   bool clipped = false;
   const double len = (b - a).norm();

@@ -71,6 +71,15 @@ class RayClipper {
  public:
   RayClipper(const GridGeometry& g, const Eigen::Vector2d& origin, double max_length_m);
   std::optional<ClippedRay> clip(const Eigen::Vector2d& point) const;
+  // The common case inline: a return on the grid within range (the origin on the grid too) gives
+  // its own cell, and clip(point) is {start, that cell, false}. nullopt: ask clip().
+  std::optional<Cell> unclipped_end(const Eigen::Vector2d& point) const {
+    if (origin_inside_ && inside(point) && (point - origin_).squaredNorm() < max_length_sq_)
+      return g_.world_to_cell(point.x(), point.y());
+    return std::nullopt;
+  }
+  // The origin's cell (valid when unclipped_end or clip gave a ray).
+  Cell start() const { return start_.value_or(Cell{}); }
 
  private:
   bool inside(const Eigen::Vector2d& q) const {
@@ -79,6 +88,7 @@ class RayClipper {
   GridGeometry g_;
   Eigen::Vector2d origin_, lo_, hi_;  // the box shrunk by a hair (see clip)
   double max_length_m_;
+  double max_length_sq_;  // with a margin for the square root's rounding (see clip)
   std::optional<Cell> start_;
   bool origin_inside_ = false;
 };

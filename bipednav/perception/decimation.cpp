@@ -78,8 +78,11 @@ inline void sort2(F4& a, I4& ia, F4& b, I4& ib) {
 // points, at +inf, sort last) and the lower median of its n finite points is element (n - 1) / 2.
 // Four neighbouring blocks are sorted at once (lanes); leftover blocks of a row go one by one.
 // The median is kept when its squared range is <= r2_max.
-DecimationCounts decimate_by_2(const Eigen::Vector3f* p, std::size_t w, std::size_t h, float r2_max, PointCloud& out) {
+// The kept points are written from `dst` on (room for every block); `dst` ends past the last one.
+DecimationCounts decimate_by_2(const Eigen::Vector3f* p, std::size_t w, std::size_t h, float r2_max,
+                               Eigen::Vector3f*& dst) {
   DecimationCounts n_out;
+  Eigen::Vector3f* o = dst;
   const float inf = std::numeric_limits<float>::infinity();
   for (std::size_t v = 0; v + 2 <= h; v += 2) {
     const Eigen::Vector3f* row0 = p + v * w;
@@ -110,7 +113,7 @@ DecimationCounts decimate_by_2(const Eigen::Vector3f* p, std::size_t w, std::siz
       for (int j = 0; j < 4; ++j) {
         if (!keep[j]) continue;
         const auto k = static_cast<std::uint32_t>(id_mid[j]);
-        out.points.push_back((k < 2 ? row0 : row1)[u + 2 * static_cast<std::size_t>(j) + (k & 1u)]);
+        *o++ = (k < 2 ? row0 : row1)[u + 2 * static_cast<std::size_t>(j) + (k & 1u)];
       }
     }
     for (; u + 2 <= w; u += 2) {
@@ -128,9 +131,10 @@ DecimationCounts decimate_by_2(const Eigen::Vector3f* p, std::size_t w, std::siz
       sort2(r[1], id[1], r[2], id[2]);
       if (!(r[(n - 1) / 2] <= r2_max)) continue;
       const std::uint32_t k = id[(n - 1) / 2];
-      out.points.push_back((k < 2 ? row0 : row1)[u + (k & 1u)]);
+      *o++ = (k < 2 ? row0 : row1)[u + (k & 1u)];
     }
   }
+  dst = o;
   return n_out;
 }
 
@@ -150,7 +154,12 @@ DecimationCounts decimate(const PointCloud& in, int width, int factor, float r2_
   out.points.reserve((w / k) * (h / k));
   const Eigen::Vector3f* p = in.points.data();
   DecimationCounts n;
-  if (k == 2) n = decimate_by_2(p, w, h, r2_max, out);
+  if (k == 2) {
+    out.points.resize((w / 2) * (h / 2));  // no-op constructors; shrunk to the points written
+    Eigen::Vector3f* end = out.points.data();
+    n = decimate_by_2(p, w, h, r2_max, end);
+    out.points.resize(static_cast<std::size_t>(end - out.points.data()));
+  }
   std::array<std::pair<float, std::uint32_t>, 64> block{};  // (squared range, index) of the finite points
   for (std::size_t bv = 0; k != 2 && bv + k <= h; bv += k)
     for (std::size_t bu = 0; bu + k <= w; bu += k) {
