@@ -91,8 +91,6 @@ void ObstacleLayer::clear_observation(Costmap2D& grid, const Observation& obs, C
     std::uint32_t& seen = traced_[g.index(ray->end)];
     if (seen == stamp_) continue;
     seen = stamp_;
-    const double len2 = d.head<2>().squaredNorm();
-    const double inv_len = len2 > 0.0 ? 1.0 / std::sqrt(len2) : 0.0;
     for_each_line_cell(ray->start, ray->end, ray->end_included, [&](int x, int y) {
       const std::size_t i = g.index(x, y);
       std::uint8_t& c = cells[i];
@@ -100,6 +98,8 @@ void ObstacleLayer::clear_observation(Costmap2D& grid, const Observation& obs, C
       if (c == kLethal && !bands_[i].empty()) {
         // The ray's heights across the cell: its height where it passes the cell centre, give or
         // take half a cell diagonal of horizontal travel.
+        const double len2 = d.head<2>().squaredNorm();  // only here: most rays meet no band
+        const double inv_len = len2 > 0.0 ? 1.0 / std::sqrt(len2) : 0.0;
         const double s = (g.cell_center(x, y) - origin).dot(d.head<2>()) * inv_len;  // metres along the ray
         const double slope = d.z() * inv_len;
         const double z0 = obs.origin_map.z() + slope * (s - half_cell),

@@ -27,20 +27,22 @@ struct SoaPoints {
   Eigen::Vector3d at(std::size_t i) const { return {x[i], y[i], z[i]}; }
 };
 
-SoaPoints finite_points(const std::vector<Eigen::Vector3f>& pts) {
-  SoaPoints s;
-  s.x.reserve(pts.size());
-  s.y.reserve(pts.size());
-  s.z.reserve(pts.size());
-  s.index.reserve(pts.size());
-  for (std::size_t i = 0; i < pts.size(); ++i) {
-    if (!pts[i].allFinite()) continue;
-    s.x.push_back(pts[i].x());
-    s.y.push_back(pts[i].y());
-    s.z.push_back(pts[i].z());
-    s.index.push_back(i);
+// The finite points of `pts` into `s` (its buffers reused).
+void finite_points(const std::vector<Eigen::Vector3f>& pts, SoaPoints& s) {
+  const std::size_t n = pts.size();
+  for (auto* v : {&s.x, &s.y, &s.z}) v->resize(n);
+  s.index.resize(n);
+  std::size_t m = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector3f& p = pts[i];
+    s.x[m] = p.x();
+    s.y[m] = p.y();
+    s.z[m] = p.z();
+    s.index[m] = i;
+    m += p.allFinite() ? 1 : 0;
   }
-  return s;
+  for (auto* v : {&s.x, &s.y, &s.z}) v->resize(m);
+  s.index.resize(m);
 }
 
 // Number of points with D_i < t (eq. 4.2, 4.3). Counted in blocks; once even all remaining points
@@ -128,7 +130,11 @@ Plane fit_plane_least_squares(const std::vector<Eigen::Vector3f>& points, const 
 
 PlaneFit fit_plane_ransac(const std::vector<Eigen::Vector3f>& points, const RansacParams& params, Rng& rng) {
   params.validate();
-  const SoaPoints s = finite_points(points);
+  // Per-thread buffers: a pipeline fits a plane every frame, and fresh vectors of this size cost
+  // an allocation (and page faults) each time.
+  thread_local SoaPoints buffers;
+  finite_points(points, buffers);
+  const SoaPoints& s = buffers;
   PlaneFit best;
   if (s.size() < 3) return best;
   const float t = static_cast<float>(params.distance_threshold_m);
@@ -162,8 +168,8 @@ PlaneFit fit_plane_ransac(const std::vector<Eigen::Vector3f>& points, const Rans
   }
   if (!best.found) return best;
   if (params.refit) {
-    std::vector<std::size_t> in;
-    in.reserve(best.inliers);
+    thread_local std::vector<std::size_t> in;
+    in.clear();
     for (std::size_t i = 0; i < s.size(); ++i)
       if (std::fabs(best.plane.head<3>().dot(s.at(i)) + best.plane[3]) < t) in.push_back(s.index[i]);
     const Plane refit = fit_plane_least_squares(points, in);
