@@ -28,13 +28,13 @@ class EuclideanHeuristic : public Heuristic {
   double tolerance_m_, v_max_;
 };
 
-// Dijkstra distances from the goal over a 16-connected graph of the lattice (the 8 neighbours
-// and the 8 knight moves) whose edges are planar (free), elevating (a step up/down/over:
-// longer) or impassable (steeper than the robot's maximum step), section V-D2, and whose cells
-// are closed to the body centre where the robot's two feet cannot stand beside a tall obstacle
-// (body clearance, heuristics.cpp). Edge lengths are scaled down by the worst-case
-// 16-connected/Euclidean ratio and elevating edges only add what the fastest 3D action must
-// cost over a planar one, so the heuristic stays admissible (the argument is in heuristics.cpp).
+// Dijkstra distances from the goal over an 8-connected graph of the lattice whose edges are
+// planar (free), elevating (a step up/down/over: longer) or impassable (steeper than the
+// robot's maximum step), section V-D2, and whose cells are closed to the body centre where a
+// tall obstacle would stand under the torso (body clearance, heuristics.cpp). Octile distances
+// are scaled down by the worst-case octile/Euclidean ratio and elevating edges only add what
+// the fastest 3D action must cost over a planar one, so the heuristic stays admissible (the
+// argument is in heuristics.cpp).
 class DijkstraHeuristic : public Heuristic {
  public:
   DijkstraHeuristic(const TerrainGrid& terrain, const ActionSet& actions, const Pose2& goal, double tolerance_m);

@@ -283,7 +283,7 @@ TEST(FootstepPlanner, DijkstraHeuristicClosesAGapNarrowerThanTheBody) {
   EXPECT_FALSE(std::isfinite(h.seconds_to_goal(0.605, 0.705)));
 }
 
-TEST(FootstepPlanner, DijkstraHeuristicIsWithinThreePercentOfTheStraightLineInTheOpen) {
+TEST(FootstepPlanner, DijkstraDistanceIsAtMostTheStraightLineInTheOpen) {
   auto map = flat_map(1.5, 1.5, 0.01);
   const TerrainGrid terrain(map, 0.01);
   const Pose2 goal{0.105, 0.105, 0.0};  // cell (10, 10)
@@ -291,7 +291,7 @@ TEST(FootstepPlanner, DijkstraHeuristicIsWithinThreePercentOfTheStraightLineInTh
   for (const auto& [dx, dy] : std::vector<std::pair<int, int>>{{100, 0}, {100, 24}, {100, 50}, {90, 70}, {80, 80}}) {
     const double straight = 0.01 * std::hypot(dx, dy), d = h.distance_m(10 + dx, 10 + dy);
     EXPECT_LE(d, straight + 1e-5) << dx << "," << dy;
-    EXPECT_GE(d, straight / 1.0275 - 1e-5) << dx << "," << dy;
+    EXPECT_GE(d, straight / 1.0824 - 1e-5) << dx << "," << dy;
   }
 }
 
