@@ -30,13 +30,22 @@ constexpr double kMinLineSearchStep = 1e-9;
 constexpr int kMaxLineSearchIterations = 20;
 
 // In-place Cholesky factorisation of a symmetric positive definite band matrix (lower band, row i holds
-// A(i, i - d) at i * kW + d). Returns false if it is not positive definite.
-bool band_cholesky(std::vector<double>& a, std::size_t n) {
+// A(i, i - d) at i * kW + d). Returns false if it is not positive definite. Only the envelope is worked
+// on: row i of the factor is zero left of row i's first non-zero of A (first[i]), and skipping those exact
+// zeros leaves every computed entry bit for bit as in the full band loop. Inactive penalties (velocity,
+// acceleration) leave much of the band empty.
+bool band_cholesky(std::vector<double>& a, std::size_t n, std::vector<std::size_t>& first) {
+  first.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
-    const std::size_t j0 = i >= static_cast<std::size_t>(kB) ? i - kB : 0;
+    std::size_t d = std::min<std::size_t>(kB, i);
+    while (d > 0 && a[i * kW + d] == 0.0) --d;
+    first[i] = i - d;
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t j0 = first[i];
     for (std::size_t j = j0; j <= i; ++j) {
       double s = a[i * kW + (i - j)];
-      for (std::size_t k = j0; k < j; ++k) s -= a[i * kW + (i - k)] * a[j * kW + (j - k)];
+      for (std::size_t k = std::max(j0, first[j]); k < j; ++k) s -= a[i * kW + (i - k)] * a[j * kW + (j - k)];
       if (j == i) {
         if (!(s > 0.0) || !std::isfinite(s)) return false;
         a[i * kW] = std::sqrt(s);
@@ -370,7 +379,7 @@ bool TebLmSolver::solve(const TebLmProblem& problem, std::vector<double>& x, std
       aband_[i * kW] += diag / radius;
       step_[i] = scale_[i] * grad_[i];
     }
-    bool valid = band_cholesky(aband_, nz_);
+    bool valid = band_cholesky(aband_, nz_, envelope_);
     double model_change = 0.0;
     if (valid) {
       band_solve(aband_, nz_, step_);

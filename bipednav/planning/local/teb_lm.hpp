@@ -74,6 +74,7 @@ class TebLmSolver {
   double first_[3]{}, last_[3]{};
   std::vector<double> z_, cand_, trial_, delta_, step_, grad_, grad_trial_, scale_, hband_, htrial_, aband_;
   std::vector<double> cos_, sin_;  // of each pose's heading
+  std::vector<std::size_t> envelope_;
   std::vector<IntervalVelocity> iv_;
 };
 
