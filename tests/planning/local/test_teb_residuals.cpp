@@ -302,6 +302,35 @@ TEST(TebLm, MatchesCeresOnTheSameBands) {
   EXPECT_EQ(compared, 12);
 }
 
+// The smallest bands: two poses (only dT_0 free) and three.
+TEST(TebLm, MatchesCeresOnTinyBands) {
+  TebLimits lim;
+  TebBandParams bp;
+  bp.min_samples = 2;
+  for (const double gx : {0.05, 0.4}) {
+    TebBand band;
+    band.poses = {{0, 0, 0}, {gx, 0.02, 0.1}};
+    band.dt_s = {0.25};  // inside the re-sampling hysteresis; 1.6 m/s for gx = 0.4 (too fast)
+    for (int n = 2; n <= 3; ++n) {
+      if (n == 3) {
+        band.poses.insert(band.poses.begin() + 1, {gx / 2, 0.0, 0.05});
+        band.dt_s = {0.25, 0.25};
+      }
+      TebOptimizerParams ceres_op, band_op;
+      ceres_op.linear_solver = "sparse_normal_cholesky";
+      band_op.no_outer_iterations = ceres_op.no_outer_iterations = 1;  // no re-sampling in between
+      TebBand b1 = band, b2 = band;
+      ASSERT_TRUE(optimize_band(b1, {}, lim, bp, ceres_op));
+      ASSERT_TRUE(optimize_band(b2, {}, lim, bp, band_op));
+      ASSERT_EQ(b1.size(), static_cast<std::size_t>(n));
+      ASSERT_EQ(b2.size(), static_cast<std::size_t>(n));
+      EXPECT_NE(b2.dt_s[0], 0.25);  // the solve moved
+      for (std::size_t k = 0; k < b1.dt_s.size(); ++k) EXPECT_NEAR(b1.dt_s[k], b2.dt_s[k], 1e-9) << gx << " " << n;
+      for (std::size_t k = 0; k < b1.size(); ++k) EXPECT_LT(distance(b1.poses[k], b2.poses[k]), 1e-9);
+    }
+  }
+}
+
 TEST(TebLm, RejectsMalformedInput) {
   Fixture f;
   TebLmProblem p;
