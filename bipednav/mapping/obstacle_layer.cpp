@@ -44,7 +44,6 @@ void ObstacleLayer::include_band(const Costmap2D& grid, int x, int y, const Heig
   HeightBand& mine = bands_[grid.geometry().index(x, y)];
   if (reset) mine = {};
   mine.include(b);
-  bands_used_ = bands_used_ || !b.empty();
 }
 
 CellRect ObstacleLayer::update(Costmap2D& grid, const std::vector<Observation>& observations, bool allow_clearing) {
@@ -53,10 +52,6 @@ CellRect ObstacleLayer::update(Costmap2D& grid, const std::vector<Observation>& 
   if (traced_.size() != grid.data().size()) {
     traced_.assign(grid.data().size(), 0);
     stamp_ = 0;
-  }
-  if (covered_.size() != grid.data().size() || ++update_stamp_ == 0) {  // new size, or wrapped
-    covered_.assign(grid.data().size(), 0);
-    update_stamp_ = 1;
   }
   for (const auto& obs : observations)
     if (obs.clearing && allow_clearing) clear_observation(grid, obs, changed);
@@ -77,7 +72,6 @@ void ObstacleLayer::clear_observation(Costmap2D& grid, const Observation& obs, C
   const double max_range_sq = obs.max_range_m * obs.max_range_m;
   std::uint8_t* cells = grid.data().data();
   const RayClipper clipper(g, origin, range);  // origin cell and grid box once per observation
-  const auto start_index = static_cast<std::uint32_t>(g.index(clipper.start()));
   // A ray crosses a cell within about half a cell diagonal of the cell centre's projection.
   const double half_cell = 0.71 * g.resolution_m;
   for (const auto& p : obs.points_map) {
@@ -94,17 +88,9 @@ void ObstacleLayer::clear_observation(Costmap2D& grid, const Observation& obs, C
     if (!ray) continue;
     // Many returns share an end cell: trace each end cell once per observation. (A ray to the same
     // end at another height might free an obstacle this one passed over; it waits for the next update.)
-    const std::size_t end_index = g.index(ray->end);
-    std::uint32_t& seen = traced_[end_index];
+    std::uint32_t& seen = traced_[g.index(ray->end)];
     if (seen == stamp_) continue;
     seen = stamp_;
-    if (!bands_used_) {
-      const std::uint64_t key =
-          (std::uint64_t{update_stamp_} << 32) | (std::uint64_t{start_index} << 1) | (ray->end_included ? 1u : 0u);
-      std::uint64_t& covered = covered_[end_index];
-      if (covered == key || covered == (key | 1u)) continue;  // the same line, its end as much included
-      covered = key;
-    }
     for_each_line_cell(ray->start, ray->end, ray->end_included, [&](int x, int y) {
       const std::size_t i = g.index(x, y);
       std::uint8_t& c = cells[i];
@@ -144,10 +130,7 @@ void ObstacleLayer::mark_observation(Costmap2D& grid, const Observation& obs, Ce
       v = kLethal;
       bands_[i] = {};  // a new obstacle: the heights of the cell's old obstacles do not count
       changed.include(c->x, c->y);
-      if (params_.height_aware_clearing && obs.keep_heights) {
-        bands_[i].include(p.z());
-        bands_used_ = true;
-      }
+      if (params_.height_aware_clearing && obs.keep_heights) bands_[i].include(p.z());
     } else if (!obs.keep_heights) {
       bands_[i] = {};  // heights not known (a moving obstacle's): any ray clears the cell
     } else if (!bands_[i].empty()) {

@@ -90,14 +90,6 @@ class ObstacleLayer {
   std::vector<HeightBand> bands_;      // per cell of band_geometry_
   std::vector<std::uint32_t> traced_;  // per cell: stamp of the last observation that traced a ray to it
   std::uint32_t stamp_ = 0;
-  // Per end cell, the last ray traced to it in this update: update stamp (high 32 bits), start
-  // cell index and whether the end cell was included (low bits). Without height bands a ray only
-  // frees the cells of its line, so a ray of a later observation from the same start cell to the
-  // same end (as much included) frees nothing new and is skipped: observations of one sensor
-  // from one cell (obstacle and ground returns, consecutive frames) share their rays.
-  std::vector<std::uint64_t> covered_;
-  std::uint32_t update_stamp_ = 0;
-  bool bands_used_ = false;  // some cell may have had a height band (then rays are not shared)
 };
 
 }  // namespace bipednav::mapping
