@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
-#include <cstring>
 #include <limits>
 #include <string>
 #include <utility>
 
 #include "bipednav/common/error.hpp"
+#include "bipednav/common/simd4.hpp"
 
 namespace bipednav::perception {
 namespace {
@@ -31,29 +31,15 @@ inline void sort2(float& a, std::uint32_t& ia, float& b, std::uint32_t& ib) {
   ib = ihi;
 }
 
-using F4 = float __attribute__((vector_size(16)));
-using I4 = std::int32_t __attribute__((vector_size(16)));  // comparison results: -1 (true) or 0
-
-inline F4 load4(const float* p) {
-  F4 v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
-
-// Lanes of (a, b) picked by indices 0-3 (a) and 4-7 (b).
-template <int I0, int I1, int I2, int I3>
-inline F4 shuffle(F4 a, F4 b) {
-#if defined(__clang__)
-  return __builtin_shufflevector(a, b, I0, I1, I2, I3);
-#else
-  return __builtin_shuffle(a, b, I4{I0, I1, I2, I3});
-#endif
-}
+using simd4::F4;
+using simd4::I4;
+using simd4::shuffle;
 
 // range2_or_inf of four consecutive points (12 floats), lane-wise with the same operations:
 // Eigen's squaredNorm of a Vector3f is x^2 + (y^2 + z^2) (tests/perception check it bit for bit).
 inline F4 range2_or_inf4(const float* p) {
-  const F4 a = load4(p), b = load4(p + 4), c = load4(p + 8);  // x0 y0 z0 x1 | y1 z1 x2 y2 | z2 x3 y3 z3
+  const F4 a = simd4::load(p), b = simd4::load(p + 4),
+           c = simd4::load(p + 8);  // x0 y0 z0 x1 | y1 z1 x2 y2 | z2 x3 y3 z3
   const F4 x = shuffle<0, 3, 4, 7>(a, shuffle<2, 3, 4, 5>(b, c));
   const F4 y = shuffle<0, 1, 4, 5>(shuffle<1, 4, 1, 4>(a, b), shuffle<3, 6, 3, 6>(b, c));
   const F4 z = shuffle<0, 1, 4, 5>(shuffle<2, 5, 2, 5>(a, b), shuffle<0, 3, 0, 3>(c, c));

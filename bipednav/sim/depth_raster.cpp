@@ -5,7 +5,7 @@
 #include <limits>
 
 #include "bipednav/common/error.hpp"
-#include "bipednav/sim/simd4.hpp"
+#include "bipednav/common/simd4.hpp"
 
 namespace bipednav::sim {
 namespace {

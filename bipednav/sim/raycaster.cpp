@@ -11,7 +11,7 @@
 #include <string>
 
 #include "bipednav/common/error.hpp"
-#include "bipednav/sim/simd4.hpp"
+#include "bipednav/common/simd4.hpp"
 
 namespace bipednav::sim {
 namespace {

@@ -4,7 +4,7 @@
 #include <numbers>
 
 #include "bipednav/common/error.hpp"
-#include "bipednav/sim/simd4.hpp"
+#include "bipednav/common/simd4.hpp"
 
 namespace bipednav::sim {
 

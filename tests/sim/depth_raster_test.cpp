@@ -9,9 +9,9 @@
 #include <vector>
 
 #include "bipednav/common/error.hpp"
+#include "bipednav/common/simd4.hpp"
 #include "bipednav/sim/depth_camera.hpp"
 #include "bipednav/sim/sdf_world.hpp"
-#include "bipednav/sim/simd4.hpp"
 #include "bipednav/sim/simulation.hpp"
 #include "test_data.hpp"
 

@@ -1,15 +1,15 @@
 #pragma once
 
-// Four-lane float vectors (GCC/Clang vector extensions) for the simulator's per-ray loops:
-// lane-wise operators compile to single SSE instructions on any x86-64, and to NEON on ARM,
-// where plain loops are not reliably vectorised (reductions, selects, divisions).
-// Internal to bipednav/sim.
+// Four-lane float vectors (GCC/Clang vector extensions) for per-ray and per-point loops (the
+// simulator's rays, depth decimation): lane-wise operators compile to single SSE instructions on
+// any x86-64, and to NEON on ARM, where plain loops are not reliably vectorised (reductions,
+// selects, divisions).
 
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
 
-namespace bipednav::sim::simd4 {
+namespace bipednav::simd4 {
 
 using F4 = float __attribute__((vector_size(16)));
 using I4 = std::int32_t __attribute__((vector_size(16)));  // comparison results: -1 (true) or 0
@@ -46,4 +46,4 @@ inline void store_xyz(float* p, F4 x, F4 y, F4 z) {
   store(p + 8, shuffle<2, 4, 5, 3>(z, shuffle<3, 7, 3, 7>(x, y)));  // z2 x3 y3 z3
 }
 
-}  // namespace bipednav::sim::simd4
+}  // namespace bipednav::simd4
