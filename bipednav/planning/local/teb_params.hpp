@@ -52,8 +52,11 @@ struct TebOptimizerParams {
   // "banded_lm": the dedicated Levenberg-Marquardt of teb_lm (analytic Jacobians, band Cholesky of the
   // normal equations); or Ceres' Levenberg-Marquardt with automatic Jacobians and the linear solver
   // "sparse_normal_cholesky" (SuiteSparse), "dense_normal_cholesky", "dense_qr" or "dense_schur". All
-  // minimise the same objective with the same trust-region schedule.
-  std::string linear_solver = "banded_lm";
+  // minimise the same objective with the same trust-region schedule; banded_lm is ~2.5x faster and agrees
+  // with Ceres to ~1e-12 per solve, but the closed loops amplify that rounding (LOAM's feature selection
+  // flips): turtlebot3_world/turtlebot3 then ends in OSCILLATION and three_rooms/turtlebot3 with cube_1's
+  // contact, so Ceres stays the default until those runs are robust to it.
+  std::string linear_solver = "sparse_normal_cholesky";
 
   void validate() const;
 };

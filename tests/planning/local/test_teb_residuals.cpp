@@ -318,6 +318,7 @@ TEST(TebLm, MatchesCeresOnTinyBands) {
       }
       TebOptimizerParams ceres_op, band_op;
       ceres_op.linear_solver = "sparse_normal_cholesky";
+      band_op.linear_solver = "banded_lm";
       band_op.no_outer_iterations = ceres_op.no_outer_iterations = 1;  // no re-sampling in between
       TebBand b1 = band, b2 = band;
       ASSERT_TRUE(optimize_band(b1, {}, lim, bp, ceres_op));
