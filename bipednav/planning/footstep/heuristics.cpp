@@ -106,11 +106,9 @@ DijkstraHeuristic::DijkstraHeuristic(const TerrainGrid& terrain, const ActionSet
       const int nx = c.x + kDx[k], ny = c.y + kDy[k];
       if (!g.in_bounds(nx, ny)) continue;
       const EdgeClass e = classify_edge(terrain, c.x, c.y, nx, ny, actions);
-      const bool passable = e != EdgeClass::kImpassable;
-      const int elevating = e == EdgeClass::kElevating;
-      const double len = k < 4 ? 1.0 : std::numbers::sqrt2;
-      if (!passable) continue;
-      const double step = res * len * kOctileToEuclid + elevating * elevation_penalty_m_;
+      if (e == EdgeClass::kImpassable) continue;
+      double step = (k < 4 ? res : res * std::numbers::sqrt2) * kOctileToEuclid;
+      if (e == EdgeClass::kElevating) step += elevation_penalty_m_;
       const float nd = static_cast<float>(d + step);
       const std::size_t ni = g.index(nx, ny);
       if (nd < dist_[ni]) {
