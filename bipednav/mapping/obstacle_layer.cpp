@@ -39,6 +39,7 @@ const HeightBand& ObstacleLayer::band(int x, int y) const {
 }
 
 void ObstacleLayer::include_band(const Costmap2D& grid, int x, int y, const HeightBand& b, bool reset) {
+  if (!params_.height_aware_clearing) return;  // no ray reads a band
   follow(grid);
   if (!grid.in_bounds(x, y)) return;
   HeightBand& mine = bands_[grid.geometry().index(x, y)];
@@ -48,7 +49,8 @@ void ObstacleLayer::include_band(const Costmap2D& grid, int x, int y, const Heig
 
 CellRect ObstacleLayer::update(Costmap2D& grid, const std::vector<Observation>& observations, bool allow_clearing) {
   CellRect changed;
-  follow(grid);
+  // Without height-aware clearing every band would stay empty: no bands are kept, moved or reset.
+  if (params_.height_aware_clearing) follow(grid);
   if (traced_.size() != grid.data().size()) {
     traced_.assign(grid.data().size(), 0);
     stamp_ = 0;
@@ -74,6 +76,7 @@ void ObstacleLayer::clear_observation(Costmap2D& grid, const Observation& obs, C
   const RayClipper clipper(g, origin, range);  // origin cell and grid box once per observation
   // A ray crosses a cell within about half a cell diagonal of the cell centre's projection.
   const double half_cell = 0.71 * g.resolution_m;
+  const bool bands = params_.height_aware_clearing;
   for (const auto& p : obs.points_map) {
     if (!p.allFinite()) continue;
     const Eigen::Vector3d d = p.cast<double>() - obs.origin_map;
@@ -95,7 +98,7 @@ void ObstacleLayer::clear_observation(Costmap2D& grid, const Observation& obs, C
       const std::size_t i = g.index(x, y);
       std::uint8_t& c = cells[i];
       if (c == kFree) return;
-      if (c == kLethal && !bands_[i].empty()) {
+      if (bands && c == kLethal && !bands_[i].empty()) {
         // The ray's heights across the cell: its height where it passes the cell centre, give or
         // take half a cell diagonal of horizontal travel.
         const double len2 = d.head<2>().squaredNorm();  // only here: most rays meet no band
@@ -128,9 +131,12 @@ void ObstacleLayer::mark_observation(Costmap2D& grid, const Observation& obs, Ce
     const bool fresh = v != kLethal;
     if (fresh) {
       v = kLethal;
-      bands_[i] = {};  // a new obstacle: the heights of the cell's old obstacles do not count
       changed.include(c->x, c->y);
-      if (params_.height_aware_clearing && obs.keep_heights) bands_[i].include(p.z());
+    }
+    if (!params_.height_aware_clearing) continue;
+    if (fresh) {
+      bands_[i] = {};  // a new obstacle: the heights of the cell's old obstacles do not count
+      if (obs.keep_heights) bands_[i].include(p.z());
     } else if (!obs.keep_heights) {
       bands_[i] = {};  // heights not known (a moving obstacle's): any ray clears the cell
     } else if (!bands_[i].empty()) {

@@ -78,6 +78,7 @@ class ObstacleLayer {
   const HeightBand& band(int x, int y) const;
   // Widens cell (x, y)'s band: obstacles copied into the grid from elsewhere keep their heights.
   // With `reset` the cell's old band is dropped first (the cell was not an obstacle before).
+  // Without height_aware_clearing no bands are kept (band() is always empty) and this does nothing.
   void include_band(const Costmap2D& grid, int x, int y, const HeightBand& b, bool reset);
 
  private:
