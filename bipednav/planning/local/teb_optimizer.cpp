@@ -100,8 +100,8 @@ ceres::LinearSolverType solver_type(const std::string& name) {
 
 // One Levenberg-Marquardt solve over the band stored in x (3 per pose) and dt.
 bool solve_once(std::vector<double>& x, std::vector<double>& dt, const TebProblemInput& input,
-                std::vector<std::vector<int>>& assoc, const Context& ctx, const TebBandParams& bp) {
-  const auto via = assign_via_points(x, dt.size() + 1, input.via_points);
+                std::vector<std::vector<int>>& assoc, const std::vector<std::pair<std::size_t, Eigen::Vector2d>>& via,
+                const Context& ctx, const TebBandParams& bp) {
   const std::size_t n = dt.size() + 1;
   ceres::Problem problem;
   for (std::size_t k = 0; k < n; ++k) problem.AddParameterBlock(&x[3 * k], 3);
@@ -180,8 +180,8 @@ bool optimize_band(TebBand& band, const TebProblemInput& input, const TebLimits&
     }
     dt = work.dt_s;
     associate(x, n, input, params, assoc);
+    const auto via = assign_via_points(x, n, input.via_points);
     if (banded) {
-      const auto via = assign_via_points(x, n, input.via_points);
       TebLmProblem lp;
       lp.ctx = ctx;
       lp.obstacles = input.obstacles;
@@ -192,7 +192,7 @@ bool optimize_band(TebBand& band, const TebProblemInput& input, const TebLimits&
       lp.max_iterations = params.no_inner_iterations;
       lp.function_tolerance = params.function_tolerance;
       if (!lm.solve(lp, x, dt)) return false;
-    } else if (!solve_once(x, dt, input, assoc, ctx, band_params)) {
+    } else if (!solve_once(x, dt, input, assoc, via, ctx, band_params)) {
       return false;
     }
     for (std::size_t k = 0; k < n; ++k) work.poses[k] = {x[3 * k], x[3 * k + 1], normalize_angle(x[3 * k + 2])};
