@@ -30,6 +30,9 @@ void LoamParams::validate() const {
   odometry.validate();
   mapping.validate();
   require(min_features >= 6, "min_features", ">= 6");
+  require(max_prior_change_m >= 0.0 && std::isfinite(max_prior_change_m), "max_prior_change_m", ">= 0 and finite");
+  require(max_prior_change_rad >= 0.0 && std::isfinite(max_prior_change_rad), "max_prior_change_rad",
+          ">= 0 and finite");
   require(finite(T_world_lidar_initial), "T_world_lidar_initial", "a finite transform");
 }
 
@@ -45,6 +48,7 @@ void Loam::reset() {
   const double per_sweep = p_.mapping.rate_hz * p_.odometry.scan_period_s;
   mapping_every_ = per_sweep <= 0.0 ? 1 : static_cast<std::size_t>(std::max(1.0, std::round(1.0 / per_sweep)));
   last_motion_ = SE3::Identity();
+  last_prior_.reset();
   T_odom_lidar_ = SE3::Identity();
   T_world_odom_ = p_.T_world_lidar_initial;
   last_good_ = p_.T_world_lidar_initial;
@@ -63,7 +67,16 @@ void Loam::set_pose(const SE3& T_world_lidar) {
   anchor_ = T_world_lidar;
 }
 
-SE3 Loam::odometry_step(const LoamFeatures& f, const SE3& guess, bool prior_given, LoamOutput& out) {
+Vector6d Loam::reference_offset(const std::optional<SE3>& prior) const {
+  if (!p_.reference_from_prior_change || !prior || !last_prior_) return Vector6d::Zero();
+  const Vector6d d = *last_prior_ - se3_to_motion(*prior);
+  if (!d.allFinite() || d.head<3>().norm() > p_.max_prior_change_m || d.tail<3>().norm() > p_.max_prior_change_rad)
+    return Vector6d::Zero();
+  return d;
+}
+
+SE3 Loam::odometry_step(const LoamFeatures& f, const SE3& guess, bool prior_given, const Vector6d& reference_offset,
+                        LoamOutput& out) {
   if (!odometry_.has_reference()) {
     if (sweeps_ > 0) {
       out.healthy = false;
@@ -72,7 +85,7 @@ SE3 Loam::odometry_step(const LoamFeatures& f, const SE3& guess, bool prior_give
     }
     return guess;
   }
-  const OdometryResult r = odometry_.estimate(f, guess);
+  const OdometryResult r = odometry_.estimate(f, guess, reference_offset);
   if (!r.matched) {
     out.healthy = false;
     append_reason(out, "odometry: too few correspondences (" + std::to_string(r.constraints) + ")");
@@ -137,7 +150,7 @@ LoamOutput Loam::process(const PointCloud& sweep, const std::optional<SE3>& moti
         out, "too few features (" + std::to_string(f.total_features()) + " < " + std::to_string(p_.min_features) + ")");
   }
   if (usable) {
-    motion = odometry_step(f, guess, prior_given, out);
+    motion = odometry_step(f, guess, prior_given, reference_offset(prior_given ? motion_prior : std::nullopt), out);
     odometry_matched = sweeps_ > 0 && out.healthy;
     odometry_.set_reference(f, motion);
   } else {
@@ -148,6 +161,9 @@ LoamOutput Loam::process(const PointCloud& sweep, const std::optional<SE3>& moti
     if (p_.planar_motion) T_odom_lidar_ = T_world_odom_.inverse() * level(T_world_odom_ * T_odom_lidar_);
   }
   last_motion_ = motion;
+  // The offset pairs two consecutive sweeps: it is kept only while this sweep became the reference.
+  last_prior_.reset();
+  if (prior_given && usable) last_prior_ = se3_to_motion(*motion_prior);
   out.T_prev_lidar = motion;
   out.deskewed = deskew_to_end(clean, motion, p_.odometry.scan_period_s);
   out.odometry_ms = sw.elapsed_ms();

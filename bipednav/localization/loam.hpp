@@ -20,6 +20,13 @@ struct LoamParams {
   // rates: those are weakly observed (a torso VLP-16 barely sees the floor) and a rate kept from
   // one noisy sweep would otherwise make the height drift at a constant speed.
   bool planar_constant_velocity = true;
+  // With motion priors on two consecutive sweeps, the odometry projects the previous sweep with
+  // this sweep's motion plus the change between the two priors (LoamOdometry::estimate's
+  // reference_offset) instead of assuming constant velocity. A change larger than these bounds (an
+  // odometry glitch) is ignored.
+  bool reference_from_prior_change = false;
+  double max_prior_change_m = 0.1;
+  double max_prior_change_rad = 0.15;
   // A robot on a flat floor: the LiDAR's height, roll and pitch stay those of the anchor pose
   // (T_world_lidar_initial or set_pose), so every odometry and mapping result is projected onto
   // x, y and yaw. Height and tilt are the directions a torso-mounted VLP-16 observes worst (it
@@ -64,7 +71,9 @@ class Loam {
   std::size_t map_size() const { return mapping_.map_size(); }
 
  private:
-  SE3 odometry_step(const LoamFeatures& f, const SE3& guess, bool prior_given, LoamOutput& out);
+  SE3 odometry_step(const LoamFeatures& f, const SE3& guess, bool prior_given, const Vector6d& reference_offset,
+                    LoamOutput& out);
+  Vector6d reference_offset(const std::optional<SE3>& prior) const;
   void mapping_step(LoamOutput& out, const std::optional<Eigen::Vector3d>& up_in_lidar);
   SE3 constant_velocity_guess() const;
   SE3 level(const SE3& T_world_lidar) const;  // the planar projection (identity without planar_motion)
@@ -75,6 +84,7 @@ class Loam {
   std::size_t sweeps_ = 0;
   std::size_t mapping_every_ = 10;
   SE3 last_motion_ = SE3::Identity();
+  std::optional<Vector6d> last_prior_;  // the previous sweep's motion prior, when it had one
   SE3 T_odom_lidar_ = SE3::Identity();  // accumulated odometry
   SE3 T_world_odom_ = SE3::Identity();  // correction from the last mapping step
   SE3 last_good_ = SE3::Identity();

@@ -80,11 +80,12 @@ struct MovingReference {
 
 }  // namespace
 
-std::vector<Constraint> LoamOdometry::associate(const LoamFeatures& f, const Vector6d& x) const {
+std::vector<Constraint> LoamOdometry::associate(const LoamFeatures& f, const Vector6d& x,
+                                                const Vector6d& reference_offset) const {
   // Kept between calls (rounds and sweeps): a tree is reused only while update() finds every
   // point within kRebuildM of where the tree has it, whatever cloud it was built from.
   thread_local MovingReference edge_ref, planar_ref;
-  const SE3 T = motion_to_se3(x);
+  const SE3 T = motion_to_se3(x + reference_offset);
   edge_ref.update(raw_edges_, T, p_.scan_period_s);
   planar_ref.update(raw_planars_, T, p_.scan_period_s);
   const MovedPoints edge_points = edge_ref.points(), planar_points = planar_ref.points();
@@ -104,13 +105,14 @@ std::vector<Constraint> LoamOdometry::associate(const LoamFeatures& f, const Vec
   return cs;
 }
 
-OdometryResult LoamOdometry::estimate(const LoamFeatures& f, const SE3& guess) const {
+OdometryResult LoamOdometry::estimate(const LoamFeatures& f, const SE3& guess, const Vector6d& reference_offset) const {
   OdometryResult res;
   res.T_start_end = guess;
   if (!has_reference()) return res;
+  const Vector6d offset = reference_offset.allFinite() ? reference_offset : Vector6d::Zero();
   Vector6d x = se3_to_motion(guess);
   for (int round = 0; round < p_.correspondence_rounds; ++round) {
-    const std::vector<Constraint> cs = associate(f, x);
+    const std::vector<Constraint> cs = associate(f, x, offset);
     res.constraints = cs.size();
     if (cs.size() < p_.min_constraints) {
       res.matched = false;
