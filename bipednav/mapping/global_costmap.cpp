@@ -27,6 +27,10 @@ GlobalCostmapParams GlobalCostmapParams::for_robot(const RobotProfile& robot) {
   GlobalCostmapParams p;
   p.inscribed_radius_m = robot.footprint_radius_m;
   p.inflation_radius_m = std::max(p.inflation_radius_m, p.inscribed_radius_m + 0.3);
+  if (kWalkerHeightAwareMaps && robot.kind == "walker") {  // as the local map (LocalCostmapParams::for_robot)
+    p.height_aware_clearing = true;
+    p.merged_mark_decay_s = kWalkerMarkDecayS;
+  }
   return p;
 }
 
@@ -62,7 +66,7 @@ ChangeSet GlobalCostmap::update(const Pose2& T_map_base, const std::vector<Obser
                                 const LocalCostmap* local) {
   if (!T_map_base.is_finite()) throw Error("global costmap: robot pose is not finite");
   CellRect dirty;
-  dirty.include(obstacle_layer_.update(occupancy_, lidar_obs, params_.lidar_clearing));
+  dirty.include(obstacle_layer_.update(occupancy_, lidar_obs, params_.lidar_clearing, false));
   if (local && params_.merge_local) dirty.include(merge_local(*local));
   return refresh(dirty);
 }
@@ -80,7 +84,8 @@ CellRect GlobalCostmap::merge_local(const LocalCostmap& local) {
   const CellRect win = CellRect{lo->x, lo->y, hi->x + 1, hi->y + 1}.clipped(g);
   if (win.empty()) return changed;
   merge_.assign(static_cast<std::size_t>(win.width()) * win.height(), 0);
-  const bool bands = params_.height_aware_clearing;  // otherwise every band stays empty
+  // Otherwise every band stays empty and no mark decays.
+  const bool bands = params_.height_aware_clearing || params_.merged_mark_decay_s > 0.0;
   if (bands) merge_bands_.assign(merge_.size(), HeightBand{});
   const auto& seen = local.observed();
   for (int y = 0; y < lg.height; ++y) {
@@ -124,11 +129,13 @@ ChangeSet GlobalCostmap::set_occupancy(const Costmap2D& prior) {
   const auto& src = prior.data();
   for (std::size_t i = 0; i < occ.size(); ++i)
     occ[i] = src[i] == kLethal ? kLethal : (src[i] == kUnknown ? kUnknown : kFree);
+  obstacle_layer_.forget_marks();  // a known map's obstacles do not decay
   return refresh(CellRect::all(g));
 }
 
 ChangeSet GlobalCostmap::clear() {
   occupancy_.fill(kUnknown);
+  obstacle_layer_.forget_marks();
   return refresh(CellRect::all(occupancy_.geometry()));
 }
 

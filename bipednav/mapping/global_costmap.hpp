@@ -27,6 +27,10 @@ struct GlobalCostmapParams {
   bool height_aware_clearing = false;  // see ObstacleLayerParams
   bool lidar_clearing = true;          // clear along LiDAR rays (false: LiDAR only marks)
   bool merge_local = true;             // copy the local map's obstacles and free cells in
+  // Obstacles copied from the local map that it no longer holds (no LiDAR return confirms them
+  // either) go back to unexplored after this long; 0: never. The global LiDAR's own marks stay
+  // until its rays clear them.
+  double merged_mark_decay_s = 0.0;
   std::string unknown_cost_mode = "free";
   double rate_hz = 2.0;
 
@@ -35,7 +39,8 @@ struct GlobalCostmapParams {
   UnknownCostMode unknown_mode() const { return parse_unknown_cost_mode(unknown_cost_mode); }
   InflationParams inflation() const { return {inscribed_radius_m, inflation_radius_m, cost_scaling_factor}; }
   ObstacleLayerParams obstacle_layer() const {
-    return {obstacle_max_range_m, raytrace_max_range_m, height_aware_clearing};
+    return {obstacle_max_range_m, raytrace_max_range_m, height_aware_clearing,
+            decay_updates(merged_mark_decay_s, rate_hz)};
   }
 };
 

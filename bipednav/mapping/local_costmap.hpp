@@ -20,14 +20,17 @@ struct LocalCostmapParams {
   double obstacle_max_range_m = 4.0;
   double raytrace_max_range_m = 5.0;
   bool height_aware_clearing = false;  // see ObstacleLayerParams
+  // A mark no return confirms for this long goes back to unknown (see ObstacleLayer); 0: never.
+  double mark_decay_s = 0.0;
   double rate_hz = 10.0;
 
   void validate() const;
-  // Defaults with the inscribed radius taken from the robot's footprint.
+  // Defaults with the inscribed radius taken from the robot's footprint. Walkers (whose LiDAR
+  // passes over what only their pitched depth cameras see) get height-aware clearing with decay.
   static LocalCostmapParams for_robot(const RobotProfile& robot);
   InflationParams inflation() const { return {inscribed_radius_m, inflation_radius_m, cost_scaling_factor}; }
   ObstacleLayerParams obstacle_layer() const {
-    return {obstacle_max_range_m, raytrace_max_range_m, height_aware_clearing};
+    return {obstacle_max_range_m, raytrace_max_range_m, height_aware_clearing, decay_updates(mark_decay_s, rate_hz)};
   }
 };
 

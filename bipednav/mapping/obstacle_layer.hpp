@@ -32,9 +32,21 @@ struct ObstacleLayerParams {
   // (turtlebot3_world's 0.5 m cylinders), but also low false marks only a depth camera can clear,
   // and the walkers' runs got worse with it (README, "Mapping").
   bool height_aware_clearing = false;
+  // Mark decay (as in the spatio-temporal voxel layer): an obstacle cell whose mark no return has
+  // confirmed for more than this many updates goes back to unknown. 0: marks never expire. Counted
+  // in updates, so a layer updated at a fixed rate decays after mark_lifetime_updates / rate.
+  int mark_lifetime_updates = 0;
 
   void validate() const;
 };
+
+// Whether walkers' local and global maps default to height-aware clearing with mark decay
+// (LocalCostmapParams::for_robot, GlobalCostmapParams::for_robot), and their decay time.
+inline constexpr bool kWalkerHeightAwareMaps = false;
+inline constexpr double kWalkerMarkDecayS = 15.0;
+
+// A decay time as a count of updates at `rate_hz` (at least one when decay_s > 0; 0: no decay).
+int decay_updates(double decay_s, double rate_hz);
 
 // The heights (map frame) at which the returns that marked a cell were seen; empty = not known.
 struct HeightBand {
@@ -64,13 +76,23 @@ struct HeightBand {
 // A LiDAR ray passing over a 0.5 m cylinder seen by a depth camera says nothing about the
 // cylinder, and a plain 2D ray trace would erase it. Obstacle cells with no known band (set by
 // someone else) are freed by any ray, as in 2D.
+//
+// Rays that cross a band are the sensors' negative evidence inside their view (a depth camera's
+// ground returns cross the low marks in its frustum). A mark outside every sensor's view is never
+// crossed, so a false mark there (a wall return seen a cell off) would stay for good; with
+// mark_lifetime_updates > 0 marks decay: each mark remembers the update that last confirmed it (a
+// return in the cell, or include_band) and goes back to kUnknown when it is older than the
+// lifetime. Marks of updates called with marks_expire false, and obstacle cells set by someone
+// else, never expire (a LiDAR that sees its walls every sweep; a prior map).
 class ObstacleLayer {
  public:
   explicit ObstacleLayer(const ObstacleLayerParams& params = {});
 
   // Applies the observations to `grid`; returns the bounding box of the cells whose value changed.
   // With `allow_clearing` false no observation clears (marking only).
-  CellRect update(Costmap2D& grid, const std::vector<Observation>& observations, bool allow_clearing = true);
+  // With `marks_expire` false this update's marks never decay (and make the cells they hit permanent).
+  CellRect update(Costmap2D& grid, const std::vector<Observation>& observations, bool allow_clearing = true,
+                  bool marks_expire = true);
 
   const ObstacleLayerParams& params() const { return params_; }
 
@@ -78,17 +100,33 @@ class ObstacleLayer {
   const HeightBand& band(int x, int y) const;
   // Widens cell (x, y)'s band: obstacles copied into the grid from elsewhere keep their heights.
   // With `reset` the cell's old band is dropped first (the cell was not an obstacle before).
-  // Without height_aware_clearing no bands are kept (band() is always empty) and this does nothing.
+  // The cell's mark counts as confirmed now (see mark_lifetime_updates). Without height_aware_clearing
+  // no bands are kept (band() is always empty); without either option this does nothing.
   void include_band(const Costmap2D& grid, int x, int y, const HeightBand& b, bool reset);
+  // Every mark's decay forgotten (cells no longer expire): the grid was replaced from elsewhere.
+  void forget_marks();
+  // Updates since the mark of cell (x, y) was last confirmed; -1 when it does not expire.
+  int mark_age(int x, int y) const;
 
  private:
-  void follow(const Costmap2D& grid);  // bands follow the grid's size and rolling-window moves
+  static constexpr std::uint32_t kPermanent = 0;  // a mark that never expires
+
+  // What the layer keeps of an obstacle cell: its heights and the update that last confirmed it.
+  struct Mark {
+    HeightBand band;
+    std::uint32_t confirmed = kPermanent;
+  };
+
+  bool keeps_marks() const { return params_.height_aware_clearing || params_.mark_lifetime_updates > 0; }
+  void follow(const Costmap2D& grid);  // marks follow the grid's size and rolling-window moves
   void clear_observation(Costmap2D& grid, const Observation& obs, CellRect& changed);
-  void mark_observation(Costmap2D& grid, const Observation& obs, CellRect& changed);
+  void mark_observation(Costmap2D& grid, const Observation& obs, std::uint32_t confirmed, CellRect& changed);
+  void expire(Costmap2D& grid, CellRect& changed);
 
   ObstacleLayerParams params_;
   GridGeometry band_geometry_;
-  std::vector<HeightBand> bands_;      // per cell of band_geometry_
+  std::vector<Mark> marks_;            // per cell of band_geometry_
+  std::uint32_t tick_ = 0;             // updates so far (1, 2, ...; 0 is kPermanent)
   std::vector<std::uint32_t> traced_;  // per cell: stamp of the last observation that traced a ray to it
   std::uint32_t stamp_ = 0;
 };
