@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <map>
 #include <mutex>
 #include <nlohmann/json.hpp>
@@ -80,10 +81,56 @@ std::optional<double> cost_by(const FootstepPlan& plan, double limit_s) {
 }
 
 struct BenchArgs {
-  int maps = 10, problems = 10, jobs = 1, only_map = -1;
+  int maps = 10, problems = 10, jobs = 1, only_map = -1, only_problem = -1;
   double long_limit_s = 10.0, short_limit_s = 5.0, optimal_limit_s = 120.0;
-  std::string clock = "thread_cpu", log;
+  std::string clock = "thread_cpu", log, optimal_from, heuristics = "dijkstra,euclidean";
+  bool skip_planar = false, stance_levels = false;
 };
+
+// The optimal reference costs of a previous run (its per_problem rows, or --log lines), by
+// (map, problem), with the start and goal each row was generated with.
+struct StoredOptimal {
+  double cost_s = 0.0;
+  Pose2 start, goal;
+};
+std::map<std::pair<int, int>, StoredOptimal> read_optimal_costs(const std::string& file) {
+  std::ifstream in(file);
+  if (!in) throw Error("cannot read --optimal-from file " + file);
+  std::vector<nlohmann::json> rows;
+  try {
+    if (file.size() >= 6 && file.substr(file.size() - 6) == ".jsonl") {
+      for (std::string line; std::getline(in, line);)
+        if (!line.empty()) rows.push_back(nlohmann::json::parse(line));
+    } else {
+      const auto j = nlohmann::json::parse(in);
+      if (!j.contains("per_problem") || !j["per_problem"].is_array())
+        throw Error("--optimal-from " + file + ": no per_problem array");
+      for (const auto& r : j["per_problem"]) rows.push_back(r);
+    }
+  } catch (const nlohmann::json::exception& e) {
+    throw Error("--optimal-from " + file + ": " + e.what());
+  }
+  std::map<std::pair<int, int>, StoredOptimal> out;
+  for (const auto& r : rows) {
+    try {
+      const auto& o = r.at("optimal");
+      if (o.at("outcome") != "SUCCESS" || o.at("final_epsilon").get<double>() != 1.0 || o.at("cost_s").is_null())
+        continue;  // no proven optimum stored: searched again
+      const auto& s = r.at("start");
+      const auto& g = r.at("goal");
+      out[{r.at("map").get<int>(), r.at("problem").get<int>()}] = {
+          o.at("cost_s").get<double>(), Pose2{s.at(0).get<double>(), s.at(1).get<double>(), s.at(2).get<double>()},
+          Pose2{g.at(0).get<double>(), g.at(1).get<double>(), g.at(2).get<double>()}};
+    } catch (const nlohmann::json::exception& e) {
+      throw Error("--optimal-from " + file + ": malformed row: " + e.what());
+    }
+  }
+  return out;
+}
+
+bool same_pose(const Pose2& a, const Pose2& b) {
+  return std::abs(a.x - b.x) <= 1e-9 && std::abs(a.y - b.y) <= 1e-9 && std::abs(a.theta - b.theta) <= 1e-9;
+}
 
 // One Table I problem and everything measured on it (filled by one worker thread).
 struct BenchProblem {
@@ -92,6 +139,7 @@ struct BenchProblem {
   FootstepPlan optimal;
   std::map<std::string, FootstepPlan> plans;  // by heuristic
   FootstepPlan planar;
+  bool optimal_stored = false;  // the optimal cost came from --optimal-from
 };
 
 nlohmann::json plan_json(const FootstepPlan& p) {
@@ -118,8 +166,9 @@ nlohmann::json problem_json(const BenchProblem& w) {
                         {"problem", w.index},
                         {"start", {w.problem.start.x, w.problem.start.y, w.problem.start.theta}},
                         {"goal", {w.problem.goal.x, w.problem.goal.y, w.problem.goal.theta}},
-                        {"optimal", plan_json(w.optimal)},
-                        {"planar_only", plan_json(w.planar)}};
+                        {"optimal", plan_json(w.optimal)}};
+  if (w.optimal_stored) row["optimal"]["from_file"] = true;
+  if (!w.planar.iterations.empty() || !w.planar.result.ok()) row["planar_only"] = plan_json(w.planar);
   for (const auto& [h, plan] : w.plans) row[h] = plan_json(plan);
   return row;
 }
@@ -145,7 +194,8 @@ void bench_footsteps(const BenchArgs& a) {
     maps.push_back(random_terrain(tg, 1000 + m));
     int i = 0;
     for (const auto& prob : random_problems(maps.back(), probe, per_map, 1.5, 3.0, 2000 + m)) {
-      if (a.only_map < 0 || a.only_map == m) work.push_back({m, i, prob, {}, {}, {}});
+      if ((a.only_map < 0 || a.only_map == m) && (a.only_problem < 0 || a.only_problem == i))
+        work.push_back({m, i, prob, {}, {}, {}, false});
       ++i;
     }
   }
@@ -157,10 +207,36 @@ void bench_footsteps(const BenchArgs& a) {
   opt.search.initial_epsilon = 1.0;
   opt.search.time_limit_s = a.optimal_limit_s;
   const FootstepPlanner optimal_planner(opt);
+  // Optimal costs do not depend on the heuristic: a previous run's may be reused, for the
+  // same problems only (the start and goal generated here must match the stored row's).
+  std::map<std::pair<int, int>, StoredOptimal> stored;
+  if (!a.optimal_from.empty()) stored = read_optimal_costs(a.optimal_from);
+  int reused = 0;
+  for (BenchProblem& w : work) {
+    const auto it = stored.find({w.map, w.index});
+    if (it == stored.end()) continue;
+    if (!same_pose(it->second.start, w.problem.start) || !same_pose(it->second.goal, w.problem.goal))
+      throw Error("--optimal-from: map " + std::to_string(w.map) + " problem " + std::to_string(w.index) +
+                  " has another start/goal than the stored row (different problem generator or seeds)");
+    w.optimal.result = {Outcome::SUCCESS, "optimal cost from " + a.optimal_from};
+    w.optimal.cost_s = it->second.cost_s;
+    w.optimal.final_epsilon = 1.0;
+    w.optimal_stored = true;
+    ++reused;
+  }
+  std::vector<std::string> heuristics;
+  for (std::size_t b = 0; b <= a.heuristics.size();) {
+    const std::size_t e = std::min(a.heuristics.find(',', b), a.heuristics.size());
+    const std::string h = a.heuristics.substr(b, e - b);
+    require(h == "dijkstra" || h == "euclidean", "--heuristics", "a comma-separated list of dijkstra, euclidean");
+    if (std::find(heuristics.begin(), heuristics.end(), h) == heuristics.end()) heuristics.push_back(h);
+    b = e + 1;
+  }
   std::map<std::string, std::unique_ptr<FootstepPlanner>> planners;
-  for (const std::string h : {"dijkstra", "euclidean"}) {
+  for (const std::string& h : heuristics) {
     FootstepPlannerParams p = base;
     p.heuristic = h;
+    p.stance_level_heuristic = a.stance_levels;
     p.search.time_limit_s = a.long_limit_s;
     planners[h] = std::make_unique<FootstepPlanner>(p);
   }
@@ -184,9 +260,9 @@ void bench_footsteps(const BenchArgs& a) {
       BenchProblem& w = work[k];
       const mapping::Heightmap& map = maps[static_cast<std::size_t>(w.map)];
       const Footstep start = probe.stance_for_body(w.problem.start, Foot::kLeft);
-      w.optimal = optimal_planner.plan(map, start, w.problem.goal);
+      if (!w.optimal_stored) w.optimal = optimal_planner.plan(map, start, w.problem.goal);
       for (auto& [h, planner] : planners) w.plans[h] = planner->plan(map, start, w.problem.goal);
-      w.planar = planar_planner.plan(map, start, w.problem.goal);
+      if (!a.skip_planar) w.planar = planar_planner.plan(map, start, w.problem.goal);
       const std::lock_guard lock(bar_mutex);
       if (log) {
         std::fprintf(log.get(), "%s\n", problem_json(w).dump().c_str());
@@ -237,34 +313,40 @@ void bench_footsteps(const BenchArgs& a) {
                   {"t_init_sol_with_setup_ms", stats(init_setup_ms)},
                   {"solve_rate_ratio", total ? static_cast<double>(cell.solved) / total : 0.0}};
   }
-  const auto& d5 = rows[row_name("dijkstra", a.short_limit_s)];
-  const double subopt5 =
-      d5["suboptimality_ratio"]["mean"].is_null() ? 1e9 : d5["suboptimality_ratio"]["mean"].get<double>();
+  const std::string d5_name = row_name("dijkstra", a.short_limit_s);
+  const nlohmann::json d5_mean =
+      rows.contains(d5_name) ? rows[d5_name]["suboptimality_ratio"]["mean"] : nlohmann::json(nullptr);
+  const double subopt5 = d5_mean.is_null() ? 1e9 : d5_mean.get<double>();
   double worst_rate = 1.0, worst_median_ms = 0.0;
   for (auto& [k, v] : rows.items()) {
     worst_rate = std::min(worst_rate, v["solve_rate_ratio"].get<double>());
     if (!v["t_init_sol_ms"]["median"].is_null())
       worst_median_ms = std::max(worst_median_ms, v["t_init_sol_ms"]["median"].get<double>());
   }
-  nlohmann::json out = {{"problems", total},
-                        {"maps", a.maps},
-                        {"map_size_m", tg.size_m},
-                        {"map_resolution_m", tg.resolution_m},
-                        {"clock", search_clock_name(clock)},
-                        {"jobs", a.jobs},
-                        {"time_limits_s", {a.short_limit_s, a.long_limit_s}},
-                        {"optimal_limit_s", a.optimal_limit_s},
-                        {"bench_wall_s", wall.elapsed_ms() / 1000.0},
-                        {"optimal_solutions", optimal_known},
-                        {"table", rows},
-                        {"planar_only_solve_rate_ratio", total ? static_cast<double>(planar_solved) / total : 0.0},
-                        {"goal_solve_rate_ratio", 1.0},
-                        {"goal_t_init_sol_median_ms", 100.0},
-                        {"goal_dijkstra_5s_suboptimality_ratio", 1.04},
-                        {"meets_goal_solve_rate", worst_rate >= 1.0},
-                        {"meets_goal_t_init_sol_median", worst_median_ms <= 100.0},
-                        {"meets_goal_suboptimality", subopt5 <= 1.04},
-                        {"per_problem", detail}};
+  nlohmann::json out = {
+      {"problems", total},
+      {"maps", a.maps},
+      {"map_size_m", tg.size_m},
+      {"map_resolution_m", tg.resolution_m},
+      {"clock", search_clock_name(clock)},
+      {"jobs", a.jobs},
+      {"time_limits_s", {a.short_limit_s, a.long_limit_s}},
+      {"optimal_limit_s", a.optimal_limit_s},
+      {"bench_wall_s", wall.elapsed_ms() / 1000.0},
+      {"optimal_solutions", optimal_known},
+      {"optimal_costs_from_file", reused},
+      {"optimal_from", a.optimal_from.empty() ? nlohmann::json(nullptr) : nlohmann::json(a.optimal_from)},
+      {"table", rows},
+      {"planar_only_solve_rate_ratio", a.skip_planar
+                                           ? nlohmann::json(nullptr)
+                                           : nlohmann::json(total ? static_cast<double>(planar_solved) / total : 0.0)},
+      {"goal_solve_rate_ratio", 1.0},
+      {"goal_t_init_sol_median_ms", 100.0},
+      {"goal_dijkstra_5s_suboptimality_ratio", 1.04},
+      {"meets_goal_solve_rate", worst_rate >= 1.0},
+      {"meets_goal_t_init_sol_median", worst_median_ms <= 100.0},
+      {"meets_goal_suboptimality", subopt5 <= 1.04},
+      {"per_problem", detail}};
   std::printf("%s\n", out.dump(2).c_str());
 }
 
@@ -300,6 +382,14 @@ void add_footstep_commands(CLI::App& app, CLI::App& bench) {
       ->capture_default_str();
   bf->add_option("--log", b->log, "Also write each finished problem as a JSON line to this file");
   bf->add_option("--only-map", b->only_map, "Run only this map's problems (0-based; diagnosis)");
+  bf->add_option("--only-problem", b->only_problem, "Run only this problem index within each map (0-based)");
+  bf->add_option("--optimal-from", b->optimal_from,
+                 "Take the optimal reference costs from a previous results JSON (per_problem) or --log .jsonl "
+                 "file instead of searching them (rows must have the same start/goal)");
+  bf->add_option("--heuristics", b->heuristics, "Comma-separated ARA* heuristics to run")->capture_default_str();
+  bf->add_flag("--skip-planar", b->skip_planar, "Do not run the planar-footsteps-only baseline");
+  bf->add_flag("--stance-levels", b->stance_levels,
+               "Dijkstra heuristic with the (cell, stance-height level) graph (off by default)");
   bf->add_flag("--json", *json, "Print one JSON object (the default)");
   bf->callback([b] { bench_footsteps(*b); });
 }
