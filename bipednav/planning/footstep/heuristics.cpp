@@ -18,6 +18,19 @@ double EuclideanHeuristic::seconds_to_goal(double x, double y) const {
 
 namespace {
 
+// The 8-connected neighbourhood (0..3 orthogonal, 4..7 diagonal).
+constexpr int kDx[8] = {1, -1, 0, 0, 1, 1, -1, -1};
+constexpr int kDy[8] = {0, 0, 1, -1, 1, -1, 1, -1};
+
+// Octile steps scaled by the worst octile/Euclidean ratio (1.0824) keep a graph distance below
+// the length of any continuous path. (A 16-connected graph, worst ratio 1.0275, was tried: its
+// tighter distances changed nao_stairs' epsilon-3 plans in the loop into one that brushed the
+// side wall with an arm; kept 8-connected.)
+double octile_step_m(int k, double res) {
+  constexpr double kOctileToEuclid = 1.0 / 1.0823922;
+  return (k < 4 ? res : res * std::numbers::sqrt2) * kOctileToEuclid;
+}
+
 double swing_peak_planar(const ActionSet& a) {
   double peak = std::numeric_limits<double>::infinity();
   for (const auto& act : a.actions)
@@ -89,14 +102,7 @@ DijkstraHeuristic::DijkstraHeuristic(const TerrainGrid& terrain, const ActionSet
   std::priority_queue<Item, std::vector<Item>, std::greater<>> open;
   dist_[g.index(*goal_cell)] = 0.0f;
   open.push({0.0f, static_cast<std::uint32_t>(g.index(*goal_cell))});
-  // Octile steps scaled by the worst octile/Euclidean ratio (1.0824) keep d(s) below the length
-  // of any continuous path. (A 16-connected graph, worst ratio 1.0275, was tried: its tighter
-  // distances changed nao_stairs' epsilon-3 plans in the loop into one that brushed the side
-  // wall with an arm; kept 8-connected.)
-  constexpr double kOctileToEuclid = 1.0 / 1.0823922;
   const double res = g.resolution_m;
-  constexpr int kDx[8] = {1, -1, 0, 0, 1, 1, -1, -1};
-  constexpr int kDy[8] = {0, 0, 1, -1, 1, -1, 1, -1};
   while (!open.empty()) {
     const auto [d, i] = open.top();
     open.pop();
@@ -108,7 +114,7 @@ DijkstraHeuristic::DijkstraHeuristic(const TerrainGrid& terrain, const ActionSet
       if (!g.in_bounds(nx, ny)) continue;
       const EdgeClass e = classify_edge(terrain, c.x, c.y, nx, ny, actions);
       if (e == EdgeClass::kImpassable) continue;
-      double step = (k < 4 ? res : res * std::numbers::sqrt2) * kOctileToEuclid;
+      double step = octile_step_m(k, res);
       if (e == EdgeClass::kElevating) step += elevation_penalty_m_;
       const float nd = static_cast<float>(d + step);
       const std::size_t ni = g.index(nx, ny);
@@ -274,13 +280,6 @@ void DijkstraHeuristic::build_level_graph(const ActionSet& actions, const mappin
     stand_.clear(), allowed_.clear(), node_begin_.clear();
     return;
   }
-  const auto node_of = [&](std::size_t c, int l) {
-    std::uint32_t r = node_begin_[c];
-    const std::size_t wl = static_cast<std::size_t>(l) / 64;
-    for (std::size_t k = 0; k < wl; ++k) r += static_cast<std::uint32_t>(std::popcount(allowed_[c * W + k]));
-    const std::uint64_t below = (std::uint64_t{1} << (l % 64)) - 1;
-    return r + static_cast<std::uint32_t>(std::popcount(allowed_[c * W + wl] & below));
-  };
   std::vector<std::uint32_t> node_cell(nodes);
   std::vector<std::uint16_t> node_level(nodes);
   for (std::size_t c = 0; c < n; ++c) {
@@ -290,8 +289,6 @@ void DijkstraHeuristic::build_level_graph(const ActionSet& actions, const mappin
         node_cell[i] = static_cast<std::uint32_t>(c), node_level[i++] = static_cast<std::uint16_t>(l);
   }
   // The 8-connected graph's passable edges, once per cell.
-  constexpr int kDx[8] = {1, -1, 0, 0, 1, 1, -1, -1};
-  constexpr int kDy[8] = {0, 0, 1, -1, 1, -1, 1, -1};
   std::vector<std::uint8_t> passable(n, 0);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x)
@@ -314,13 +311,12 @@ void DijkstraHeuristic::build_level_graph(const ActionSet& actions, const mappin
       if (std::hypot(p.x() - goal_.x, p.y() - goal_.y) > keep_r) continue;
       for (int l = 0; l < levels_; ++l) {
         if (!bit(stand_, g.index(x, y), l) || !bit(allowed_, gc, l)) continue;
-        const std::uint32_t i = node_of(gc, l);
+        const std::uint32_t i = node_index(gc, l);
         if (level_dist_[i] == 0.0f) continue;
         level_dist_[i] = 0.0f;
         open.push({0.0f, i});
       }
     }
-  constexpr double kOctileToEuclid = 1.0 / 1.0823922;
   const float pen = static_cast<float>(level_penalty_m_);
   while (!open.empty()) {
     const auto [d, i] = open.top();
@@ -340,7 +336,7 @@ void DijkstraHeuristic::build_level_graph(const ActionSet& actions, const mappin
       if (!((passable[c] >> k) & 1u)) continue;
       const std::size_t nc = g.index(cc.x + kDx[k], cc.y + kDy[k]);
       if (!bit(allowed_, nc, l)) continue;
-      relax(node_of(nc, l), static_cast<float>(d + (k < 4 ? res : res * std::numbers::sqrt2) * kOctileToEuclid));
+      relax(node_index(nc, l), static_cast<float>(d + octile_step_m(k, res)));
     }
     // A level change (at the middle of an action's segment): the nodes of this cell are
     // consecutive, in level order.
@@ -358,11 +354,16 @@ std::optional<double> DijkstraHeuristic::level_distance_m(int x, int y, double s
   if (l < 0 || l >= levels_) return std::nullopt;
   const std::size_t c = terrain_->geometry().index(x, y);
   if (!bit(stand_, c, l)) return std::nullopt;
-  std::uint32_t r = node_begin_[c];
+  return static_cast<double>(level_dist_[node_index(c, l)]);
+}
+
+std::uint32_t DijkstraHeuristic::node_index(std::size_t c, int l) const {
+  // The nodes of cell c are its allowed levels in level order: l's rank among them.
   const std::size_t W = static_cast<std::size_t>(words_), wl = static_cast<std::size_t>(l) / 64;
+  std::uint32_t r = node_begin_[c];
   for (std::size_t k = 0; k < wl; ++k) r += static_cast<std::uint32_t>(std::popcount(allowed_[c * W + k]));
-  r += static_cast<std::uint32_t>(std::popcount(allowed_[c * W + wl] & ((std::uint64_t{1} << (l % 64)) - 1)));
-  return static_cast<double>(level_dist_[r]);
+  const std::uint64_t below = (std::uint64_t{1} << (l % 64)) - 1;
+  return r + static_cast<std::uint32_t>(std::popcount(allowed_[c * W + wl] & below));
 }
 
 // Body clearance. Every action's inverse heightmap holds the torso at the first instant of the

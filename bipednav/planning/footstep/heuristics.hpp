@@ -76,6 +76,8 @@ class DijkstraHeuristic : public Heuristic {
   void build_level_graph(const ActionSet& actions, const mapping::Cell& goal_cell);
   // The level bitsets: `words_` 64-bit words per cell, level 0 at z = level_z0_.
   int level_of(double z) const { return static_cast<int>(std::floor((z - level_z0_) / kLevelM)); }
+  // The index of node (cell, level l); l must be an allowed level of the cell.
+  std::uint32_t node_index(std::size_t cell, int l) const;
   bool bit(const std::vector<std::uint64_t>& b, std::size_t cell, int l) const {
     return (b[cell * words_ + static_cast<std::size_t>(l) / 64] >> (l % 64)) & 1u;
   }
