@@ -84,8 +84,7 @@ CellRect GlobalCostmap::merge_local(const LocalCostmap& local) {
   const CellRect win = CellRect{lo->x, lo->y, hi->x + 1, hi->y + 1}.clipped(g);
   if (win.empty()) return changed;
   merge_.assign(static_cast<std::size_t>(win.width()) * win.height(), 0);
-  // Otherwise every band stays empty and no mark decays.
-  const bool bands = params_.height_aware_clearing || params_.merged_mark_decay_s > 0.0;
+  const bool bands = obstacle_layer_.keeps_marks();  // otherwise there are no bands or ages to carry
   if (bands) merge_bands_.assign(merge_.size(), HeightBand{});
   const auto& seen = local.observed();
   for (int y = 0; y < lg.height; ++y) {

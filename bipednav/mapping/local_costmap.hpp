@@ -25,8 +25,9 @@ struct LocalCostmapParams {
   double rate_hz = 10.0;
 
   void validate() const;
-  // Defaults with the inscribed radius taken from the robot's footprint. Walkers (whose LiDAR
-  // passes over what only their pitched depth cameras see) get height-aware clearing with decay.
+  // Defaults with the inscribed radius taken from the robot's footprint. With
+  // kWalkerHeightAwareMaps (off: see obstacle_layer.hpp), walkers, whose LiDAR passes over what
+  // only their pitched depth cameras see, get height-aware clearing with decay.
   static LocalCostmapParams for_robot(const RobotProfile& robot);
   InflationParams inflation() const { return {inscribed_radius_m, inflation_radius_m, cost_scaling_factor}; }
   ObstacleLayerParams obstacle_layer() const {

@@ -103,6 +103,9 @@ class ObstacleLayer {
   // The cell's mark counts as confirmed now (see mark_lifetime_updates). Without height_aware_clearing
   // no bands are kept (band() is always empty); without either option this does nothing.
   void include_band(const Costmap2D& grid, int x, int y, const HeightBand& b, bool reset);
+  // Whether marks (height bands, confirmation ages) are kept at all: with neither option there is
+  // nothing to keep, and include_band does nothing.
+  bool keeps_marks() const { return params_.height_aware_clearing || params_.mark_lifetime_updates > 0; }
   // Every mark's decay forgotten (cells no longer expire): the grid was replaced from elsewhere.
   void forget_marks();
   // Updates since the mark of cell (x, y) was last confirmed; -1 when it does not expire.
@@ -117,7 +120,6 @@ class ObstacleLayer {
     std::uint32_t confirmed = kPermanent;
   };
 
-  bool keeps_marks() const { return params_.height_aware_clearing || params_.mark_lifetime_updates > 0; }
   void follow(const Costmap2D& grid);  // marks follow the grid's size and rolling-window moves
   void clear_observation(Costmap2D& grid, const Observation& obs, CellRect& changed);
   void mark_observation(Costmap2D& grid, const Observation& obs, std::uint32_t confirmed, CellRect& changed);
