@@ -36,79 +36,104 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
+// 32 bytes, so two share a cache line: the search's memory traffic is mostly these records.
 struct Record {
   double g = kInf;
   double h = 0.0;
   std::int32_t parent = -1;
-  std::int32_t action = -1;
   std::int32_t heap_pos = -1;
   std::uint32_t closed_in = 0;  // search iteration that closed it (0 = open/never)
+  std::int16_t action = -1;
   bool incons = false;
 };
+static_assert(sizeof(Record) == 32);
 
 // Binary min-heap of state ids keyed by f = g + eps * h, with position tracking for updates.
+// Key and id sit side by side, so a sift touches one array.
 class OpenList {
  public:
   explicit OpenList(std::vector<Record>& rec) : rec_(rec) {}
   bool empty() const { return heap_.empty(); }
-  double min_key() const { return heap_.empty() ? kInf : key_[0]; }
+  double min_key() const { return heap_.empty() ? kInf : heap_[0].key; }
   void push_or_update(std::int32_t s, double key) {
     Record& r = rec_[s];
     if (r.heap_pos < 0) {
       r.heap_pos = static_cast<std::int32_t>(heap_.size());
-      heap_.push_back(s);
-      key_.push_back(key);
-    } else {
-      key_[r.heap_pos] = key;
+      heap_.push_back({key, s});
+      sift_up(static_cast<std::size_t>(r.heap_pos));  // a new leaf has no children
+      return;
     }
-    sift_up(rec_[s].heap_pos);
-    sift_down(rec_[s].heap_pos);
+    const std::size_t i = static_cast<std::size_t>(r.heap_pos);
+    const bool lower = key <= heap_[i].key;
+    heap_[i].key = key;
+    // A key that did not rise is still no larger than its children's.
+    if (sift_up(i) || lower) return;
+    sift_down(i);
   }
   std::int32_t pop() {
-    const std::int32_t top = heap_[0];
-    swap_at(0, heap_.size() - 1);
-    heap_.pop_back();
-    key_.pop_back();
+    const std::int32_t top = heap_[0].id;
     rec_[top].heap_pos = -1;
-    if (!heap_.empty()) sift_down(0);
+    heap_[0] = heap_.back();
+    heap_.pop_back();
+    if (!heap_.empty()) {
+      rec_[heap_[0].id].heap_pos = 0;
+      sift_down(0);
+    }
     return top;
   }
   std::vector<std::int32_t> drain() {
-    std::vector<std::int32_t> all = heap_;
-    for (auto s : heap_) rec_[s].heap_pos = -1;
+    std::vector<std::int32_t> all;
+    all.reserve(heap_.size());
+    for (const Entry& e : heap_) {
+      all.push_back(e.id);
+      rec_[e.id].heap_pos = -1;
+    }
     heap_.clear();
-    key_.clear();
     return all;
   }
 
  private:
-  void swap_at(std::size_t a, std::size_t b) {
-    std::swap(heap_[a], heap_[b]);
-    std::swap(key_[a], key_[b]);
-    rec_[heap_[a]].heap_pos = static_cast<std::int32_t>(a);
-    rec_[heap_[b]].heap_pos = static_cast<std::int32_t>(b);
-  }
-  void sift_up(std::size_t i) {
-    while (i > 0 && key_[(i - 1) / 2] > key_[i]) {
-      swap_at(i, (i - 1) / 2);
+  struct Entry {
+    double key;
+    std::int32_t id;
+  };
+  // The same moves as swapping the entry with its parent/child each step, with one write of
+  // the moving entry at the end.
+  bool sift_up(std::size_t i) {
+    const Entry e = heap_[i];
+    const std::size_t from = i;
+    while (i > 0 && heap_[(i - 1) / 2].key > e.key) {
+      place(i, heap_[(i - 1) / 2]);
       i = (i - 1) / 2;
     }
+    place(i, e);
+    return i != from;
   }
   void sift_down(std::size_t i) {
+    const Entry e = heap_[i];
+    const std::size_t n = heap_.size();
     for (;;) {
-      std::size_t m = i;
       const std::size_t l = 2 * i + 1, r = l + 1;
-      if (l < heap_.size() && key_[l] < key_[m]) m = l;
-      if (r < heap_.size() && key_[r] < key_[m]) m = r;
-      if (m == i) return;
-      swap_at(i, m);
+      std::size_t m = i;
+      double mk = e.key;
+      if (l < n && heap_[l].key < mk) {
+        m = l;
+        mk = heap_[l].key;
+      }
+      if (r < n && heap_[r].key < mk) m = r;
+      if (m == i) break;
+      place(i, heap_[m]);
       i = m;
     }
+    place(i, e);
+  }
+  void place(std::size_t i, const Entry& e) {
+    heap_[i] = e;
+    rec_[e.id].heap_pos = static_cast<std::int32_t>(i);
   }
 
   std::vector<Record>& rec_;
-  std::vector<std::int32_t> heap_;
-  std::vector<double> key_;
+  std::vector<Entry> heap_;
 };
 
 class Search {
@@ -181,7 +206,7 @@ class Search {
     if (g >= r.g || !std::isfinite(r.h)) return;
     r.g = g;
     r.parent = s;
-    r.action = e.action;
+    r.action = static_cast<std::int16_t>(e.action);
     if (graph_.is_goal(e.to) && g < goal_g()) goal_ = e.to;
     if (r.closed_in == iteration) {
       r.incons = true;

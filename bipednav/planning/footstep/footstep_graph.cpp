@@ -58,6 +58,23 @@ int ActionLattice::bin_of(double theta) const {
 FootstepGraph::FootstepGraph(const ActionLattice& lattice, const TerrainGrid& terrain, const Heuristic& heuristic,
                              const FootstepGoal& goal, const Footstep& start)
     : lattice_(lattice), terrain_(terrain), heuristic_(heuristic), goal_(goal) {
+  cell_block_.assign(terrain.geometry().size(), -1);
+  const int bins = lattice.theta_bins();
+  const double half = lattice.actions().body.nominal_separation_m / 2.0;
+  centre_dx_.resize(2 * static_cast<std::size_t>(bins));
+  centre_dy_.resize(centre_dx_.size());
+  centre_theta_.resize(centre_dx_.size());
+  for (int t = 0; t < bins; ++t) {
+    for (Foot f : {Foot::kLeft, Foot::kRight}) {
+      // The body centre lies half a separation towards the other (swing) foot: Pose2's
+      // composition with (0, oy, 0), whose terms in 0 add nothing.
+      const double th = lattice.theta_of(t), oy = f == Foot::kLeft ? -half : half;
+      const std::size_t i = 2 * static_cast<std::size_t>(t) + static_cast<std::size_t>(f);
+      centre_dx_[i] = std::sin(th) * oy;
+      centre_dy_[i] = std::cos(th) * oy;
+      centre_theta_[i] = normalize_angle(th + 0.0);
+    }
+  }
   const auto cell = terrain.geometry().world_to_cell_unbounded(start.pose.x, start.pose.y);
   const StateKey k{cell ? cell->x : 0, cell ? cell->y : 0, lattice.bin_of(start.pose.theta), start.foot};
   start_ = intern(k, static_cast<float>(start.z_m));
@@ -104,9 +121,29 @@ void FootstepGraph::StateIndex::grow() {
   }
 }
 
+std::size_t FootstepGraph::block_of(int ix, int iy) {
+  std::int32_t& b = cell_block_[terrain_.geometry().index(ix, iy)];
+  if (b < 0) {
+    const std::size_t bins = static_cast<std::size_t>(lattice_.theta_bins());
+    b = static_cast<std::int32_t>(block_landings_.size() / bins);
+    block_ids_.resize(block_ids_.size() + 2 * bins, -1);
+    block_landings_.resize(block_landings_.size() + bins);
+  }
+  return static_cast<std::size_t>(b);
+}
+
 std::int32_t FootstepGraph::intern(const StateKey& k, float z) {
+  const auto fresh_id = static_cast<std::int32_t>(states_.size());
+  if (terrain_.in_bounds(k.ix, k.iy)) {
+    const std::size_t slot = block_of(k.ix, k.iy) * 2 * static_cast<std::size_t>(lattice_.theta_bins()) +
+                             2 * static_cast<std::size_t>(k.itheta) + static_cast<std::size_t>(k.stance);
+    if (block_ids_[slot] >= 0) return block_ids_[slot];
+    block_ids_[slot] = fresh_id;
+    states_.push_back({k, z});
+    return fresh_id;
+  }
   bool fresh = false;
-  const std::int32_t id = index_.find_or_insert(k.packed(), static_cast<std::int32_t>(states_.size()), &fresh);
+  const std::int32_t id = index_.find_or_insert(k.packed(), fresh_id, &fresh);
   if (fresh) states_.push_back({k, z});
   return id;
 }
@@ -122,9 +159,9 @@ Footstep FootstepGraph::footstep(std::int32_t s) const {
 
 Pose2 FootstepGraph::body_centre(std::int32_t s) const {
   const StateKey& k = states_[s].key;
-  const double half = lattice_.actions().body.nominal_separation_m / 2.0;
-  // The body centre lies half a separation towards the other (swing) foot.
-  return pose_of(k) * Pose2{0.0, k.stance == Foot::kLeft ? -half : half, 0.0};
+  const auto c = terrain_.geometry().cell_center(k.ix, k.iy);
+  const std::size_t i = 2 * static_cast<std::size_t>(k.itheta) + static_cast<std::size_t>(k.stance);
+  return {c.x() - centre_dx_[i], c.y() + centre_dy_[i], centre_theta_[i]};
 }
 
 bool FootstepGraph::clear_of_rising_edges(int ix, int iy, int itheta, float top) const {
@@ -140,12 +177,12 @@ bool FootstepGraph::clear_of_rising_edges(int ix, int iy, int itheta, float top)
   return true;
 }
 
-bool FootstepGraph::footprint_height(int ix, int iy, int itheta, float stance_z, float* z) const {
+FootstepGraph::Landing FootstepGraph::landing_at(int ix, int iy, int itheta, float* z) const {
   const int r = lattice_.sole_radius_cells();
   const auto quick = terrain_.range(ix - r, iy - r, ix + r, iy + r);
   if (quick.all_known && quick.max_h == quick.min_h) {  // uniformly flat: the mean is that height
     *z = quick.max_h;
-    return clear_of_rising_edges(ix, iy, itheta, quick.max_h);
+    return clear_of_rising_edges(ix, iy, itheta, quick.max_h) ? Landing::kAt : Landing::kUnsafe;
   }
   float lo = std::numeric_limits<float>::infinity(), hi = -lo;
   double sum = 0.0;
@@ -158,12 +195,19 @@ bool FootstepGraph::footprint_height(int ix, int iy, int itheta, float stance_z,
     sum += terrain_.mean_h(x, y);
     ++known;
   }
-  if (known == 0) {  // unknown ground is free: assume it continues the stance height
-    *z = stance_z;
-    return true;
-  }
+  if (known == 0) return Landing::kStanceHeight;  // unknown ground is free: it continues the stance height
   *z = static_cast<float>(sum / known);
-  return hi - lo <= lattice_.actions().flatness_threshold_m && clear_of_rising_edges(ix, iy, itheta, hi);
+  return hi - lo <= lattice_.actions().flatness_threshold_m && clear_of_rising_edges(ix, iy, itheta, hi)
+             ? Landing::kAt
+             : Landing::kUnsafe;
+}
+
+bool FootstepGraph::landing_height(int ix, int iy, int itheta, float stance_z, float* z) {
+  LandingCache& c = block_landings_[block_of(ix, iy) * static_cast<std::size_t>(lattice_.theta_bins()) +
+                                    static_cast<std::size_t>(itheta)];
+  if (c.kind == Landing::kUnasked) c.kind = landing_at(ix, iy, itheta, &c.z);
+  *z = c.kind == Landing::kStanceHeight ? stance_z : c.z;
+  return c.kind != Landing::kUnsafe;
 }
 
 bool FootstepGraph::whole_body_free(const StateKey& s, float z, int action) const {
@@ -190,7 +234,7 @@ bool FootstepGraph::action_safe(std::int32_t s, int a, std::int32_t* to) {
                     other(st.key.stance)};
   if (!terrain_.in_bounds(nk.ix, nk.iy)) return false;
   float z = 0.0f;
-  if (!footprint_height(nk.ix, nk.iy, nk.itheta, st.z, &z)) return false;
+  if (!landing_height(nk.ix, nk.iy, nk.itheta, st.z, &z)) return false;
   const double dz = z - st.z;  // eq. 4
   if (dz < act.dz_min_m || dz > act.dz_max_m) return false;
   ++ihm_checks_;
@@ -222,9 +266,13 @@ double FootstepGraph::heuristic(std::int32_t s) {
 }
 
 bool FootstepGraph::is_goal(std::int32_t s) {
-  const Pose2 c = body_centre(s);
-  return std::hypot(c.x - goal_.body.x, c.y - goal_.body.y) <= goal_.tolerance_m &&
-         std::abs(angle_diff(c.theta, goal_.body.theta)) <= goal_.tolerance_rad;
+  std::int8_t& goal = states_[s].goal;
+  if (goal < 0) {
+    const Pose2 c = body_centre(s);
+    goal = std::hypot(c.x - goal_.body.x, c.y - goal_.body.y) <= goal_.tolerance_m &&
+           std::abs(angle_diff(c.theta, goal_.body.theta)) <= goal_.tolerance_rad;
+  }
+  return goal != 0;
 }
 
 }  // namespace bipednav::footstep

@@ -86,9 +86,10 @@ class FootstepGraph : public SearchGraph {
   struct State {
     StateKey key;
     float z = 0.0f;
+    std::int8_t goal = -1;  // is_goal, once asked (-1: not yet)
   };
-  // Packed state key -> state id: open addressing with linear probing (a std::unordered_map's
-  // node chasing was a third of the search time).
+  // Packed state key -> state id for keys off the terrain grid (at most the start): open
+  // addressing with linear probing.
   class StateIndex {
    public:
     StateIndex();
@@ -106,8 +107,25 @@ class FootstepGraph : public SearchGraph {
     std::size_t used_ = 0;
     int shift_ = 0;
   };
+  // What landing_at found for a sole on (cell, heading): it does not depend on the
+  // stance height except on wholly unknown ground, where the sole continues the stance height.
+  enum class Landing : std::uint8_t { kUnasked = 0, kUnsafe, kAt, kStanceHeight };
+  struct LandingCache {
+    float z = 0.0f;
+    Landing kind = Landing::kUnasked;
+  };
+  // Per terrain cell that any state reached: a block with the ids of its (heading, foot) states
+  // and its landings by heading. A state's successors land on a few dozen nearby cells, so the
+  // blocks stay in cache where a hash of the packed key would scatter (the hash lookup was a
+  // quarter of the search time), and each landing is checked once instead of once per
+  // predecessor.
+  std::size_t block_of(int ix, int iy);
   std::int32_t intern(const StateKey& k, float z);
-  bool footprint_height(int ix, int iy, int itheta, float stance_z, float* z) const;
+  // Whether a sole on (cell, heading) lands safely (flat, clear of rising edges) and its height
+  // (*z, unless kStanceHeight).
+  Landing landing_at(int ix, int iy, int itheta, float* z) const;
+  // landing_at through the cell's landing cache, at `stance_z` on unknown ground.
+  bool landing_height(int ix, int iy, int itheta, float stance_z, float* z);
   bool clear_of_rising_edges(int ix, int iy, int itheta, float top) const;  // the landing margin
   bool whole_body_free(const StateKey& s, float z, int action) const;
   Pose2 pose_of(const StateKey& k) const;
@@ -118,6 +136,12 @@ class FootstepGraph : public SearchGraph {
   FootstepGoal goal_;
   std::vector<State> states_;
   StateIndex index_;
+  std::vector<std::int32_t> cell_block_;      // per terrain cell: its block, -1 = none yet
+  std::vector<std::int32_t> block_ids_;       // per block: 2 * theta_bins state ids (-1 = none)
+  std::vector<LandingCache> block_landings_;  // per block: theta_bins landings
+  // Per (heading bin, stance foot): the body centre's offset from the stance foot, the same
+  // products Pose2's composition forms, and the composed heading.
+  std::vector<double> centre_dx_, centre_dy_, centre_theta_;
   std::int32_t start_ = 0;
   std::size_t ihm_checks_ = 0;
   // Heading term of the heuristic: the most heading bins one action turns, the shortest action.

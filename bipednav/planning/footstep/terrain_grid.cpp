@@ -41,15 +41,11 @@ TerrainGrid::TerrainGrid(const mapping::Heightmap& map, double cell_m) {
 
 void TerrainGrid::build_sparse_table() {
   const int w = geometry_.width, h = geometry_.height;
-  Level base;
-  base.max_h.resize(geometry_.size());
-  base.min_h.resize(geometry_.size());
-  base.all_known.resize(geometry_.size());
+  Level base(geometry_.size());
   for (std::size_t i = 0; i < geometry_.size(); ++i) {
     const bool k = count_[i] > 0;
-    base.max_h[i] = k ? max_[i] : -std::numeric_limits<float>::infinity();
-    base.min_h[i] = k ? min_[i] : std::numeric_limits<float>::infinity();
-    base.all_known[i] = k;
+    base[i] = {k ? max_[i] : -std::numeric_limits<float>::infinity(),
+               k ? min_[i] : std::numeric_limits<float>::infinity(), k};
   }
   levels_.push_back(std::move(base));
   for (int s = 1; 2 * s <= std::max(w, h); s *= 2) {
@@ -57,13 +53,13 @@ void TerrainGrid::build_sparse_table() {
     Level next = prev;
     for (int y = 0; y < h; ++y) {
       for (int x = 0; x < w; ++x) {
-        const std::size_t i = idx(x, y);
+        Square& q = next[idx(x, y)];
         for (const auto& [dx, dy] : {std::pair{s, 0}, {0, s}, {s, s}}) {
           if (x + dx >= w || y + dy >= h) continue;
-          const std::size_t j = idx(x + dx, y + dy);
-          next.max_h[i] = std::max(next.max_h[i], prev.max_h[j]);
-          next.min_h[i] = std::min(next.min_h[i], prev.min_h[j]);
-          next.all_known[i] = next.all_known[i] && prev.all_known[j];
+          const Square& o = prev[idx(x + dx, y + dy)];
+          q.max_h = std::max(q.max_h, o.max_h);
+          q.min_h = std::min(q.min_h, o.min_h);
+          q.all_known = q.all_known && o.all_known;
         }
       }
     }
@@ -90,10 +86,10 @@ TerrainGrid::RangeSummary TerrainGrid::range(int x0, int y0, int x1, int y1) con
     const int sy = std::min(yy, y1 - side + 1);
     for (int xx = x0;; xx += side) {
       const int sx = std::min(xx, x1 - side + 1);
-      const std::size_t i = idx(sx, sy);
-      r.max_h = std::max(r.max_h, L.max_h[i]);
-      r.min_h = std::min(r.min_h, L.min_h[i]);
-      r.all_known = r.all_known && L.all_known[i];
+      const Square& q = L[idx(sx, sy)];
+      r.max_h = std::max(r.max_h, q.max_h);
+      r.min_h = std::min(r.min_h, q.min_h);
+      r.all_known = r.all_known && q.all_known;
       if (sx + side > x1) break;
     }
     if (sy + side > y1) break;

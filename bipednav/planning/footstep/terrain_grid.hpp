@@ -40,10 +40,12 @@ class TerrainGrid {
   std::vector<std::uint16_t> count_;
   void build_sparse_table();
   // Level l holds, per cell, the summary of the 2^l x 2^l square starting there (clipped).
-  struct Level {
-    std::vector<float> max_h, min_h;
-    std::vector<std::uint8_t> all_known;
+  // One entry per cell, its fields together: a query reads a few squares, one line each.
+  struct Square {
+    float max_h, min_h;
+    bool all_known;
   };
+  using Level = std::vector<Square>;
   std::vector<Level> levels_;
 };
 
