@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 #include "bipednav/common/error.hpp"
 #include "bipednav/localization/loam.hpp"
@@ -110,6 +111,66 @@ TEST(LoamTurning, ImplausiblePriorChangeIsIgnored) {
       EXPECT_NEAR(yaw_of(out.T_prev_lidar), yaw_of(truth), 0.004);
     }
   }
+}
+
+// Driving an arc at 0.3 m/s and 0.8 rad/s; from sweep 4 to sweep 8 the odometry reports 0.3 of
+// the true motion (the fault runs' odometry slip). Per sweep: the yaw and translation errors of
+// the estimate and whether the prior change was used.
+struct SlipResult {
+  std::vector<double> yaw_error_rad, translation_error_m;
+  std::vector<bool> change_used;
+};
+
+SlipResult drive_with_slip(double max_error_change_rad) {
+  constexpr int kSweeps = 12, kSlipFrom = 4, kSlipTo = 8;
+  // The arc's chord: exact for a body moving along its x axis while turning.
+  const auto arc = [](double t) {
+    const double yaw = 0.8 * t, r = 0.3 / 0.8;
+    return make_se3(r * std::sin(yaw), r * (1.0 - std::cos(yaw)), 0, 0, 0, yaw);
+  };
+  const auto world = [&](double t) { return make_se3(0.5, -0.3, 1.2, 0, 0, 0.2) * arc(t); };
+  Rng rng(13);
+  const auto scene = test::room_scene();
+  test::SweepSpec spec;
+  spec.noise_m = 0.01;
+  LoamParams p;
+  p.reference_from_prior_change = true;
+  p.max_prior_error_change_rad = max_error_change_rad;
+  Loam loam(p);
+  SlipResult r;
+  for (int k = 0; k < kSweeps; ++k) {
+    const double t0 = kPeriod * k;
+    const SE3 truth = world(t0).inverse() * world(t0 + kPeriod);
+    Vector6d prior = se3_to_motion(truth);
+    if (k >= kSlipFrom && k < kSlipTo) prior *= 0.3;
+    const LoamOutput out = loam.process(test::synthetic_sweep(scene, world, t0, spec, rng), motion_to_se3(prior));
+    EXPECT_TRUE(out.healthy) << "sweep " << k << ": " << out.reason;
+    r.yaw_error_rad.push_back(yaw_of(out.T_prev_lidar) - yaw_of(truth));
+    r.translation_error_m.push_back((out.T_prev_lidar.translation() - truth.translation()).norm());
+    r.change_used.push_back(out.prior_change_used);
+    std::printf("sweep %2d: yaw error %+.4f rad, translation error %.4f m, change %s\n", k, r.yaw_error_rad.back(),
+                r.translation_error_m.back(), out.prior_change_used ? "used" : "not used");
+  }
+  return r;
+}
+
+TEST(LoamTurning, SlippingOdometryDoesNotBiasTheEstimate) {
+  const SlipResult r = drive_with_slip(LoamParams{}.max_prior_error_change_rad);
+  // Sweep 0 has nothing to match, sweep 1 has no earlier estimate to check the prior against.
+  // Sweeps 4 (slip starts) and 8 (slip ends): the prior's error jumps by 0.7 of the motion
+  // (0.056 rad), the change is dropped. While slipping (5-7) the error is steady: the change of
+  // two equally wrong priors (zero here) is used.
+  const std::vector<bool> expected{false, false, true, true, false, true, true, true, false, true, true, true};
+  EXPECT_EQ(r.change_used, expected);
+  for (std::size_t k = 1; k < r.yaw_error_rad.size(); ++k) {
+    EXPECT_LT(std::abs(r.yaw_error_rad[k]), 0.003) << "sweep " << k;
+    EXPECT_LT(r.translation_error_m[k], 0.004) << "sweep " << k;
+  }
+  // Without the check (bounds that pass everything) the slip's start and end enter the
+  // projection of the reference, and those sweeps' estimates are off.
+  const SlipResult unchecked = drive_with_slip(1.0);
+  EXPECT_TRUE(unchecked.change_used[4] && unchecked.change_used[8]);
+  EXPECT_GT(std::abs(unchecked.yaw_error_rad[4]), 2.0 * std::abs(r.yaw_error_rad[4]));
 }
 
 }  // namespace
