@@ -1,5 +1,6 @@
 #include "bipednav/mapping/global_costmap.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "bipednav/common/error.hpp"
@@ -27,9 +28,9 @@ GlobalCostmapParams GlobalCostmapParams::for_robot(const RobotProfile& robot) {
   GlobalCostmapParams p;
   p.inscribed_radius_m = robot.footprint_radius_m;
   p.inflation_radius_m = std::max(p.inflation_radius_m, p.inscribed_radius_m + 0.3);
-  if (kWalkerHeightAwareMaps && robot.kind == "walker") {  // as the local map (LocalCostmapParams::for_robot)
+  if (height_aware_maps_for(robot)) {  // as the local map (LocalCostmapParams::for_robot)
     p.height_aware_clearing = true;
-    p.merged_mark_decay_s = kWalkerMarkDecayS;
+    p.mark_decay_s = kHeightAwareMarkDecayS;
   }
   return p;
 }
@@ -66,7 +67,7 @@ ChangeSet GlobalCostmap::update(const Pose2& T_map_base, const std::vector<Obser
                                 const LocalCostmap* local) {
   if (!T_map_base.is_finite()) throw Error("global costmap: robot pose is not finite");
   CellRect dirty;
-  dirty.include(obstacle_layer_.update(occupancy_, lidar_obs, params_.lidar_clearing, false));
+  dirty.include(obstacle_layer_.update(occupancy_, lidar_obs, params_.lidar_clearing));
   if (local && params_.merge_local) dirty.include(merge_local(*local));
   return refresh(dirty);
 }
@@ -85,8 +86,12 @@ CellRect GlobalCostmap::merge_local(const LocalCostmap& local) {
   if (win.empty()) return changed;
   merge_.assign(static_cast<std::size_t>(win.width()) * win.height(), 0);
   const bool bands = obstacle_layer_.keeps_marks();  // otherwise there are no bands or ages to carry
-  if (bands) merge_bands_.assign(merge_.size(), HeightBand{});
+  if (bands) {
+    merge_bands_.assign(merge_.size(), HeightBand{});
+    merge_used_.assign(merge_.size(), 1.0f);
+  }
   const auto& seen = local.observed();
+  const int local_life = local.params().obstacle_layer().mark_lifetime_updates;
   for (int y = 0; y < lg.height; ++y) {
     for (int x = 0; x < lg.width; ++x) {
       const std::uint8_t v = seen.cost(x, y);
@@ -96,7 +101,14 @@ CellRect GlobalCostmap::merge_local(const LocalCostmap& local) {
       if (!c || !win.contains(c->x, c->y)) continue;
       const std::size_t k = static_cast<std::size_t>(c->y - win.y0) * win.width() + (c->x - win.x0);
       merge_[k] |= v == kLethal ? 2 : 1;
-      if (bands && v == kLethal) merge_bands_[k].include(local.obstacle_band(x, y));
+      if (bands && v == kLethal) {
+        merge_bands_[k].include(local.obstacle_band(x, y));
+        // The global mark is as old as the local one (in shares of the lifetimes, as the two maps
+        // update at different rates): a mark the local map has been ageing gets no second lifetime.
+        const int age = local.mark_age(x, y);
+        const float used = local_life > 0 && age > 0 ? static_cast<float>(age) / local_life : 0.0f;
+        merge_used_[k] = std::min(merge_used_[k], used);
+      }
     }
   }
   for (int y = win.y0; y < win.y1; ++y) {
@@ -108,7 +120,8 @@ CellRect GlobalCostmap::merge_local(const LocalCostmap& local) {
       // The local obstacle's heights come along, so the global LiDAR rays clear it only where
       // they cross those heights.
       if (bands && target == kLethal)
-        obstacle_layer_.include_band(occupancy_, x, y, merge_bands_[k], occupancy_.cost(x, y) != kLethal);
+        obstacle_layer_.include_band(occupancy_, x, y, merge_bands_[k], occupancy_.cost(x, y) != kLethal,
+                                     merge_used_[k]);
       if (occupancy_.cost(x, y) != target) {
         occupancy_.set_cost(x, y, target);
         changed.include(x, y);

@@ -27,10 +27,11 @@ struct GlobalCostmapParams {
   bool height_aware_clearing = false;  // see ObstacleLayerParams
   bool lidar_clearing = true;          // clear along LiDAR rays (false: LiDAR only marks)
   bool merge_local = true;             // copy the local map's obstacles and free cells in
-  // Obstacles copied from the local map that it no longer holds (no LiDAR return confirms them
-  // either) go back to unexplored after this long; 0: never. The global LiDAR's own marks stay
-  // until its rays clear them.
-  double merged_mark_decay_s = 0.0;
+  // Marks (the LiDAR's own and those copied from the local map, which bring the share of the local
+  // lifetime they have used) that the LiDAR's rays pass over or under for this long with no return
+  // confirming them go back to unexplored (see ObstacleLayer); 0: never. Marks out of the LiDAR's
+  // view do not age.
+  double mark_decay_s = 0.0;
   std::string unknown_cost_mode = "free";
   double rate_hz = 2.0;
 
@@ -39,8 +40,7 @@ struct GlobalCostmapParams {
   UnknownCostMode unknown_mode() const { return parse_unknown_cost_mode(unknown_cost_mode); }
   InflationParams inflation() const { return {inscribed_radius_m, inflation_radius_m, cost_scaling_factor}; }
   ObstacleLayerParams obstacle_layer() const {
-    return {obstacle_max_range_m, raytrace_max_range_m, height_aware_clearing,
-            decay_updates(merged_mark_decay_s, rate_hz)};
+    return {obstacle_max_range_m, raytrace_max_range_m, height_aware_clearing, decay_updates(mark_decay_s, rate_hz)};
   }
 };
 
@@ -85,6 +85,7 @@ class GlobalCostmap {
   Costmap2D next_;                       // scratch: recomputed final costs of the dirty region
   std::vector<std::uint8_t> merge_;      // scratch: per global cell, local free (1) / lethal (2) seen
   std::vector<HeightBand> merge_bands_;  // scratch: per global cell, the heights of the local obstacles
+  std::vector<float> merge_used_;        // scratch: per global cell, the least used lifetime of its local obstacles
 };
 
 }  // namespace bipednav::mapping

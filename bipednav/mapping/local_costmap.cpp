@@ -19,12 +19,12 @@ LocalCostmapParams LocalCostmapParams::for_robot(const RobotProfile& robot) {
   LocalCostmapParams p;
   p.inscribed_radius_m = robot.footprint_radius_m;
   p.inflation_radius_m = std::max(p.inflation_radius_m, p.inscribed_radius_m + 0.3);
-  if (kWalkerHeightAwareMaps && robot.kind == "walker") {
-    // Digit's VLP-16 (1.47 m) passes over the 0.5 m obstacles its pelvis depth cameras see: plain
-    // 2D rays would erase them as soon as the cameras look away. The heights keep them; the decay
-    // drops the low false marks no camera looks at again.
+  if (height_aware_maps_for(robot)) {
+    // The VLP-16 (1.47 m) passes over the 0.5 m obstacles the pelvis depth cameras see: plain 2D
+    // rays would erase them as soon as the cameras look away. The heights keep them; the decay
+    // drops the low marks no camera confirms while the LiDAR keeps looking past them.
     p.height_aware_clearing = true;
-    p.mark_decay_s = kWalkerMarkDecayS;
+    p.mark_decay_s = kHeightAwareMarkDecayS;
   }
   return p;
 }

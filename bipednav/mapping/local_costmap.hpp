@@ -25,9 +25,8 @@ struct LocalCostmapParams {
   double rate_hz = 10.0;
 
   void validate() const;
-  // Defaults with the inscribed radius taken from the robot's footprint. With
-  // kWalkerHeightAwareMaps (off: see obstacle_layer.hpp), walkers, whose LiDAR passes over what
-  // only their pitched depth cameras see, get height-aware clearing with decay.
+  // Defaults with the inscribed radius taken from the robot's footprint; height-aware clearing with
+  // decay where height_aware_maps_for(robot) says so.
   static LocalCostmapParams for_robot(const RobotProfile& robot);
   InflationParams inflation() const { return {inscribed_radius_m, inflation_radius_m, cost_scaling_factor}; }
   ObstacleLayerParams obstacle_layer() const {
@@ -52,6 +51,8 @@ class LocalCostmap {
   const Costmap2D& observed() const { return layer_; }
   // The heights an obstacle cell of observed() was seen at (empty when not known).
   const HeightBand& obstacle_band(int x, int y) const { return obstacle_layer_.band(x, y); }
+  // Updates whose rays passed obstacle cell (x, y) unconfirmed (see ObstacleLayer::mark_age).
+  int mark_age(int x, int y) const { return obstacle_layer_.mark_age(x, y); }
   const GridGeometry& geometry() const { return costmap_.geometry(); }
   const LocalCostmapParams& params() const { return params_; }
 

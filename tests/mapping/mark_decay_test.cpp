@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "bipednav/common/error.hpp"
 #include "bipednav/common/robot_profile.hpp"
@@ -43,27 +44,68 @@ Observation rays(double origin_z, float x, float z) {
   return obs;
 }
 
+// A LiDAR sweep from (0, 0, 1.47) to returns on a circle of radius `r` at height `z`, every
+// direction (no marking): every cell within r is passed, at 1.47 - 0.57 * d / r m at distance d.
+Observation sweep(float r = 2.4f, float z = 0.9f) {
+  Observation obs;
+  obs.origin_map = {0, 0, 1.47};
+  obs.marking = false;
+  for (int i = 0; i < 2000; ++i) {
+    const double a = 2.0 * M_PI * i / 2000;
+    obs.points_map.emplace_back(r * std::cos(a), r * std::sin(a), z);
+  }
+  return obs;
+}
+
+// LiDAR returns (marking) from a wall along x = 2.0, |y| <= 1, at heights 0.6-1.2 m.
+Observation wall_returns() {
+  Observation obs;
+  obs.origin_map = {0, 0, 1.47};
+  for (float y = -1.0f; y <= 1.0f; y += 0.02f)
+    for (float z : {0.6f, 0.9f, 1.2f}) obs.points_map.emplace_back(2.0f, y, z);
+  return obs;
+}
+
 long count(const Costmap2D& g, std::uint8_t v) { return std::count(g.data().begin(), g.data().end(), v); }
 
 }  // namespace
 
-TEST(MarkDecay, AMarkNotConfirmedExpiresAfterItsLifetime) {
-  ObstacleLayer layer({4.0, 5.0, false, 5});
+TEST(MarkDecay, AMarkPassedUnconfirmedExpiresAfterItsLifetime) {
+  ObstacleLayer layer({4.0, 5.0, true, 5});
   Costmap2D grid(kGrid, kUnknown);
   layer.update(grid, {low_obstacle()});
   const long marked = count(grid, kLethal);
   ASSERT_GE(marked, 6);
-  for (int i = 1; i <= 5; ++i) {  // five more updates that see nothing: still there
-    layer.update(grid, {});
-    EXPECT_EQ(count(grid, kLethal), marked) << "update " << i;
-  }
   const auto c = kGrid.world_to_cell(1.0, 0.0);
   ASSERT_TRUE(c);
-  EXPECT_EQ(layer.mark_age(c->x, c->y), 5);
-  const CellRect changed = layer.update(grid, {});  // the sixth: older than five updates
+  // Updates whose rays do not pass it (out of every sensor's view) do not age it.
+  for (int i = 0; i < 50; ++i) layer.update(grid, {});
+  EXPECT_EQ(count(grid, kLethal), marked);
+  EXPECT_EQ(layer.mark_age(c->x, c->y), 0);
+  for (int i = 1; i <= 5; ++i) {  // five updates whose LiDAR rays pass over it: still there
+    layer.update(grid, {sweep()});
+    EXPECT_EQ(count(grid, kLethal), marked) << "update " << i;
+    EXPECT_EQ(layer.mark_age(c->x, c->y), i);
+  }
+  layer.update(grid, {});  // an update that passes nothing in between does not count
+  EXPECT_EQ(count(grid, kLethal), marked);
+  const CellRect changed = layer.update(grid, {sweep()});  // the sixth pass: older than five
   EXPECT_EQ(count(grid, kLethal), 0);
   EXPECT_EQ(grid.cost(c->x, c->y), kUnknown);  // not known any more, not seen free either
   EXPECT_TRUE(changed.contains(c->x, c->y));
+  EXPECT_EQ(layer.mark_age(c->x, c->y), -1);
+}
+
+TEST(MarkDecay, ManyRaysInOneUpdateCountOnce) {
+  ObstacleLayer layer({4.0, 5.0, true, 2});
+  Costmap2D grid(kGrid, kUnknown);
+  layer.update(grid, {low_obstacle()});
+  const long marked = count(grid, kLethal);
+  layer.update(grid, {sweep(), sweep(2.2f, 1.0f), sweep(2.0f, 1.1f)});
+  layer.update(grid, {sweep(), sweep(2.2f, 1.0f)});
+  EXPECT_EQ(count(grid, kLethal), marked);
+  layer.update(grid, {sweep()});
+  EXPECT_EQ(count(grid, kLethal), 0);
 }
 
 TEST(MarkDecay, AReObservedMarkSurvivesAndTheOthersGo) {
@@ -72,12 +114,36 @@ TEST(MarkDecay, AReObservedMarkSurvivesAndTheOthersGo) {
   const auto kept = kGrid.world_to_cell(1.0, 0.5), gone = kGrid.world_to_cell(1.0, -0.5);
   ASSERT_TRUE(kept && gone);
   layer.update(grid, {point(1.0f, 0.5f), point(1.0f, -0.5f)});
-  for (int i = 1; i <= 30; ++i)
-    layer.update(grid, i % 4 == 0 ? std::vector{point(1.0f, 0.5f)} : std::vector<Observation>{});
+  for (int i = 1; i <= 30; ++i) {  // the LiDAR passes both every update, a camera confirms one every 4th
+    std::vector<Observation> obs{sweep()};
+    if (i % 4 == 0) obs.push_back(point(1.0f, 0.5f));
+    layer.update(grid, obs);
+    if (i <= 5) {
+      EXPECT_EQ(grid.cost(gone->x, gone->y), kLethal) << "update " << i;
+    }
+  }
   EXPECT_EQ(grid.cost(kept->x, kept->y), kLethal);
-  EXPECT_LE(layer.mark_age(kept->x, kept->y), 3);
-  EXPECT_EQ(grid.cost(gone->x, gone->y), kUnknown);
+  EXPECT_EQ(layer.mark_age(kept->x, kept->y), 2);  // confirmed at update 28, passed at 29 and 30
+  // Gone at update 6 (back to unknown); the later sweeps pass it as any unknown cell: free.
+  EXPECT_EQ(grid.cost(gone->x, gone->y), kFree);
   EXPECT_EQ(layer.mark_age(gone->x, gone->y), -1);
+}
+
+TEST(MarkDecay, AWallSeenEverySweepNeverExpires) {
+  // The global map's LiDAR marks expire too: the rays to the wall's returns pass each other's
+  // cells at the wall's own heights (clearing them, then marking them again), and every sweep's
+  // returns confirm it.
+  ObstacleLayer layer({10.0, 12.0, true, 3});
+  Costmap2D grid(kGrid, kUnknown);
+  layer.update(grid, {wall_returns()});
+  const long marked = count(grid, kLethal);
+  ASSERT_GE(marked, 40);
+  const auto c = kGrid.world_to_cell(2.0, 0.0);
+  ASSERT_TRUE(c);
+  // Rays to 1.3 m at 2.4 m pass 1.31-1.33 m over the wall's cells: each sweep passes and confirms them.
+  for (int i = 0; i < 100; ++i) layer.update(grid, {wall_returns(), sweep(2.4f, 1.3f)});
+  EXPECT_EQ(count(grid, kLethal), marked);
+  EXPECT_EQ(layer.mark_age(c->x, c->y), 0);
 }
 
 TEST(MarkDecay, ALowObstacleSurvivesTheLidarRaysUntilItsLifetime) {
@@ -113,21 +179,39 @@ TEST(MarkDecay, RaysCrossingTheBandClearAtOnce) {
   EXPECT_EQ(count(grid, kLethal), 0);
 }
 
-TEST(MarkDecay, PermanentMarksAndPriorMapsDoNotDecay) {
+TEST(MarkDecay, ObstaclesSetElsewhereDoNotDecay) {
   ObstacleLayer layer({4.0, 5.0, true, 3});
   Costmap2D grid(kGrid, kUnknown);
-  layer.update(grid, {low_obstacle()}, true, false);  // marks_expire false (a global LiDAR)
-  const long marked = count(grid, kLethal);
+  layer.update(grid, {});
+  // A prior map's wall with heights copied in (not reset): rays pass it, it does not decay.
   const auto c = kGrid.world_to_cell(1.0, 0.0);
   ASSERT_TRUE(c);
-  layer.update(grid, {low_obstacle()});  // confirmed by an expiring update: stays permanent
-  for (int i = 0; i < 10; ++i) layer.update(grid, {});
-  EXPECT_EQ(count(grid, kLethal), marked);
+  grid.set_cost(c->x, c->y, kLethal);
+  layer.include_band(grid, c->x, c->y, HeightBand{0.1f, 0.5f}, false);  // heights, but no decay
+  for (int i = 0; i < 10; ++i) layer.update(grid, {sweep()});
+  EXPECT_EQ(grid.cost(c->x, c->y), kLethal);
   EXPECT_EQ(layer.mark_age(c->x, c->y), -1);
-  // An obstacle someone else wrote into the grid has no mark: it stays.
-  grid.set_cost(10, 10, kLethal);
-  for (int i = 0; i < 10; ++i) layer.update(grid, {});
-  EXPECT_EQ(grid.cost(10, 10), kLethal);
+  layer.update(grid, {low_obstacle()});  // a return in it does not make it expire either
+  for (int i = 0; i < 10; ++i) layer.update(grid, {sweep()});
+  EXPECT_EQ(grid.cost(c->x, c->y), kLethal);
+}
+
+TEST(MarkDecay, CopiedMarksKeepTheirAge) {
+  ObstacleLayer layer({4.0, 5.0, true, 10});
+  Costmap2D grid(kGrid, kUnknown);
+  layer.update(grid, {});
+  const auto c = kGrid.world_to_cell(1.0, 0.0);
+  ASSERT_TRUE(c);
+  grid.set_cost(c->x, c->y, kLethal);
+  layer.include_band(grid, c->x, c->y, HeightBand{0.1f, 0.5f}, true, 0.7);  // 7 of 10 used
+  EXPECT_EQ(layer.mark_age(c->x, c->y), 7);
+  layer.include_band(grid, c->x, c->y, HeightBand{0.1f, 0.5f}, false, 0.9);  // older: no change
+  EXPECT_EQ(layer.mark_age(c->x, c->y), 7);
+  for (int i = 0; i < 3; ++i) layer.update(grid, {sweep()});
+  EXPECT_EQ(layer.mark_age(c->x, c->y), 10);
+  EXPECT_EQ(grid.cost(c->x, c->y), kLethal);
+  layer.update(grid, {sweep()});
+  EXPECT_EQ(grid.cost(c->x, c->y), kUnknown);
 }
 
 TEST(MarkDecay, RollingWindowCarriesTheAges) {
@@ -139,58 +223,73 @@ TEST(MarkDecay, RollingWindowCarriesTheAges) {
   const auto lethal = [&] { return count(local.obstacles(), kLethal); };
   const long marked = lethal();
   ASSERT_GE(marked, 6);
-  for (int i = 0; i < 5; ++i) local.update({0.1 * (i + 1), 0.0, 0.0}, {});  // the window moves with the robot
+  // The window moves with the robot; the LiDAR (kept at the origin here) passes over the obstacle.
+  for (int i = 0; i < 5; ++i) local.update({0.1 * (i + 1), 0.0, 0.0}, {sweep()});
   EXPECT_EQ(lethal(), marked);
-  local.update({0.6, 0.0, 0.0}, {});
+  local.update({0.6, 0.0, 0.0}, {sweep()});
   EXPECT_EQ(lethal(), 0);
 }
 
-TEST(MarkDecay, GlobalMapKeepsLidarMarksAndForgetsMergedOnesAfterTheLocalMap) {
+TEST(MarkDecay, GlobalMapDecaysLidarAndMergedMarksPassedUnconfirmed) {
   LocalCostmapParams lp;
   lp.height_aware_clearing = true;
-  lp.mark_decay_s = 0.5;  // 5 local updates
+  lp.mark_decay_s = 0.4;  // 4 local updates
   LocalCostmap local(lp);
   GlobalCostmapParams gp;
   gp.height_aware_clearing = true;
-  gp.merged_mark_decay_s = 2.0;  // 4 global updates at 2 Hz
+  gp.mark_decay_s = 2.0;  // 4 global updates at 2 Hz
   GlobalCostmap global({100, 100, 0.1, -5.0, -5.0}, gp);
-  const auto global_lethal = [&] { return count(global.occupancy(), kLethal); };
+  const auto cost = [&](double x, double y) {
+    const auto c = global.geometry().world_to_cell(x, y);
+    return c ? global.occupancy().cost(c->x, c->y) : kFree;
+  };
 
+  // A cylinder only the local map's camera saw, passed over by two of the local map's LiDAR sweeps
+  // (half its local lifetime used) before the global map first merges it.
   local.update({0, 0, 0}, {low_obstacle()});
-  Observation wall = point(-2.0f, 0.0f, 1.0f);  // a LiDAR return from a wall behind the robot
-  wall.origin_map = {0, 0, 1.47};
-  global.update({0, 0, 0}, {wall}, &local);
-  const long merged = global_lethal();
-  ASSERT_GE(merged, 3);
-  const auto w = global.geometry().world_to_cell(-2.0, 0.0);
-  ASSERT_TRUE(w);
-  // While the local map holds the obstacle, the merges keep confirming it.
-  for (int i = 0; i < 5; ++i) {
-    local.update({0, 0, 0}, {});
-    global.update({0, 0, 0}, {}, &local);
+  local.update({0, 0, 0}, {sweep(1.9f, 0.9f)});
+  local.update({0, 0, 0}, {sweep(1.9f, 0.9f)});
+  // The global LiDAR: a wall ahead (x = 2), a stale return at 0.9 m (a person who has left; outside
+  // the local window), and one beyond the reach of the later rays.
+  Observation first = wall_returns();
+  first.points_map.emplace_back(4.5f, 0.0f, 0.9f);
+  first.points_map.emplace_back(-4.75f, -4.75f, 1.0f);
+  global.update({0, 0, 0}, {first}, &local);
+  ASSERT_EQ(cost(2.0, 0.0), kLethal);
+  ASSERT_EQ(cost(4.5, 0.0), kLethal);
+  ASSERT_EQ(cost(-4.75, -4.75), kLethal);
+  ASSERT_EQ(cost(1.02, 0.0), kLethal);
+
+  // Every later sweep sees the wall and passes over the rest within 4.7 m.
+  const auto later = [] { return std::vector<Observation>{wall_returns(), sweep(4.7f, 0.9f)}; };
+  for (int i = 2; i <= 3; ++i) {
+    global.update({0, 0, 0}, later(), nullptr);
+    EXPECT_EQ(cost(1.02, 0.0), kLethal) << "global update " << i;
   }
-  EXPECT_EQ(global_lethal(), merged);
-  local.update({0, 0, 0}, {});  // the local map's sixth update without it: gone there
-  EXPECT_EQ(count(local.obstacles(), kLethal), 0);
-  for (int i = 0; i < 4; ++i) global.update({0, 0, 0}, {}, &local);
-  EXPECT_EQ(global_lethal(), merged);  // four more global updates it still waits
-  global.update({0, 0, 0}, {}, &local);
-  EXPECT_EQ(global_lethal(), 1);  // only the LiDAR's wall return is left
-  EXPECT_EQ(global.occupancy().cost(w->x, w->y), kLethal);
+  global.update({0, 0, 0}, later(), nullptr);
+  EXPECT_EQ(cost(1.02, 0.0), kUnknown);  // 2 of 4 used when merged, then passed three times
+  EXPECT_EQ(cost(4.5, 0.0), kLethal);    // passed three times
+  global.update({0, 0, 0}, later(), nullptr);
+  EXPECT_EQ(cost(4.5, 0.0), kLethal);
+  global.update({0, 0, 0}, later(), nullptr);
+  EXPECT_EQ(cost(4.5, 0.0), kUnknown);  // passed by five sweeps, never confirmed
+  for (int i = 0; i < 20; ++i) global.update({0, 0, 0}, later(), nullptr);
+  EXPECT_EQ(cost(2.0, 0.0), kLethal);      // confirmed by every sweep
+  EXPECT_EQ(cost(-4.75, -4.75), kLethal);  // out of the LiDAR's reach: nothing says it has gone
 }
 
-TEST(MarkDecay, WalkersGetHeightsAndDecayWheeledRobotsNeither) {
-  bipednav::RobotProfile digit;
-  digit.kind = "walker";
-  if (!kWalkerHeightAwareMaps) GTEST_SKIP() << "walkers' height-aware maps are off by default";
-  const auto dl = LocalCostmapParams::for_robot(digit);
-  const auto dg = GlobalCostmapParams::for_robot(digit);
-  EXPECT_TRUE(dl.height_aware_clearing && dg.height_aware_clearing);
-  EXPECT_GT(dl.obstacle_layer().mark_lifetime_updates, 0);
-  EXPECT_GT(dg.obstacle_layer().mark_lifetime_updates, 0);
-  const auto tl = LocalCostmapParams::for_robot(bipednav::RobotProfile{});
-  EXPECT_FALSE(tl.height_aware_clearing);
-  EXPECT_EQ(tl.obstacle_layer().mark_lifetime_updates, 0);
+TEST(MarkDecay, HeightAwareMapsPerRobot) {
+  bipednav::RobotProfile robot;
+  for (const char* kind : {"diff_drive", "walker", "humanoid"}) {
+    robot.kind = kind;
+    const bool on = height_aware_maps_for(robot);
+    const auto l = LocalCostmapParams::for_robot(robot);
+    const auto g = GlobalCostmapParams::for_robot(robot);
+    EXPECT_EQ(l.height_aware_clearing, on) << kind;
+    EXPECT_EQ(g.height_aware_clearing, on) << kind;
+    EXPECT_EQ(l.obstacle_layer().mark_lifetime_updates, on ? decay_updates(kHeightAwareMarkDecayS, 10.0) : 0) << kind;
+    EXPECT_EQ(g.obstacle_layer().mark_lifetime_updates, on ? decay_updates(kHeightAwareMarkDecayS, 2.0) : 0) << kind;
+  }
 }
 
 TEST(MarkDecay, RejectsBadDecays) {
