@@ -51,6 +51,14 @@ Navigator::Navigator(NavigatorParams params, RobotProfile robot, const mapping::
   robot_.validate();
   lidar_name_ = lidar_mount_name(robot_);
   moving_ = std::make_shared<planning::local::MovingObstacleTracker>(params_.moving_obstacles);
+  // Where the sensors see (for coasting tracks through their blind zone), with the ranges and the
+  // obstacle height the perception pipeline keeps.
+  planning::local::SensorVisibilityParams visibility;
+  visibility.depth_max_range_m = params_.perception.depth_max_range_m;
+  visibility.lidar_min_range_m = params_.perception.lidar_min_range_m;
+  visibility.lidar_max_range_m = params_.perception.lidar_max_range_m;
+  visibility.min_obstacle_height_m = params_.perception.min_obstacle_height_m;
+  moving_->set_visibility(planning::local::SensorVisibility(robot_, visibility));
   ServerParams server_params = params_.server;
   server_params.local.moving_obstacles = moving_;
   server_ = std::make_unique<NavigationServer>(std::move(server_params), robot_, global_, local_);
@@ -198,12 +206,13 @@ void Navigator::track_moving_obstacles() {
   if (!params_.moving_obstacles.enabled) return;  // switched off: no point copies on the loop's hot path
   // The obstacle points of every sensor since the last local map update, in the map frame.
   std::vector<Eigen::Vector2d> pts;
+  std::vector<double> heights;  // the map's z: above the floor
   for (const auto& o : local_obs_) {
     if (!o.marking) continue;
-    for (const auto& p : o.points_map) pts.emplace_back(p.x(), p.y());
+    for (const auto& p : o.points_map) pts.emplace_back(p.x(), p.y()), heights.push_back(p.z());
   }
   if (pts.empty()) return;
-  moving_->update(pts, localizer_.T_map_base().position(), now_s_);
+  moving_->update(pts, heights, localizer_.T_map_base(), now_s_);
   // Moving obstacles stay out of the global map (their trail would block the lanes they crossed);
   // the local map and the local planner's prediction handle them.
   const auto moving = moving_->moving(now_s_);

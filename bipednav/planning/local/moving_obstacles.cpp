@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
+#include <string>
 #include <tuple>
 #include <unordered_map>
 #include <utility>
@@ -66,6 +68,66 @@ void MovingObstacleParams::validate() const {
   require(positive(max_prediction_s), "moving_obstacles.max_prediction_s", "> 0");
   require(std::isfinite(global_map_margin_m) && global_map_margin_m >= 0.0, "moving_obstacles.global_map_margin_m",
           ">= 0");
+  require(positive(max_coast_s), "moving_obstacles.max_coast_s", "> 0");
+  require(std::isfinite(coast_max_growth_m) && coast_max_growth_m >= 0.0, "moving_obstacles.coast_max_growth_m",
+          ">= 0");
+}
+
+void SensorVisibilityParams::validate() const {
+  require(std::isfinite(lidar_min_elevation_rad) && std::isfinite(lidar_max_elevation_rad) &&
+              lidar_min_elevation_rad < lidar_max_elevation_rad,
+          "sensor_visibility.lidar_min_elevation_rad", "finite and < lidar_max_elevation_rad");
+  require(std::isfinite(lidar_min_range_m) && lidar_min_range_m >= 0.0 && lidar_min_range_m < lidar_max_range_m,
+          "sensor_visibility.lidar_min_range_m", "in [0, lidar_max_range_m)");
+  require(positive(depth_hfov_rad) && depth_hfov_rad < std::numbers::pi, "sensor_visibility.depth_hfov_rad",
+          "in (0, pi)");
+  require(positive(depth_vfov_rad) && depth_vfov_rad < std::numbers::pi, "sensor_visibility.depth_vfov_rad",
+          "in (0, pi)");
+  require(std::isfinite(depth_min_range_m) && depth_min_range_m >= 0.0 && depth_min_range_m < depth_max_range_m,
+          "sensor_visibility.depth_min_range_m", "in [0, depth_max_range_m)");
+  require(std::isfinite(min_obstacle_height_m) && min_obstacle_height_m >= 0.0,
+          "sensor_visibility.min_obstacle_height_m", ">= 0");
+}
+
+SensorVisibility::SensorVisibility(const RobotProfile& robot, SensorVisibilityParams params)
+    : params_(std::move(params)) {
+  params_.validate();
+  for (const auto& m : robot.sensors) {
+    if (m.type == "vlp16") lidars_.emplace_back(m.x_m, m.y_m, m.z_m);
+    if (m.type == "d430") cameras_.push_back(m.T_base_sensor().inverse());
+  }
+}
+
+bool SensorVisibility::sees_base_point(const Eigen::Vector3d& p) const {
+  if (!p.allFinite()) return false;
+  for (const auto& o : lidars_) {
+    const Eigen::Vector3d v = p - o;
+    const double r = v.norm();
+    const double elevation = std::atan2(v.z(), std::hypot(v.x(), v.y()));
+    if (r >= params_.lidar_min_range_m && r <= params_.lidar_max_range_m &&
+        elevation >= params_.lidar_min_elevation_rad && elevation <= params_.lidar_max_elevation_rad)
+      return true;
+  }
+  const double th = std::tan(0.5 * params_.depth_hfov_rad), tv = std::tan(0.5 * params_.depth_vfov_rad);
+  for (const auto& T : cameras_) {
+    const Eigen::Vector3d q = T * p;  // x along the optical axis, y left, z up
+    if (q.x() < params_.depth_min_range_m || q.norm() > params_.depth_max_range_m) continue;
+    if (std::abs(q.y()) <= q.x() * th && std::abs(q.z()) <= q.x() * tv) return true;
+  }
+  return false;
+}
+
+bool SensorVisibility::sees(const Pose2& robot, const Eigen::Vector2d& p, double top_m) const {
+  const Eigen::Vector2d b = robot.inverse().transform(p);
+  // Samples of the segment from the lowest obstacle height to the top (the top alone decides for a
+  // LiDAR looking down at it; a pitched camera may see only its lower part).
+  constexpr int kSamples = 5;
+  const double lo = std::min(params_.min_obstacle_height_m, top_m);
+  for (int k = 0; k < kSamples; ++k) {
+    const double z = lo + (top_m - lo) * k / (kSamples - 1);
+    if (sees_base_point({b.x(), b.y(), z})) return true;
+  }
+  return false;
 }
 
 void DynamicAvoidanceParams::validate() const {
@@ -79,7 +141,9 @@ void DynamicAvoidanceParams::validate() const {
 }
 
 std::vector<Blob> cluster_blobs(const std::vector<Eigen::Vector2d>& points, const Eigen::Vector2d& center,
-                                const MovingObstacleParams& params) {
+                                const MovingObstacleParams& params, const std::vector<double>& heights) {
+  require(heights.empty() || heights.size() == points.size(), "cluster_blobs heights",
+          "empty or one per point (" + std::to_string(points.size()) + "), got " + std::to_string(heights.size()));
   std::vector<Blob> out;
   const double cell = params.cluster_cell_m;
   const double r2max = params.max_range_m * params.max_range_m;
@@ -125,7 +189,11 @@ std::vector<Blob> cluster_blobs(const std::vector<Eigen::Vector2d>& points, cons
     }
     Blob b;
     for (const std::size_t c : members) {
-      for (std::size_t k = cells[c].first; k < cells[c].second; ++k) b.centroid += points[std::get<2>(binned[k])];
+      for (std::size_t k = cells[c].first; k < cells[c].second; ++k) {
+        const std::size_t i = std::get<2>(binned[k]);
+        b.centroid += points[i];
+        if (!heights.empty() && std::isfinite(heights[i])) b.top_m = std::max(b.top_m, heights[i]);
+      }
       b.points += static_cast<int>(cells[c].second - cells[c].first);
     }
     b.centroid /= static_cast<double>(b.points);
@@ -153,7 +221,32 @@ void MovingObstacleTracker::update(const std::vector<Eigen::Vector2d>& points, c
   update_blobs(cluster_blobs(points, robot, params_), stamp_s);
 }
 
-void MovingObstacleTracker::update_blobs(const std::vector<Blob>& blobs, double stamp_s) {
+void MovingObstacleTracker::update(const std::vector<Eigen::Vector2d>& points, const std::vector<double>& heights,
+                                   const Pose2& robot, double stamp_s) {
+  if (!params_.enabled || !std::isfinite(stamp_s) || !robot.is_finite()) return;
+  update_blobs(cluster_blobs(points, robot.position(), params_, heights), stamp_s, robot);
+}
+
+namespace {
+
+double position_sigma(const TrackedObstacle& t) { return std::sqrt(std::max(t.cov_x(0, 0), t.cov_y(0, 0))); }
+
+// How much a coasting track's radius (and gate) grows: its position std beyond the one it had when
+// last seen, bounded.
+double coast_growth(const TrackedObstacle& t, double max_growth_m) {
+  if (!t.coasting) return 0.0;
+  return std::clamp(position_sigma(t) - t.seen_sigma_m, 0.0, max_growth_m);
+}
+
+}  // namespace
+
+bool MovingObstacleTracker::is_moving(const TrackedObstacle& t) const {
+  return t.hits >= params_.min_hits && t.velocity.norm() >= params_.min_moving_speed_mps &&
+         (t.position - t.origin).norm() >= params_.min_displacement_m;
+}
+
+void MovingObstacleTracker::update_blobs(const std::vector<Blob>& blobs, double stamp_s,
+                                         const std::optional<Pose2>& robot) {
   if (!params_.enabled || !std::isfinite(stamp_s) || stamp_s <= last_stamp_s_) return;
   last_stamp_s_ = stamp_s;
   const double q = params_.accel_noise_mps2;
@@ -171,7 +264,8 @@ void MovingObstacleTracker::update_blobs(const std::vector<Blob>& blobs, double 
     for (std::size_t j = 0; j < blobs.size(); ++j) {
       if (!blobs[j].centroid.allFinite()) continue;
       const double d = (tracks_[i].position - blobs[j].centroid).norm();
-      if (d <= params_.gate_m) pairs.emplace_back(d, i, j);
+      // A coasting track's gate widens with its uncertainty (it may have slowed or turned unseen).
+      if (d <= params_.gate_m + coast_growth(tracks_[i], params_.coast_max_growth_m)) pairs.emplace_back(d, i, j);
     }
   }
   std::sort(pairs.begin(), pairs.end());
@@ -185,13 +279,30 @@ void MovingObstacleTracker::update_blobs(const std::vector<Blob>& blobs, double 
     const double speed = t.velocity.norm();
     if (speed > params_.max_speed_mps) t.velocity *= params_.max_speed_mps / speed;
     t.radius_m = blobs[j].radius_m;
+    t.top_m = std::max(t.top_m, blobs[j].top_m);
     ++t.hits;
   }
-  // Tracks not seen this cycle keep their prediction until they are too old.
+  // Tracks not seen this cycle keep their prediction until they are too old; a moving one whose
+  // prediction is where no sensor could see it coasts on (the sensors' silence says nothing).
+  const bool can_coast = params_.coast_in_blind_zone && robot && robot->is_finite() && !visibility_.empty();
   std::vector<TrackedObstacle> kept;
   for (std::size_t i = 0; i < tracks_.size(); ++i) {
-    if (track_used[i]) tracks_[i].last_seen_s = stamp_s;
-    if (stamp_s - tracks_[i].last_seen_s <= params_.max_track_age_s) kept.push_back(tracks_[i]);
+    auto& t = tracks_[i];
+    if (track_used[i]) {
+      t.last_seen_s = stamp_s;
+      t.coasting = false;
+      t.seen_sigma_m = position_sigma(t);
+    }
+    const double unseen_s = stamp_s - t.last_seen_s;
+    if (unseen_s <= params_.max_track_age_s) {
+      kept.push_back(t);
+      continue;
+    }
+    if (!can_coast || t.top_m <= 0.0 || unseen_s > params_.max_coast_s || !(t.coasting || is_moving(t))) continue;
+    const bool in_range = (t.position - robot->position()).norm() <= params_.max_range_m;
+    if (in_range && visibility_.sees(*robot, t.position, t.top_m)) continue;
+    t.coasting = true;
+    kept.push_back(t);
   }
   tracks_ = std::move(kept);
   for (std::size_t j = 0; j < blobs.size(); ++j) {
@@ -200,11 +311,13 @@ void MovingObstacleTracker::update_blobs(const std::vector<Blob>& blobs, double 
     t.id = next_id_++;
     t.position = t.origin = blobs[j].centroid;
     t.radius_m = blobs[j].radius_m;
+    t.top_m = blobs[j].top_m;
     t.stamp_s = t.last_seen_s = stamp_s;
     t.hits = 1;
     const double v0 = 0.5 * params_.max_speed_mps;
     t.cov_x << r2, 0.0, 0.0, v0 * v0;
     t.cov_y = t.cov_x;
+    t.seen_sigma_m = position_sigma(t);
     tracks_.push_back(t);
   }
 }
@@ -212,10 +325,9 @@ void MovingObstacleTracker::update_blobs(const std::vector<Blob>& blobs, double 
 std::vector<TrackedObstacle> MovingObstacleTracker::moving(double now_s) const {
   std::vector<TrackedObstacle> out;
   for (const auto& t : tracks_) {
-    if (t.hits < params_.min_hits || now_s - t.last_seen_s > params_.max_track_age_s) continue;
-    if (t.velocity.norm() < params_.min_moving_speed_mps) continue;
-    if ((t.position - t.origin).norm() < params_.min_displacement_m) continue;
+    if (!is_moving(t) || (!t.coasting && now_s - t.last_seen_s > params_.max_track_age_s)) continue;
     out.push_back(t);
+    out.back().radius_m += coast_growth(t, params_.coast_max_growth_m);
   }
   return out;
 }

@@ -53,6 +53,28 @@ std::shared_ptr<MovingObstacleTracker> tracker_with(const Eigen::Vector2d& start
   return t;
 }
 
+// Digit's range sensors (config/digit.yaml): a VLP-16 at 1.474 m and two D430s at the pelvis
+// (0.95 m), pitched 45 deg down, facing forward and back.
+RobotProfile digit_sensors() {
+  RobotProfile r;
+  const double pitch = 0.25 * M_PI;
+  r.sensors = {{"lidar", "vlp16", 0.0, 0.0, 1.474},
+               {"depth_front", "d430", 0.1, 0.0, 0.95, 0.0, pitch, 0.0},
+               {"depth_back", "d430", -0.1, 0.0, 0.95, 0.0, pitch, M_PI}};
+  return r;
+}
+
+SensorVisibility digit_visibility() { return SensorVisibility(digit_sensors(), SensorVisibilityParams{}); }
+
+MovingObstacleParams coasting_tracking() {
+  MovingObstacleParams p = enabled_tracking();
+  p.coast_in_blind_zone = true;
+  return p;
+}
+
+// The blob of a 0.5 m cube centred at c (the outline a sensor sees of it).
+Blob cube_blob(const Eigen::Vector2d& c) { return Blob{c, 0.35, 0.5, 40}; }
+
 }  // namespace
 
 TEST(MovingObstacles, ClusterBlobsSeparatesSmallBlobsAndDropsWalls) {
@@ -231,6 +253,143 @@ TEST(MovingObstacles, OfSeveralSafeCommandsTheClosestToThePlannersIsKept) {
   // Still moving forward (slower or veering away), neither stopping nor backing off.
   EXPECT_GT(y.target.linear_x, 0.0) << y.target.linear_x << " " << y.target.angular_z;
   EXPECT_FALSE(y.target.linear_x == cmd.linear_x && y.target.angular_z == cmd.angular_z);
+}
+
+TEST(MovingObstacles, ClusterBlobsKeepTheHighestPointAndRejectMismatchedHeights) {
+  std::vector<Eigen::Vector2d> pts;
+  add_square(pts, {1.0, 1.0}, 0.15, 0);
+  std::vector<double> heights(pts.size(), 0.2);
+  heights[3] = 0.45;
+  const auto blobs = cluster_blobs(pts, {0.0, 0.0}, enabled_tracking(), heights);
+  ASSERT_EQ(blobs.size(), 1u);
+  EXPECT_DOUBLE_EQ(blobs[0].top_m, 0.45);
+  EXPECT_DOUBLE_EQ(cluster_blobs(pts, {0.0, 0.0}, enabled_tracking())[0].top_m, 0.0);
+  heights.pop_back();
+  EXPECT_THROW(cluster_blobs(pts, {0.0, 0.0}, enabled_tracking(), heights), Error);
+}
+
+TEST(MovingObstacles, VisibilityOfKnownPointsFromDigitsSensors) {
+  const SensorVisibility vis = digit_visibility();
+  // The LiDAR's lowest ring (-15 deg from 1.474 m) reaches a 0.5 m top at 0.974 / tan(15 deg) =
+  // 3.635 m: beside the robot (outside both cameras) a 0.5 m cube is seen only beyond that.
+  EXPECT_FALSE(vis.sees_base_point({0.0, 3.60, 0.5}));
+  EXPECT_TRUE(vis.sees_base_point({0.0, 3.67, 0.5}));
+  EXPECT_FALSE(vis.sees_base_point({0.0, 2.0, 0.5}));
+  EXPECT_FALSE(vis.sees_base_point({0.0, -2.0, 0.3}));
+  // Forward camera: 1.0 m ahead at 0.3 m is 35.8 deg below its horizon (axis at 45, half vfov 29).
+  EXPECT_TRUE(vis.sees_base_point({1.0, 0.0, 0.3}));
+  // 3 m ahead, 0.5 m high: 8.8 deg below the horizon (above the frustum) and 2.93 m from the
+  // camera (beyond its 2.9 m range); too low for the LiDAR (-18 deg).
+  EXPECT_FALSE(vis.sees_base_point({3.0, 0.0, 0.5}));
+  // Backward camera, mirrored.
+  EXPECT_TRUE(vis.sees_base_point({-1.2, 0.0, 0.3}));
+  // Above the robot's head the LiDAR sees within +-15 deg only.
+  EXPECT_TRUE(vis.sees_base_point({2.0, 0.0, 1.474}));
+  EXPECT_FALSE(vis.sees_base_point({0.5, 0.0, 1.474 + 0.5}));
+  // In the map frame: the robot at (10, 5) facing +y.
+  const Pose2 robot{10.0, 5.0, 0.5 * M_PI};
+  EXPECT_TRUE(vis.sees(robot, robot.transform({1.0, 0.0}), 0.5));
+  EXPECT_FALSE(vis.sees(robot, robot.transform({0.0, 2.0}), 0.5));
+  EXPECT_FALSE(vis.sees(robot, robot.transform({0.0, 3.6}), 0.5));
+  EXPECT_TRUE(vis.sees(robot, robot.transform({0.0, 3.7}), 0.5));
+  // A taller object beside the robot reaches the LiDAR's lowest ring closer: 1.0 m at 1.77 m.
+  EXPECT_FALSE(vis.sees(robot, robot.transform({0.0, 1.74}), 1.0));
+  EXPECT_TRUE(vis.sees(robot, robot.transform({0.0, 1.80}), 1.0));
+  // No sensors: nothing is seen.
+  EXPECT_FALSE(SensorVisibility().sees(robot, robot.transform({1.0, 0.0}), 0.5));
+  SensorVisibilityParams bad;
+  bad.depth_min_range_m = 5.0;
+  EXPECT_THROW(SensorVisibility(digit_sensors(), bad), Error);
+}
+
+TEST(MovingObstacles, TrackCoastsThroughTheBlindZoneAndIsReassociated) {
+  // A 0.5 m cube crosses 1 m in front of the robot from its left at 0.3 m/s; the sensors (the
+  // visibility model) see it while the LiDAR does (beyond 3.635 m), lose it in the blind zone and
+  // see it again once it enters the forward camera's frustum.
+  MovingObstacleTracker tracker(coasting_tracking());
+  tracker.set_visibility(digit_visibility());
+  const Pose2 robot{0.0, 0.0, 0.0};
+  const Eigen::Vector2d start(1.0, 4.8), v(0.0, -0.3);
+  int id = 0;
+  double blind_from = -1.0, blind_until = -1.0, last_seen = 0.0;
+  for (int k = 0; k <= 150; ++k) {
+    const double t = 0.1 * k;
+    const Eigen::Vector2d c = start + v * t;
+    const bool seen = tracker.visibility().sees(robot, c, 0.5);
+    std::vector<Blob> blobs;
+    if (seen) blobs.push_back(cube_blob(c));
+    tracker.update_blobs(blobs, t, robot);
+    if (!seen && blind_from < 0.0) blind_from = t;
+    if (seen && blind_from >= 0.0 && blind_until < 0.0) blind_until = t;
+    if (seen) last_seen = t;
+    if (k == 20) {
+      ASSERT_EQ(tracker.moving(t).size(), 1u);
+      id = tracker.moving(t)[0].id;
+    }
+    if (blind_from >= 0.0 && blind_until < 0.0) {
+      // Unseen in the blind zone: still the one moving track, coasting once older than
+      // max_track_age_s, its radius grown by its uncertainty (bounded).
+      const auto m = tracker.moving(t);
+      ASSERT_EQ(m.size(), 1u) << t;
+      EXPECT_EQ(m[0].id, id);
+      EXPECT_EQ(m[0].coasting, t - last_seen > 0.6) << t;
+      EXPECT_NEAR((m[0].position - c).norm(), 0.0, 0.05) << t;
+      EXPECT_GE(m[0].radius_m, 0.35);
+      EXPECT_LE(m[0].radius_m, 0.35 + 0.3 + 1e-12);
+    }
+    if (blind_until >= 0.0 && t - blind_until < 0.25) {
+      const auto m = tracker.moving(t);
+      ASSERT_EQ(m.size(), 1u) << t;
+      EXPECT_EQ(m[0].id, id);  // re-associated, not a new track
+      EXPECT_FALSE(m[0].coasting);
+      EXPECT_DOUBLE_EQ(m[0].radius_m, 0.35);
+    }
+  }
+  // The LiDAR loses it at y = sqrt(3.635^2 - 1) = 3.49 m (t = 4.4 s); the forward camera's frustum
+  // (its right edge 42.5 deg off the axis) takes in its foot 0.05 m above the floor at
+  // y = 0.916 * 0.707 * 1.8 = 1.166 m (t = 12.2 s). Before coasting it was dropped at 5.0 s.
+  EXPECT_NEAR(blind_from, 4.4, 1e-9);
+  EXPECT_NEAR(blind_until, 12.2, 1e-9);
+}
+
+TEST(MovingObstacles, UnseenTrackInViewIsDroppedAndCoastingIsBounded) {
+  // Cycles every 0.125 s (exact in binary): a track unseen 0.5 s is kept, 0.625 s is too old.
+  const Pose2 robot{0.0, 0.0, 0.0};
+  const auto last_moving = [&](const MovingObstacleParams& params, const Eigen::Vector2d& start,
+                               const Eigen::Vector2d& v, double until_s, bool with_pose) {
+    MovingObstacleTracker tracker(params);
+    tracker.set_visibility(digit_visibility());
+    double last = -1.0;
+    for (int k = 0; 0.125 * k <= until_s; ++k) {
+      const double t = 0.125 * k;
+      std::vector<Blob> blobs;
+      if (t <= 2.0) blobs.push_back(cube_blob(start + v * t));  // seen for 2 s, then never again
+      if (with_pose)
+        tracker.update_blobs(blobs, t, robot);
+      else
+        tracker.update_blobs(blobs, t);
+      if (!tracker.moving(t).empty()) last = t;
+    }
+    return last;
+  };
+  const MovingObstacleParams p = coasting_tracking();
+  // In front of the robot, in the forward camera's view: dropped once unseen longer than
+  // max_track_age_s, as without coasting.
+  EXPECT_DOUBLE_EQ(last_moving(p, {1.0, 0.6}, {0.0, -0.2}, 6.0, true), 2.5);
+  // 2 m beside the robot (below the LiDAR's lowest ring, outside both cameras) it coasts for
+  // max_coast_s (10 s).
+  EXPECT_DOUBLE_EQ(last_moving(p, {0.2, 2.0}, {0.2, 0.0}, 14.0, true), 12.0);
+  MovingObstacleParams shorter = p;
+  shorter.max_coast_s = 3.0;
+  EXPECT_DOUBLE_EQ(last_moving(shorter, {0.2, 2.0}, {0.2, 0.0}, 14.0, true), 5.0);
+  // Moving away beside the robot, its prediction enters the LiDAR's view (3.635 m) at
+  // x = 2.540 m, t = 2 + (2.540 - 1.9) / 0.2 = 5.20 s: there the sensors' silence counts and it goes.
+  EXPECT_DOUBLE_EQ(last_moving(p, {1.5, -2.6}, {0.2, 0.0}, 14.0, true), 5.125);
+  // Without the robot's pose (the 2D update) there is no coasting; nor when it is switched off.
+  EXPECT_DOUBLE_EQ(last_moving(p, {0.2, 2.0}, {0.2, 0.0}, 14.0, false), 2.5);
+  MovingObstacleParams off = p;
+  off.coast_in_blind_zone = false;
+  EXPECT_DOUBLE_EQ(last_moving(off, {0.2, 2.0}, {0.2, 0.0}, 14.0, true), 2.5);
 }
 
 }  // namespace bipednav::planning::local
