@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <numbers>
 
 namespace bipednav::footstep {
@@ -125,20 +126,34 @@ std::size_t FootstepGraph::block_of(int ix, int iy) {
   std::int32_t& b = cell_block_[terrain_.geometry().index(ix, iy)];
   if (b < 0) {
     const std::size_t bins = static_cast<std::size_t>(lattice_.theta_bins());
-    b = static_cast<std::int32_t>(block_landings_.size() / bins);
-    block_ids_.resize(block_ids_.size() + 2 * bins, -1);
-    block_landings_.resize(block_landings_.size() + bins);
+    constexpr std::size_t kChunk = std::size_t{1} << kChunkShift;
+    if ((blocks_ & (kChunk - 1)) == 0) {
+      id_chunks_.emplace_back(new std::int32_t[kChunk * 2 * bins]);
+      std::fill_n(id_chunks_.back().get(), kChunk * 2 * bins, -1);
+      landing_chunks_.emplace_back(new LandingCache[kChunk * bins]);
+    }
+    b = static_cast<std::int32_t>(blocks_++);
   }
   return static_cast<std::size_t>(b);
+}
+
+std::int32_t* FootstepGraph::block_ids(std::size_t b) {
+  const std::size_t in_chunk = b & ((std::size_t{1} << kChunkShift) - 1);
+  return id_chunks_[b >> kChunkShift].get() + in_chunk * 2 * static_cast<std::size_t>(lattice_.theta_bins());
+}
+
+FootstepGraph::LandingCache* FootstepGraph::block_landings(std::size_t b) {
+  const std::size_t in_chunk = b & ((std::size_t{1} << kChunkShift) - 1);
+  return landing_chunks_[b >> kChunkShift].get() + in_chunk * static_cast<std::size_t>(lattice_.theta_bins());
 }
 
 std::int32_t FootstepGraph::intern(const StateKey& k, float z) {
   const auto fresh_id = static_cast<std::int32_t>(states_.size());
   if (terrain_.in_bounds(k.ix, k.iy)) {
-    const std::size_t slot = block_of(k.ix, k.iy) * 2 * static_cast<std::size_t>(lattice_.theta_bins()) +
-                             2 * static_cast<std::size_t>(k.itheta) + static_cast<std::size_t>(k.stance);
-    if (block_ids_[slot] >= 0) return block_ids_[slot];
-    block_ids_[slot] = fresh_id;
+    std::int32_t& id =
+        block_ids(block_of(k.ix, k.iy))[2 * static_cast<std::size_t>(k.itheta) + static_cast<std::size_t>(k.stance)];
+    if (id >= 0) return id;
+    id = fresh_id;
     states_.push_back({k, z});
     return fresh_id;
   }
@@ -203,8 +218,7 @@ FootstepGraph::Landing FootstepGraph::landing_at(int ix, int iy, int itheta, flo
 }
 
 bool FootstepGraph::landing_height(int ix, int iy, int itheta, float stance_z, float* z) {
-  LandingCache& c = block_landings_[block_of(ix, iy) * static_cast<std::size_t>(lattice_.theta_bins()) +
-                                    static_cast<std::size_t>(itheta)];
+  LandingCache& c = block_landings(block_of(ix, iy))[itheta];
   if (c.kind == Landing::kUnasked) c.kind = landing_at(ix, iy, itheta, &c.z);
   *z = c.kind == Landing::kStanceHeight ? stance_z : c.z;
   return c.kind != Landing::kUnsafe;

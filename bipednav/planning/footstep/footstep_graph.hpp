@@ -136,9 +136,15 @@ class FootstepGraph : public SearchGraph {
   FootstepGoal goal_;
   std::vector<State> states_;
   StateIndex index_;
-  std::vector<std::int32_t> cell_block_;      // per terrain cell: its block, -1 = none yet
-  std::vector<std::int32_t> block_ids_;       // per block: 2 * theta_bins state ids (-1 = none)
-  std::vector<LandingCache> block_landings_;  // per block: theta_bins landings
+  std::vector<std::int32_t> cell_block_;  // per terrain cell: its block, -1 = none yet
+  // Blocks live in fixed chunks: a growing vector would copy them and fault its fresh pages
+  // in again at each doubling, which made the first iterations slower than the hash.
+  static constexpr int kChunkShift = 6;         // 64 blocks per chunk
+  std::int32_t* block_ids(std::size_t b);       // 2 * theta_bins state ids (-1 = none)
+  LandingCache* block_landings(std::size_t b);  // theta_bins landings
+  std::vector<std::unique_ptr<std::int32_t[]>> id_chunks_;
+  std::vector<std::unique_ptr<LandingCache[]>> landing_chunks_;
+  std::size_t blocks_ = 0;
   // Per (heading bin, stance foot): the body centre's offset from the stance foot, the same
   // products Pose2's composition forms, and the composed heading.
   std::vector<double> centre_dx_, centre_dy_, centre_theta_;
