@@ -147,27 +147,78 @@ std::vector<Blob> cluster_blobs(const std::vector<Eigen::Vector2d>& points, cons
   std::vector<Blob> out;
   const double cell = params.cluster_cell_m;
   const double r2max = params.max_range_m * params.max_range_m;
-  // (key, point index) of the points in range, sorted so that cells come in a fixed order.
-  std::vector<std::tuple<long, long, std::size_t>> binned;
-  binned.reserve(points.size());
+  // The bins of the points in range, in point order.
+  std::vector<long> bx, by;
+  std::vector<std::size_t> in_range;
+  bx.reserve(points.size());
+  by.reserve(points.size());
+  in_range.reserve(points.size());
+  long x_lo = 0, x_hi = -1, y_lo = 0, y_hi = -1;
   for (std::size_t i = 0; i < points.size(); ++i) {
     const Eigen::Vector2d& p = points[i];
     if (!p.allFinite() || (p - center).squaredNorm() > r2max) continue;
-    binned.emplace_back(static_cast<long>(std::floor(p.x() / cell)), static_cast<long>(std::floor(p.y() / cell)), i);
+    const auto x = static_cast<long>(std::floor(p.x() / cell)), y = static_cast<long>(std::floor(p.y() / cell));
+    if (in_range.empty()) x_lo = x_hi = x, y_lo = y_hi = y;
+    x_lo = std::min(x_lo, x), x_hi = std::max(x_hi, x), y_lo = std::min(y_lo, y), y_hi = std::max(y_hi, y);
+    bx.push_back(x);
+    by.push_back(y);
+    in_range.push_back(i);
   }
-  std::sort(binned.begin(), binned.end());
-  // Cells: [begin, end) ranges of `binned`.
+  if (in_range.empty()) return out;
+  // Cells in a fixed order, (x, y) ascending, each a [begin, end) range of `order` (point indices,
+  // ascending within a cell). The bins span a small window (max_range_m around the robot): a
+  // counting sort over it; a hash of the bins when the window is too large for that.
+  std::vector<std::size_t> order(in_range.size());
   std::vector<std::pair<std::size_t, std::size_t>> cells;
+  std::vector<std::pair<long, long>> cell_xy;
+  const auto span_x = static_cast<unsigned long>(x_hi - x_lo), span_y = static_cast<unsigned long>(y_hi - y_lo);
+  const std::size_t grid_limit = std::max<std::size_t>(1 << 16, 8 * in_range.size());
+  const bool dense = span_x < grid_limit && span_y < grid_limit && (span_x + 1) * (span_y + 1) <= grid_limit;
+  const auto H = static_cast<std::size_t>(span_y + 1);
+  std::vector<std::int32_t> grid;  // dense: cell index per bin, -1 when empty
   std::unordered_map<std::uint64_t, std::size_t> cell_of;
-  for (std::size_t i = 0; i < binned.size();) {
-    std::size_t j = i;
-    while (j < binned.size() && std::get<0>(binned[j]) == std::get<0>(binned[i]) &&
-           std::get<1>(binned[j]) == std::get<1>(binned[i]))
-      ++j;
-    cell_of.emplace(cell_key(std::get<0>(binned[i]), std::get<1>(binned[i])), cells.size());
-    cells.emplace_back(i, j);
-    i = j;
+  if (dense) {
+    const std::size_t W = static_cast<std::size_t>(span_x + 1);
+    std::vector<std::uint32_t> start(W * H + 1, 0);
+    const auto bin = [&](std::size_t k) {
+      return static_cast<std::size_t>(bx[k] - x_lo) * H + static_cast<std::size_t>(by[k] - y_lo);
+    };
+    for (std::size_t k = 0; k < in_range.size(); ++k) ++start[bin(k) + 1];
+    grid.assign(W * H, -1);
+    for (std::size_t b = 0; b < W * H; ++b) {
+      if (start[b + 1] > 0) {
+        grid[b] = static_cast<std::int32_t>(cells.size());
+        cells.emplace_back(start[b], start[b] + start[b + 1]);
+        cell_xy.emplace_back(x_lo + static_cast<long>(b / H), y_lo + static_cast<long>(b % H));
+      }
+      start[b + 1] += start[b];
+    }
+    for (std::size_t k = 0; k < in_range.size(); ++k) order[start[bin(k)]++] = in_range[k];
+  } else {
+    std::vector<std::tuple<long, long, std::size_t>> binned(in_range.size());
+    for (std::size_t k = 0; k < in_range.size(); ++k) binned[k] = {bx[k], by[k], in_range[k]};
+    std::sort(binned.begin(), binned.end());
+    for (std::size_t i = 0; i < binned.size();) {
+      std::size_t j = i;
+      while (j < binned.size() && std::get<0>(binned[j]) == std::get<0>(binned[i]) &&
+             std::get<1>(binned[j]) == std::get<1>(binned[i]))
+        ++j;
+      cell_of.emplace(cell_key(std::get<0>(binned[i]), std::get<1>(binned[i])), cells.size());
+      cells.emplace_back(i, j);
+      cell_xy.emplace_back(std::get<0>(binned[i]), std::get<1>(binned[i]));
+      i = j;
+    }
+    for (std::size_t k = 0; k < binned.size(); ++k) order[k] = std::get<2>(binned[k]);
   }
+  // The cell at bin (x, y), or -1.
+  const auto find_cell = [&](long x, long y) -> std::int64_t {
+    if (dense) {
+      if (x < x_lo || x > x_hi || y < y_lo || y > y_hi) return -1;
+      return grid[static_cast<std::size_t>(x - x_lo) * H + static_cast<std::size_t>(y - y_lo)];
+    }
+    const auto it = cell_of.find(cell_key(x, y));
+    return it == cell_of.end() ? -1 : static_cast<std::int64_t>(it->second);
+  };
   std::vector<char> seen(cells.size(), 0);
   std::vector<std::size_t> stack, members;
   for (std::size_t c0 = 0; c0 < cells.size(); ++c0) {
@@ -179,18 +230,19 @@ std::vector<Blob> cluster_blobs(const std::vector<Eigen::Vector2d>& points, cons
       const std::size_t c = stack.back();
       stack.pop_back();
       members.push_back(c);
-      const long cx = std::get<0>(binned[cells[c].first]), cy = std::get<1>(binned[cells[c].first]);
+      const auto [cx, cy] = cell_xy[c];
       for (long dy = -1; dy <= 1; ++dy) {
         for (long dx = -1; dx <= 1; ++dx) {
-          const auto it = cell_of.find(cell_key(cx + dx, cy + dy));
-          if (it != cell_of.end() && !seen[it->second]) seen[it->second] = 1, stack.push_back(it->second);
+          const std::int64_t n = find_cell(cx + dx, cy + dy);
+          if (n >= 0 && !seen[static_cast<std::size_t>(n)])
+            seen[static_cast<std::size_t>(n)] = 1, stack.push_back(static_cast<std::size_t>(n));
         }
       }
     }
     Blob b;
     for (const std::size_t c : members) {
       for (std::size_t k = cells[c].first; k < cells[c].second; ++k) {
-        const std::size_t i = std::get<2>(binned[k]);
+        const std::size_t i = order[k];
         b.centroid += points[i];
         if (!heights.empty() && std::isfinite(heights[i])) b.top_m = std::max(b.top_m, heights[i]);
       }
@@ -199,7 +251,7 @@ std::vector<Blob> cluster_blobs(const std::vector<Eigen::Vector2d>& points, cons
     b.centroid /= static_cast<double>(b.points);
     for (const std::size_t c : members) {
       for (std::size_t k = cells[c].first; k < cells[c].second; ++k)
-        b.radius_m = std::max(b.radius_m, (points[std::get<2>(binned[k])] - b.centroid).norm());
+        b.radius_m = std::max(b.radius_m, (points[order[k]] - b.centroid).norm());
     }
     if (b.points >= params.min_points && b.radius_m <= params.max_blob_radius_m) out.push_back(b);
   }

@@ -94,6 +94,31 @@ TEST(MovingObstacles, ClusterBlobsSeparatesSmallBlobsAndDropsWalls) {
   EXPECT_GT(blobs[1].radius_m, blobs[0].radius_m);
 }
 
+TEST(MovingObstacles, ClusterBlobsSameWhateverTheBinWindow) {
+  // The bins in range are counted on a grid over their window, or hashed when the window is too
+  // large for a grid (a huge range): the same blobs, in the same order, bit for bit.
+  std::vector<Eigen::Vector2d> pts;
+  add_square(pts, {1.0, 1.0}, 0.15, 0);
+  add_square(pts, {2.0, -1.0}, 0.4, 1);
+  add_square(pts, {-1.2, 0.3}, 0.2, 2);
+  add_square(pts, {1.1, 1.25}, 0.1, 3);  // touches the first square's bins: one blob
+  add_wall(pts, -3.0, 3.0, 2.5);
+  pts.emplace_back(-1.5, -1.5);
+  const auto near = cluster_blobs(pts, {0.0, 0.0}, enabled_tracking());
+  ASSERT_EQ(near.size(), 3u);
+  add_square(pts, {900.0, -700.0}, 0.15, 4);  // 16000 x 7000 bins apart
+  auto far_params = enabled_tracking();
+  far_params.max_range_m = 2000.0;
+  const auto all = cluster_blobs(pts, {0.0, 0.0}, far_params);
+  ASSERT_EQ(all.size(), 4u);
+  for (std::size_t i = 0; i < near.size(); ++i) {
+    EXPECT_EQ(all[i].centroid, near[i].centroid);
+    EXPECT_EQ(all[i].radius_m, near[i].radius_m);
+    EXPECT_EQ(all[i].points, near[i].points);
+  }
+  EXPECT_NEAR(all[3].centroid.x(), 900.0, 0.02);
+}
+
 TEST(MovingObstacles, BoxBesideAPostInALaneStaysItsOwnBlob) {
   // hexagon_dynamic: the 0.15 m box in a 0.8 m lane between r = 0.15 m cylinders (0.325 m gaps).
   // Merged with a cylinder its centroid would jump and its track be lost.
