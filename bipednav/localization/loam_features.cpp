@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "bipednav/common/error.hpp"
 
@@ -9,17 +10,27 @@ namespace bipednav::localization {
 
 namespace {
 
+// The ranges of one ring's points and the gaps between neighbours (gap[i] = |p[i+1] - p[i]|),
+// computed once: the marking below reads each several times.
+struct RingGeometry {
+  std::vector<float> range, gap;
+  explicit RingGeometry(const std::vector<Eigen::Vector3f>& pts) : range(pts.size()), gap(pts.size(), 0.0f) {
+    for (std::size_t i = 0; i < pts.size(); ++i) range[i] = pts[i].norm();
+    for (std::size_t i = 0; i + 1 < pts.size(); ++i) gap[i] = (pts[i + 1] - pts[i]).norm();
+  }
+};
+
 // Marks points whose smoothness is unreliable (section 4.4.1): the occluded side of a depth
 // discontinuity, both sides of a gap without returns, and surfaces nearly parallel to the beam.
-void mark_unreliable(const std::vector<Eigen::Vector3f>& pts, const FeatureParams& p, std::vector<char>& picked) {
-  const int n = static_cast<int>(pts.size());
+void mark_unreliable(const RingGeometry& ring, const FeatureParams& p, std::vector<char>& picked) {
+  const int n = static_cast<int>(ring.range.size());
   const int k = p.neighbours_per_side;
   const auto mark = [&](int from, int to) {
     for (int i = std::max(0, from); i <= std::min(n - 1, to); ++i) picked[static_cast<std::size_t>(i)] = 1;
   };
   for (int i = 0; i + 1 < n; ++i) {
-    const float di = pts[static_cast<std::size_t>(i)].norm(), dj = pts[static_cast<std::size_t>(i) + 1].norm();
-    const float gap = (pts[static_cast<std::size_t>(i) + 1] - pts[static_cast<std::size_t>(i)]).norm();
+    const float di = ring.range[static_cast<std::size_t>(i)], dj = ring.range[static_cast<std::size_t>(i) + 1];
+    const float gap = ring.gap[static_cast<std::size_t>(i)];
     const float near = std::min(di, dj);
     if (std::abs(di - dj) > p.occlusion_ratio * near) {
       if (di > dj)
@@ -32,23 +43,20 @@ void mark_unreliable(const std::vector<Eigen::Vector3f>& pts, const FeatureParam
   }
   for (int i = 1; i + 1 < n; ++i) {
     const auto u = static_cast<std::size_t>(i);
-    const float r = pts[u].norm();
-    if ((pts[u] - pts[u - 1]).norm() > p.parallel_beam_ratio * r &&
-        (pts[u + 1] - pts[u]).norm() > p.parallel_beam_ratio * r)
-      picked[u] = 1;
+    const float r = ring.range[u];
+    if (ring.gap[u - 1] > p.parallel_beam_ratio * r && ring.gap[u] > p.parallel_beam_ratio * r) picked[u] = 1;
   }
 }
 
 // Marks the neighbours of a selected point so features spread out, stopping at gaps.
-void mark_neighbours(const std::vector<Eigen::Vector3f>& pts, int i, const FeatureParams& p,
-                     std::vector<char>& picked) {
-  const int n = static_cast<int>(pts.size());
-  const float limit = static_cast<float>(p.max_neighbour_gap_ratio) * pts[static_cast<std::size_t>(i)].norm();
+void mark_neighbours(const RingGeometry& ring, int i, const FeatureParams& p, std::vector<char>& picked) {
+  const int n = static_cast<int>(ring.range.size());
+  const float limit = static_cast<float>(p.max_neighbour_gap_ratio) * ring.range[static_cast<std::size_t>(i)];
   for (int dir : {-1, 1}) {
     for (int l = 1; l <= p.neighbours_per_side; ++l) {
       const int j = i + dir * l, prev = j - dir;
       if (j < 0 || j >= n) break;
-      if ((pts[static_cast<std::size_t>(j)] - pts[static_cast<std::size_t>(prev)]).norm() > limit) break;
+      if (ring.gap[static_cast<std::size_t>(std::min(j, prev))] > limit) break;
       picked[static_cast<std::size_t>(j)] = 1;
     }
   }
@@ -59,14 +67,41 @@ struct RegionSelection {
 };
 
 // Picks up to max and max * factor points of one sub-region from `candidates` (the points past
-// the threshold), best first: the candidates are ordered lazily, a chunk at a time, since the
-// selection usually stops long before it has seen them all.
-template <class Better>
-RegionSelection select(std::vector<int>& candidates, Better better, bool edges, const std::vector<Eigen::Vector3f>& pts,
-                       const FeatureParams& p, std::vector<char>& picked) {
+// the threshold), best first (highest smoothness c for edges, lowest for planars). The selection
+// usually runs through most candidates, so they are sorted whole, with their scores beside them.
+// Candidates already picked (unreliable, or next to a selected feature) are skipped wherever they
+// come, so only the others are sorted. Equal scores keep the order a chunked partial sort of
+// `candidates` gives them (the order these features were selected in before; ties are rare), so
+// that path stays for them.
+RegionSelection select(std::vector<int>& candidates, const std::vector<double>& c, bool edges, const RingGeometry& ring,
+                       const FeatureParams& p, std::vector<char>& picked, std::vector<std::pair<double, int>>& scored) {
   RegionSelection sel;
   const int max_sharp = edges ? p.max_edges_per_region : p.max_planars_per_region;
   const auto max_map = static_cast<std::size_t>(max_sharp * p.map_feature_factor);
+  const auto consider = [&](int i) {
+    if (picked[static_cast<std::size_t>(i)]) return;
+    if (static_cast<int>(sel.sharp.size()) < max_sharp) sel.sharp.push_back(i);
+    sel.map.push_back(i);
+    picked[static_cast<std::size_t>(i)] = 1;
+    mark_neighbours(ring, i, p, picked);
+  };
+  scored.clear();
+  for (const int i : candidates) {
+    if (picked[static_cast<std::size_t>(i)]) continue;  // skipped wherever it would come
+    const double ci = c[static_cast<std::size_t>(i)];
+    scored.emplace_back(edges ? -ci : ci, i);  // ascending: best first
+  }
+  std::sort(scored.begin(), scored.end());
+  bool ties = false;
+  for (std::size_t n = 1; n < scored.size() && !ties; ++n) ties = scored[n - 1].first == scored[n].first;
+  if (!ties) {
+    for (std::size_t n = 0; n < scored.size() && sel.map.size() < max_map; ++n) consider(scored[n].second);
+    return sel;
+  }
+  const auto better = [&](int a, int b) {
+    const double ca = c[static_cast<std::size_t>(a)], cb = c[static_cast<std::size_t>(b)];
+    return edges ? ca > cb : ca < cb;
+  };
   std::size_t sorted = 0;
   for (std::size_t n = 0; n < candidates.size() && sel.map.size() < max_map; ++n) {
     if (n == sorted) {
@@ -76,12 +111,7 @@ RegionSelection select(std::vector<int>& candidates, Better better, bool edges, 
       std::partial_sort(first, middle, candidates.end(), better);
       sorted += chunk;
     }
-    const int i = candidates[n];
-    if (picked[static_cast<std::size_t>(i)]) continue;
-    if (static_cast<int>(sel.sharp.size()) < max_sharp) sel.sharp.push_back(i);
-    sel.map.push_back(i);
-    picked[static_cast<std::size_t>(i)] = 1;
-    mark_neighbours(pts, i, p, picked);
+    consider(candidates[n]);
   }
   return sel;
 }
@@ -95,8 +125,10 @@ void process_ring(const PointCloud& sweep, const std::vector<std::uint32_t>& idx
   for (std::size_t i = 0; i < idx.size(); ++i) pts[i] = sweep.points[idx[i]];
   const std::vector<double> c = ring_smoothness(pts, k);
   std::vector<char> picked(idx.size(), 0);
-  mark_unreliable(pts, p, picked);
+  const RingGeometry ring(pts);
+  mark_unreliable(ring, p, picked);
   std::vector<int> sharp, flat;
+  std::vector<std::pair<double, int>> scored;
   for (int r = 0; r < p.sub_regions; ++r) {
     const int begin = k + (n - 2 * k) * r / p.sub_regions;
     const int end = k + (n - 2 * k) * (r + 1) / p.sub_regions;
@@ -111,12 +143,8 @@ void process_ring(const PointCloud& sweep, const std::vector<std::uint32_t>& idx
       else if (ci >= 0.0 && ci < p.planar_threshold)
         flat.push_back(i);
     }
-    const RegionSelection e = select(
-        sharp, [&](int a, int b) { return c[static_cast<std::size_t>(a)] > c[static_cast<std::size_t>(b)]; }, true, pts,
-        p, picked);
-    const RegionSelection f = select(
-        flat, [&](int a, int b) { return c[static_cast<std::size_t>(a)] < c[static_cast<std::size_t>(b)]; }, false, pts,
-        p, picked);
+    const RegionSelection e = select(sharp, c, true, ring, p, picked, scored);
+    const RegionSelection f = select(flat, c, false, ring, p, picked, scored);
     for (int i : e.sharp) out.edges.push_back_from(sweep, idx[static_cast<std::size_t>(i)]);
     for (int i : e.map) out.map_edges.push_back_from(sweep, idx[static_cast<std::size_t>(i)]);
     for (int i : f.sharp) out.planars.push_back_from(sweep, idx[static_cast<std::size_t>(i)]);
