@@ -153,8 +153,7 @@ void ObstacleLayer::clear_observation(Costmap2D& grid, const Observation& obs, C
     std::uint32_t& seen = traced_[g.index(ray->end)];
     if (seen == stamp_) continue;
     seen = stamp_;
-    for_each_line_cell(ray->start, ray->end, ray->end_included, [&](int x, int y) {
-      const std::size_t i = g.index(x, y);
+    for_each_line_index(ray->start, ray->end, ray->end_included, g.width, [&](std::size_t i, int x, int y) {
       std::uint8_t& c = cells[i];
       if (c == kFree) return;
       if (bands && c == kLethal && !marks_[i].band.empty()) {

@@ -31,6 +31,23 @@ TEST(RayTrace, BresenhamLinesAreConnectedAndEndExact) {
   EXPECT_EQ(l, expect);
 }
 
+TEST(RayTrace, LineIndicesAreTheLineCells) {
+  // for_each_line_index visits exactly for_each_line_cell's cells, in order, with their indices.
+  const int width = 37;
+  for (const bool include_end : {true, false})
+    for (int bx = -40; bx <= 40; ++bx)
+      for (int by = -40; by <= 40; ++by) {
+        const Cell a{50, 60}, b{50 + bx, 60 + by};
+        const auto cells = line_cells(a, b, include_end);
+        std::vector<Cell> seen;
+        for_each_line_index(a, b, include_end, width, [&](std::size_t i, int x, int y) {
+          EXPECT_EQ(i, static_cast<std::size_t>(y) * width + static_cast<std::size_t>(x));
+          seen.push_back({x, y});
+        });
+        ASSERT_EQ(seen, cells) << bx << " " << by;
+      }
+}
+
 TEST(RayTrace, ClipSegmentToBox) {
   Eigen::Vector2d a(-1, 0.5), b(3, 0.5);
   ASSERT_TRUE(clip_segment(a, b, {0, 0}, {2, 1}));
