@@ -41,11 +41,14 @@ Eigen::Matrix3d rodrigues(const Eigen::Vector3d& theta) {
   return R;
 }
 
-// exp(theta^) p without forming the matrix.
-Eigen::Vector3d rotate(const Eigen::Vector3d& theta, const Eigen::Vector3d& p) {
-  const RodriguesCoefficients c(theta);
+// exp(theta^) p without forming the matrix, with theta's coefficients.
+Eigen::Vector3d rotate(const RodriguesCoefficients& c, const Eigen::Vector3d& theta, const Eigen::Vector3d& p) {
   const Eigen::Vector3d tp = theta.cross(p);
   return p + c.a * tp + c.b * theta.cross(tp);
+}
+
+Eigen::Vector3d rotate(const Eigen::Vector3d& theta, const Eigen::Vector3d& p) {
+  return rotate(RodriguesCoefficients(theta), theta, p);
 }
 
 // Derivative of the constraint distance with respect to the moved point.
@@ -57,27 +60,62 @@ Eigen::Vector3d distance_gradient(const Constraint& c, const Eigen::Vector3d& q)
   return n > 1e-12 ? Eigen::Vector3d(e / n) : Eigen::Vector3d::Zero();
 }
 
-double total_loss(const std::vector<Constraint>& cs, const Vector6d& x, double c, const LinearPrior& prior) {
+// The constraints' rows at one x: each point rotated (rp), moved (q = rp + s t) and its distance.
+// solve_lm evaluates the loss at every candidate and linearizes at the accepted one: the rows are
+// kept from the loss, not computed twice.
+struct Rows {
+  std::vector<Eigen::Vector3d> rp, q;
+  std::vector<double> r;
+};
+
+// The robust loss at x; fills `rows`. The points of one constraint set often share their time
+// fraction (all of them in the mapping step): the rotation's coefficients are computed once per run
+// of equal fractions (the same values as computed per point).
+double evaluate(const std::vector<Constraint>& cs, const Vector6d& x, double c, const LinearPrior& prior, Rows& rows) {
+  rows.rp.resize(cs.size());
+  rows.q.resize(cs.size());
+  rows.r.resize(cs.size());
   double sum = 0.0;
-  for (const auto& k : cs) sum += k.weight * bisquare_loss(constraint_distance(k, apply_motion(x, k.s, k.point)), c);
+  double last_s = 0.0;
+  bool have_s = false;
+  Eigen::Vector3d theta = Eigen::Vector3d::Zero();
+  RodriguesCoefficients coefficients(theta);
+  for (std::size_t i = 0; i < cs.size(); ++i) {
+    const Constraint& k = cs[i];
+    if (!have_s || !(k.s == last_s) || std::signbit(k.s) != std::signbit(last_s)) {
+      theta = k.s * x.tail<3>();
+      coefficients = RodriguesCoefficients(theta);
+      last_s = k.s;
+      have_s = true;
+    }
+    const Eigen::Vector3d rp = rotate(coefficients, theta, k.point);
+    const Eigen::Vector3d q = rp + k.s * x.head<3>();
+    const double r = constraint_distance(k, q);
+    rows.rp[i] = rp;
+    rows.q[i] = q;
+    rows.r[i] = r;
+    sum += k.weight * bisquare_loss(r, c);
+  }
   if (!prior.empty()) sum += 0.5 * prior.weight * (prior.A * x + prior.b).squaredNorm();
   return sum;
 }
 
-NormalEquations linearize(const std::vector<Constraint>& cs, const Vector6d& x, double c, const LinearPrior& prior) {
+// The normal equations at the x `rows` were evaluated at.
+NormalEquations linearize(const std::vector<Constraint>& cs, const Rows& rows, const Vector6d& x, double c,
+                          const LinearPrior& prior) {
   NormalEquations ne;
   if (!prior.empty()) {
     const Eigen::VectorXd r = prior.A * x + prior.b;
     ne.H.noalias() += prior.weight * prior.A.transpose() * prior.A;
     ne.g.noalias() += prior.weight * prior.A.transpose() * r;
   }
-  for (const auto& k : cs) {
-    const Eigen::Vector3d rp = rotate(k.s * x.tail<3>(), k.point);
-    const Eigen::Vector3d q = rp + k.s * x.head<3>();
-    const double r = constraint_distance(k, q);
+  for (std::size_t i = 0; i < cs.size(); ++i) {
+    const Constraint& k = cs[i];
+    const double r = rows.r[i];
     const double w = k.weight * bisquare_weight(r, c);
     if (w <= 0.0) continue;
-    const Eigen::Vector3d grad = distance_gradient(k, q);
+    const Eigen::Vector3d& rp = rows.rp[i];
+    const Eigen::Vector3d grad = distance_gradient(k, rows.q[i]);
     Eigen::Matrix<double, 1, 6> J;
     // dq/dt = s I; dq/dtheta ~= -s [R p]x (first-order rotation perturbation).
     J.head<3>() = k.s * grad.transpose();
@@ -195,9 +233,13 @@ LmSolution solve_lm(const std::vector<Constraint>& constraints, const Vector6d& 
   LmSolution sol;
   sol.x = x0;
   double lambda = p.initial_lambda;
-  double loss = total_loss(constraints, sol.x, p.bisquare_c_m, prior);
+  Rows rows, candidate_rows;  // at sol.x and at the candidate
+  double loss = evaluate(constraints, sol.x, p.bisquare_c_m, prior, rows);
+  NormalEquations ne;
+  bool linearized = false;  // ne is at sol.x (a rejected step leaves x, and so ne, as they were)
   for (sol.iterations = 0; sol.iterations < p.max_iterations;) {
-    const NormalEquations ne = linearize(constraints, sol.x, p.bisquare_c_m, prior);
+    if (!linearized) ne = linearize(constraints, rows, sol.x, p.bisquare_c_m, prior);
+    linearized = true;
     ++sol.iterations;
     Vector6d delta;
     if (ne.rows < 6 || !lm_step(ne, lambda, p.degenerate_min_eigenvalue, delta, sol.degenerate_dims)) {
@@ -205,10 +247,12 @@ LmSolution solve_lm(const std::vector<Constraint>& constraints, const Vector6d& 
       break;
     }
     const Vector6d candidate = sol.x + delta;
-    const double candidate_loss = total_loss(constraints, candidate, p.bisquare_c_m, prior);
+    const double candidate_loss = evaluate(constraints, candidate, p.bisquare_c_m, prior, candidate_rows);
     if (candidate_loss <= loss) {
       sol.x = candidate;
       loss = candidate_loss;
+      std::swap(rows, candidate_rows);
+      linearized = false;
       lambda = std::max(lambda * 0.1, 1e-7);
       if (delta.head<3>().norm() < p.converged_translation_m && delta.tail<3>().norm() < p.converged_rotation_rad) {
         sol.converged = true;
@@ -223,8 +267,7 @@ LmSolution solve_lm(const std::vector<Constraint>& constraints, const Vector6d& 
     }
   }
   double sq = 0.0;
-  for (const auto& k : constraints) {
-    const double r = constraint_distance(k, apply_motion(sol.x, k.s, k.point));
+  for (const double r : rows.r) {  // the distances at sol.x
     if (std::abs(r) < p.bisquare_c_m) {
       ++sol.inliers;
       sq += r * r;
