@@ -212,6 +212,7 @@ void Navigator::track_moving_obstacles() {
     for (const auto& p : o.points_map) pts.emplace_back(p.x(), p.y()), heights.push_back(p.z());
   }
   if (pts.empty()) return;
+  moving_->set_static_structure(global_.occupancy(), now_s_);  // walls' pieces are not movers
   moving_->update(pts, heights, localizer_.T_map_base(), now_s_);
   // Moving obstacles stay out of the global map (their trail would block the lanes they crossed);
   // the local map and the local planner's prediction handle them.

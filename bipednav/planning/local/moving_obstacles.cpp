@@ -71,6 +71,50 @@ void MovingObstacleParams::validate() const {
   require(positive(max_coast_s), "moving_obstacles.max_coast_s", "> 0");
   require(std::isfinite(coast_max_growth_m) && coast_max_growth_m >= 0.0, "moving_obstacles.coast_max_growth_m",
           ">= 0");
+  require(std::isfinite(structure_age_s) && structure_age_s >= 0.0, "moving_obstacles.structure_age_s", ">= 0");
+  require(std::isfinite(structure_margin_m) && structure_margin_m >= 0.0, "moving_obstacles.structure_margin_m",
+          ">= 0");
+  require(positive(structure_min_fraction) && structure_min_fraction <= 1.0, "moving_obstacles.structure_min_fraction",
+          "in (0, 1]");
+}
+
+void StaticStructure::update(const mapping::Costmap2D& occupancy, double stamp_s) {
+  if (!std::isfinite(stamp_s) || stamp_s <= stamp_s_) return;
+  const mapping::GridGeometry& g = occupancy.geometry();
+  if (since_.size() != g.size() || g.width != geometry_.width || g.resolution_m != geometry_.resolution_m ||
+      g.origin_x_m != geometry_.origin_x_m || g.origin_y_m != geometry_.origin_y_m) {
+    geometry_ = g;
+    since_.assign(g.size(), kInf);
+  }
+  const auto& cost = occupancy.data();
+  for (std::size_t i = 0; i < since_.size(); ++i) {
+    if (cost[i] != mapping::kLethal)
+      since_[i] = kInf;
+    else if (since_[i] == kInf)
+      since_[i] = stamp_s;
+  }
+  stamp_s_ = stamp_s;
+}
+
+void StaticStructure::clear() {
+  since_.clear();
+  geometry_ = {};
+  stamp_s_ = -1e300;
+}
+
+bool StaticStructure::near(const Eigen::Vector2d& p, double margin_m, double min_age_s) const {
+  if (since_.empty() || !p.allFinite()) return false;
+  const auto c = geometry_.world_to_cell_unbounded(p.x(), p.y());
+  if (!c) return false;
+  const int k = static_cast<int>(std::ceil(margin_m / geometry_.resolution_m - 1e-9));
+  const double latest = stamp_s_ - min_age_s;
+  for (int dy = -k; dy <= k; ++dy) {
+    for (int dx = -k; dx <= k; ++dx) {
+      const int x = c->x + dx, y = c->y + dy;
+      if (geometry_.in_bounds(x, y) && since_[geometry_.index(x, y)] <= latest) return true;
+    }
+  }
+  return false;
 }
 
 void SensorVisibilityParams::validate() const {
@@ -141,7 +185,9 @@ void DynamicAvoidanceParams::validate() const {
 }
 
 std::vector<Blob> cluster_blobs(const std::vector<Eigen::Vector2d>& points, const Eigen::Vector2d& center,
-                                const MovingObstacleParams& params, const std::vector<double>& heights) {
+                                const MovingObstacleParams& params, const std::vector<double>& heights,
+                                const StaticStructure* structure) {
+  const bool check_structure = params.ignore_static_structure && structure != nullptr && !structure->empty();
   require(heights.empty() || heights.size() == points.size(), "cluster_blobs heights",
           "empty or one per point (" + std::to_string(points.size()) + "), got " + std::to_string(heights.size()));
   std::vector<Blob> out;
@@ -253,7 +299,18 @@ std::vector<Blob> cluster_blobs(const std::vector<Eigen::Vector2d>& points, cons
       for (std::size_t k = cells[c].first; k < cells[c].second; ++k)
         b.radius_m = std::max(b.radius_m, (points[order[k]] - b.centroid).norm());
     }
-    if (b.points >= params.min_points && b.radius_m <= params.max_blob_radius_m) out.push_back(b);
+    if (b.points < params.min_points || b.radius_m > params.max_blob_radius_m) continue;
+    if (check_structure) {
+      // The share of the blob's binning cells (at their centres) on long-standing structure.
+      std::size_t on = 0;
+      for (const std::size_t c : members) {
+        const Eigen::Vector2d q((static_cast<double>(cell_xy[c].first) + 0.5) * cell,
+                                (static_cast<double>(cell_xy[c].second) + 0.5) * cell);
+        if (structure->near(q, params.structure_margin_m, params.structure_age_s)) ++on;
+      }
+      if (static_cast<double>(on) >= params.structure_min_fraction * static_cast<double>(members.size())) continue;
+    }
+    out.push_back(b);
   }
   return out;
 }
@@ -262,21 +319,26 @@ MovingObstacleTracker::MovingObstacleTracker(MovingObstacleParams params) : para
   params_.validate();
 }
 
+void MovingObstacleTracker::set_static_structure(const mapping::Costmap2D& occupancy, double stamp_s) {
+  if (params_.enabled && params_.ignore_static_structure) structure_.update(occupancy, stamp_s);
+}
+
 void MovingObstacleTracker::clear() {
   tracks_.clear();
+  structure_.clear();
   last_stamp_s_ = -1e300;
 }
 
 void MovingObstacleTracker::update(const std::vector<Eigen::Vector2d>& points, const Eigen::Vector2d& robot,
                                    double stamp_s) {
   if (!params_.enabled || !std::isfinite(stamp_s) || !robot.allFinite()) return;
-  update_blobs(cluster_blobs(points, robot, params_), stamp_s);
+  update_blobs(cluster_blobs(points, robot, params_, {}, &structure_), stamp_s);
 }
 
 void MovingObstacleTracker::update(const std::vector<Eigen::Vector2d>& points, const std::vector<double>& heights,
                                    const Pose2& robot, double stamp_s) {
   if (!params_.enabled || !std::isfinite(stamp_s) || !robot.is_finite()) return;
-  update_blobs(cluster_blobs(points, robot.position(), params_, heights), stamp_s, robot);
+  update_blobs(cluster_blobs(points, robot.position(), params_, heights, &structure_), stamp_s, robot);
 }
 
 namespace {
