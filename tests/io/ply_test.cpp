@@ -10,7 +10,7 @@
 namespace bipednav::io {
 namespace {
 
-std::string expect_error(const std::string& bytes) {
+std::string expect_ply_error(const std::string& bytes) {
   try {
     parse_ply(bytes, "bad.ply");
   } catch (const FileError& e) {
@@ -52,7 +52,7 @@ TEST(Ply, ReadsBinaryLittleEndianAfterAnotherElement) {
   EXPECT_EQ(c.points[0], Eigen::Vector3f(0.25f, -1.0f, 3.0f));
   EXPECT_EQ(c.points[1], Eigen::Vector3f(-7.0f, 8.5f, -2.0f));
   EXPECT_FALSE(c.has_intensity());
-  EXPECT_NE(expect_error(s.substr(0, s.size() - 1)).find("bad.ply:element vertex 1, property 'z': truncated"),
+  EXPECT_NE(expect_ply_error(s.substr(0, s.size() - 1)).find("bad.ply:element vertex 1, property 'z': truncated"),
             std::string::npos);
 }
 
@@ -64,14 +64,14 @@ TEST(Ply, BadListLengthsAndEmptyItemsDoNotCrashOrHang) {
   const auto put = [&](const auto v) { s.append(reinterpret_cast<const char*>(&v), sizeof(v)); };
   put(1e30f);
   s += std::string(12, '\0');
-  EXPECT_NE(expect_error(s).find("bad.ply:element cam 0, property 'p': expected a non-negative whole list length"),
+  EXPECT_NE(expect_ply_error(s).find("bad.ply:element cam 0, property 'p': expected a non-negative whole list length"),
             std::string::npos);
   const std::string head = s.substr(0, s.find("end_header\n") + 11);
   for (const float n : {std::numeric_limits<float>::infinity(), 2.5f, 1000.0f}) {
     s = head;
     put(n);
     s += std::string(12, '\0');
-    EXPECT_NE(expect_error(s).find("list length"), std::string::npos) << n;
+    EXPECT_NE(expect_ply_error(s).find("list length"), std::string::npos) << n;
   }
   s = "ply\nformat binary_little_endian 1.0\nelement cam 18446744073709551615\n" + vertex;
   put(1.0f);
@@ -84,17 +84,18 @@ TEST(Ply, BadListLengthsAndEmptyItemsDoNotCrashOrHang) {
 
 TEST(Ply, MalformedFilesNameFileAndField) {
   const std::string head = "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\n";
-  EXPECT_NE(expect_error(head + "end_header\n1 2\n3 4\n").find("no property 'z'"), std::string::npos);
+  EXPECT_NE(expect_ply_error(head + "end_header\n1 2\n3 4\n").find("no property 'z'"), std::string::npos);
   const std::string xyz = head + "property float z\nend_header\n";
-  EXPECT_NE(expect_error(xyz + "1 2 3\n").find("truncated: expected 2 items"), std::string::npos);
-  EXPECT_NE(expect_error(xyz + "1 2 3\n4 x 6\n").find("bad.ply:line 9, property 'y'"), std::string::npos);
-  EXPECT_NE(expect_error(xyz + "1 2 3\n4 5\n").find("expected 3 vertex values"), std::string::npos);
-  EXPECT_NE(expect_error("plx\n").find("bad.ply:line 1: expected the magic word"), std::string::npos);
-  EXPECT_NE(expect_error("ply\nformat binary_big_endian 1.0\n").find("not supported"), std::string::npos);
-  EXPECT_NE(expect_error("ply\nformat ascii 1.0\nelement vertex 1\nproperty quad x\n").find("line 4: unknown property"),
-            std::string::npos);
-  EXPECT_NE(expect_error("ply\nformat ascii 1.0\nelement vertex 1\n").find("no end_header"), std::string::npos);
-  EXPECT_NE(expect_error("ply\nformat ascii 1.0\nelement face 0\nend_header\n").find("no 'vertex' element"),
+  EXPECT_NE(expect_ply_error(xyz + "1 2 3\n").find("truncated: expected 2 items"), std::string::npos);
+  EXPECT_NE(expect_ply_error(xyz + "1 2 3\n4 x 6\n").find("bad.ply:line 9, property 'y'"), std::string::npos);
+  EXPECT_NE(expect_ply_error(xyz + "1 2 3\n4 5\n").find("expected 3 vertex values"), std::string::npos);
+  EXPECT_NE(expect_ply_error("plx\n").find("bad.ply:line 1: expected the magic word"), std::string::npos);
+  EXPECT_NE(expect_ply_error("ply\nformat binary_big_endian 1.0\n").find("not supported"), std::string::npos);
+  EXPECT_NE(
+      expect_ply_error("ply\nformat ascii 1.0\nelement vertex 1\nproperty quad x\n").find("line 4: unknown property"),
+      std::string::npos);
+  EXPECT_NE(expect_ply_error("ply\nformat ascii 1.0\nelement vertex 1\n").find("no end_header"), std::string::npos);
+  EXPECT_NE(expect_ply_error("ply\nformat ascii 1.0\nelement face 0\nend_header\n").find("no 'vertex' element"),
             std::string::npos);
   EXPECT_THROW(read_ply("/nonexistent/cloud.ply"), FileError);
 }

@@ -66,7 +66,7 @@ Observation wall_returns() {
   return obs;
 }
 
-long count(const Costmap2D& g, std::uint8_t v) { return std::count(g.data().begin(), g.data().end(), v); }
+long count_cells(const Costmap2D& g, std::uint8_t v) { return std::count(g.data().begin(), g.data().end(), v); }
 
 }  // namespace
 
@@ -74,23 +74,23 @@ TEST(MarkDecay, AMarkPassedUnconfirmedExpiresAfterItsLifetime) {
   ObstacleLayer layer({4.0, 5.0, true, 5});
   Costmap2D grid(kGrid, kUnknown);
   layer.update(grid, {low_obstacle()});
-  const long marked = count(grid, kLethal);
+  const long marked = count_cells(grid, kLethal);
   ASSERT_GE(marked, 6);
   const auto c = kGrid.world_to_cell(1.0, 0.0);
   ASSERT_TRUE(c);
   // Updates whose rays do not pass it (out of every sensor's view) do not age it.
   for (int i = 0; i < 50; ++i) layer.update(grid, {});
-  EXPECT_EQ(count(grid, kLethal), marked);
+  EXPECT_EQ(count_cells(grid, kLethal), marked);
   EXPECT_EQ(layer.mark_age(c->x, c->y), 0);
   for (int i = 1; i <= 5; ++i) {  // five updates whose LiDAR rays pass over it: still there
     layer.update(grid, {sweep()});
-    EXPECT_EQ(count(grid, kLethal), marked) << "update " << i;
+    EXPECT_EQ(count_cells(grid, kLethal), marked) << "update " << i;
     EXPECT_EQ(layer.mark_age(c->x, c->y), i);
   }
   layer.update(grid, {});  // an update that passes nothing in between does not count
-  EXPECT_EQ(count(grid, kLethal), marked);
+  EXPECT_EQ(count_cells(grid, kLethal), marked);
   const CellRect changed = layer.update(grid, {sweep()});  // the sixth pass: older than five
-  EXPECT_EQ(count(grid, kLethal), 0);
+  EXPECT_EQ(count_cells(grid, kLethal), 0);
   EXPECT_EQ(grid.cost(c->x, c->y), kUnknown);  // not known any more, not seen free either
   EXPECT_TRUE(changed.contains(c->x, c->y));
   EXPECT_EQ(layer.mark_age(c->x, c->y), -1);
@@ -100,12 +100,12 @@ TEST(MarkDecay, ManyRaysInOneUpdateCountOnce) {
   ObstacleLayer layer({4.0, 5.0, true, 2});
   Costmap2D grid(kGrid, kUnknown);
   layer.update(grid, {low_obstacle()});
-  const long marked = count(grid, kLethal);
+  const long marked = count_cells(grid, kLethal);
   layer.update(grid, {sweep(), sweep(2.2f, 1.0f), sweep(2.0f, 1.1f)});
   layer.update(grid, {sweep(), sweep(2.2f, 1.0f)});
-  EXPECT_EQ(count(grid, kLethal), marked);
+  EXPECT_EQ(count_cells(grid, kLethal), marked);
   layer.update(grid, {sweep()});
-  EXPECT_EQ(count(grid, kLethal), 0);
+  EXPECT_EQ(count_cells(grid, kLethal), 0);
 }
 
 TEST(MarkDecay, AReObservedMarkSurvivesAndTheOthersGo) {
@@ -136,13 +136,13 @@ TEST(MarkDecay, AWallSeenEverySweepNeverExpires) {
   ObstacleLayer layer({10.0, 12.0, true, 3});
   Costmap2D grid(kGrid, kUnknown);
   layer.update(grid, {wall_returns()});
-  const long marked = count(grid, kLethal);
+  const long marked = count_cells(grid, kLethal);
   ASSERT_GE(marked, 40);
   const auto c = kGrid.world_to_cell(2.0, 0.0);
   ASSERT_TRUE(c);
   // Rays to 1.3 m at 2.4 m pass 1.31-1.33 m over the wall's cells: each sweep passes and confirms them.
   for (int i = 0; i < 100; ++i) layer.update(grid, {wall_returns(), sweep(2.4f, 1.3f)});
-  EXPECT_EQ(count(grid, kLethal), marked);
+  EXPECT_EQ(count_cells(grid, kLethal), marked);
   EXPECT_EQ(layer.mark_age(c->x, c->y), 0);
 }
 
@@ -151,21 +151,21 @@ TEST(MarkDecay, ALowObstacleSurvivesTheLidarRaysUntilItsLifetime) {
   ObstacleLayer layer({4.0, 5.0, true, 20});
   Costmap2D grid(kGrid, kUnknown);
   layer.update(grid, {low_obstacle()});
-  const long marked = count(grid, kLethal);
+  const long marked = count_cells(grid, kLethal);
   ASSERT_GE(marked, 6);
   for (int i = 1; i <= 20; ++i) {
     layer.update(grid, {rays(1.47, 2.4f, 0.9f)});
-    ASSERT_EQ(count(grid, kLethal), marked) << "update " << i;
+    ASSERT_EQ(count_cells(grid, kLethal), marked) << "update " << i;
   }
   layer.update(grid, {rays(1.47, 2.4f, 0.9f)});
-  EXPECT_EQ(count(grid, kLethal), 0);
+  EXPECT_EQ(count_cells(grid, kLethal), 0);
 
   // Without heights the first LiDAR sweep erases it (the 2D layer's behaviour).
   ObstacleLayer flat({4.0, 5.0, false, 20});
   Costmap2D flat_grid(kGrid, kUnknown);
   flat.update(flat_grid, {low_obstacle()});
   flat.update(flat_grid, {rays(1.47, 2.4f, 0.9f)});
-  EXPECT_EQ(count(flat_grid, kLethal), 0);
+  EXPECT_EQ(count_cells(flat_grid, kLethal), 0);
 }
 
 TEST(MarkDecay, RaysCrossingTheBandClearAtOnce) {
@@ -174,9 +174,9 @@ TEST(MarkDecay, RaysCrossingTheBandClearAtOnce) {
   ObstacleLayer layer({4.0, 5.0, true, 1000});
   Costmap2D grid(kGrid, kUnknown);
   layer.update(grid, {low_obstacle()});
-  ASSERT_GE(count(grid, kLethal), 6);
+  ASSERT_GE(count_cells(grid, kLethal), 6);
   layer.update(grid, {rays(0.95, 1.6f, 0.0f)});  // 0.33-0.36 m high at x = 1.0-1.05 m
-  EXPECT_EQ(count(grid, kLethal), 0);
+  EXPECT_EQ(count_cells(grid, kLethal), 0);
 }
 
 TEST(MarkDecay, ObstaclesSetElsewhereDoNotDecay) {
@@ -220,7 +220,7 @@ TEST(MarkDecay, RollingWindowCarriesTheAges) {
   p.mark_decay_s = 0.5;  // 5 updates at 10 Hz
   LocalCostmap local(p);
   local.update({0.0, 0.0, 0.0}, {low_obstacle()});
-  const auto lethal = [&] { return count(local.obstacles(), kLethal); };
+  const auto lethal = [&] { return count_cells(local.obstacles(), kLethal); };
   const long marked = lethal();
   ASSERT_GE(marked, 6);
   // The window moves with the robot; the LiDAR (kept at the origin here) passes over the obstacle.

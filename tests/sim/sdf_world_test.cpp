@@ -22,7 +22,7 @@ const Geometry* find_geometry(const World& w, const std::string& needle) {
   return nullptr;
 }
 
-fs::path write_temp(const std::string& name, const std::string& text) {
+fs::path write_temp_world(const std::string& name, const std::string& text) {
   const fs::path p = fs::temp_directory_path() / ("bipednav_sdf_test_" + name);
   std::ofstream(p) << text;
   return p;
@@ -118,7 +118,7 @@ TEST(SdfWorld, BarnWorldLoads) {
 }
 
 TEST(SdfWorld, ActorTrajectoryLoopAndDelay) {
-  const fs::path file = write_temp("actor.world", R"(<?xml version="1.0"?>
+  const fs::path file = write_temp_world("actor.world", R"(<?xml version="1.0"?>
 <sdf version="1.8"><world name="w">
   <actor name="box_actor">
     <link name="body"><collision name="c"><pose>0 0 1 0 0 0</pose>
@@ -169,7 +169,7 @@ TEST(SdfWorld, IncludeAndNestedPosesCompose) {
     <static>true</static><pose>1 0 0 0 0 0</pose>
     <link name="l"><pose>0 1 0 0 0 0</pose><collision name="c"><pose>0 0 0.5 0 0 0</pose>
       <geometry><box><size>0.2 0.2 1</size></box></geometry></collision></link></model></sdf>)";
-  const fs::path file = write_temp("include.world", R"(<?xml version="1.0"?><sdf version="1.8"><world name="w">
+  const fs::path file = write_temp_world("include.world", R"(<?xml version="1.0"?><sdf version="1.8"><world name="w">
     <model name="group"><static>true</static><pose>10 0 0 0 0 1.5707963267948966</pose>
       <include><uri>model://post</uri><pose>1 0 0 0 0 0</pose></include></model></world></sdf>)");
   const World w = load_sdf_world(file, {dir});
@@ -181,14 +181,15 @@ TEST(SdfWorld, IncludeAndNestedPosesCompose) {
 
 TEST(SdfWorld, BadInputsNameTheFile) {
   EXPECT_THROW(load_sdf_world("/nonexistent/x.world"), FileError);
-  const fs::path bad = write_temp("bad.world", "<sdf version='1.8'><world name='w'><model name='m'><link name='l'>");
+  const fs::path bad =
+      write_temp_world("bad.world", "<sdf version='1.8'><world name='w'><model name='m'><link name='l'>");
   try {
     load_sdf_world(bad);
     FAIL();
   } catch (const FileError& e) {
     EXPECT_NE(std::string(e.what()).find(bad.string()), std::string::npos) << e.what();
   }
-  const fs::path no_mesh = write_temp("nomesh.world", R"(<?xml version="1.0"?><sdf version="1.8"><world name="w">
+  const fs::path no_mesh = write_temp_world("nomesh.world", R"(<?xml version="1.0"?><sdf version="1.8"><world name="w">
     <model name="m"><static>true</static><link name="l"><collision name="c"><geometry><mesh>
     <uri>model://missing/meshes/x.dae</uri></mesh></geometry></collision></link></model></world></sdf>)");
   try {
@@ -199,7 +200,7 @@ TEST(SdfWorld, BadInputsNameTheFile) {
   }
   // libsdformat throws std::invalid_argument (std::stoi) on a non-numeric version: found by fuzz_sdf_world.
   const fs::path bad_version =
-      write_temp("badversion.world", R"(<?xml version="1.0"?><sdf version="1.x"><world name="w"></world></sdf>)");
+      write_temp_world("badversion.world", R"(<?xml version="1.0"?><sdf version="1.x"><world name="w"></world></sdf>)");
   try {
     load_sdf_world(bad_version);
     FAIL();
