@@ -192,7 +192,7 @@ LoamOutput Loam::process(const PointCloud& sweep, const std::optional<SE3>& moti
     if (odometry_matched) last_prior_error_ = *last_prior_ - se3_to_motion(motion);
   }
   out.T_prev_lidar = motion;
-  out.deskewed = deskew_to_end(clean, motion, p_.odometry.scan_period_s);
+  if (p_.output_deskewed) out.deskewed = deskew_to_end(clean, motion, p_.odometry.scan_period_s);
   out.odometry_ms = sw.elapsed_ms();
   // The first sweep's own motion is unknown (it has nothing to match), so mapping starts with the
   // second sweep rather than putting a distorted sweep into the map.

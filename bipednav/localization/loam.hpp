@@ -42,6 +42,9 @@ struct LoamParams {
   // constrains them from the ground for the same reason).
   bool planar_motion = false;
   SE3 T_world_lidar_initial = SE3::Identity();  // anchors the first sweep in the world (map) frame
+  // Fill LoamOutput::deskewed (the whole sweep moved to its end pose). Off where only the pose is
+  // read (the navigator's Localizer): the de-skew does not feed the pose.
+  bool output_deskewed = true;
   void validate() const;
 };
 
@@ -54,6 +57,7 @@ struct LoamOutput {
   double odometry_ms = 0.0;             // features + odometry + de-skew
   double mapping_ms = 0.0;              // 0 on sweeps without a mapping step
   PointCloud deskewed;                  // the valid points in the LiDAR frame at the sweep end
+                                        // (empty unless LoamParams::output_deskewed)
   SE3 T_prev_lidar = SE3::Identity();   // estimated LiDAR motion since the previous sweep
   bool mapped = false;                  // a mapping step ran on this sweep
   bool prior_change_used = false;       // the reference was projected with the (checked) prior change

@@ -25,7 +25,11 @@ Localizer::Localizer(LocalizerParams params, const RobotProfile& robot, const Po
       has_lidar_ = true;
     }
   }
-  if (params_.method == "loam" && has_lidar_) loam_ = std::make_unique<localization::Loam>(params_.loam);
+  if (params_.method == "loam" && has_lidar_) {
+    localization::LoamParams lp = params_.loam;
+    lp.output_deskewed = false;  // only the pose is read
+    loam_ = std::make_unique<localization::Loam>(std::move(lp));
+  }
 }
 
 void Localizer::reset(const Pose2& T_map_base) {
