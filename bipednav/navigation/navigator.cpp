@@ -205,8 +205,15 @@ void Navigator::update_maps() {
 void Navigator::track_moving_obstacles() {
   if (!params_.moving_obstacles.enabled) return;  // switched off: no point copies on the loop's hot path
   // The obstacle points of every sensor since the last local map update, in the map frame.
-  std::vector<Eigen::Vector2d> pts;
-  std::vector<double> heights;  // the map's z: above the floor
+  std::vector<Eigen::Vector2d>& pts = moving_points_;
+  std::vector<double>& heights = moving_heights_;  // the map's z: above the floor
+  pts.clear();
+  heights.clear();
+  std::size_t total = 0;
+  for (const auto& o : local_obs_)
+    if (o.marking) total += o.points_map.size();
+  pts.reserve(total);
+  heights.reserve(total);
   for (const auto& o : local_obs_) {
     if (!o.marking) continue;
     for (const auto& p : o.points_map) pts.emplace_back(p.x(), p.y()), heights.push_back(p.z());

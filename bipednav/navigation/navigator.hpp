@@ -126,6 +126,8 @@ class Navigator {
   perception::PerceptionInput perception_in_;  // this tick's admitted clouds (buffer kept between ticks)
   std::vector<mapping::Observation> local_obs_, lidar_obs_;
   std::vector<std::vector<Eigen::Vector3f>> spare_points_;  // point buffers of used observations, for reuse
+  std::vector<Eigen::Vector2d> moving_points_;              // track_moving_obstacles' input, kept for reuse
+  std::vector<double> moving_heights_;
   std::optional<Pose2> goal_;
   Path global_path_;
   NavStatus status_;
