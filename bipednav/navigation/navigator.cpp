@@ -267,16 +267,32 @@ Twist Navigator::yield_to_moving_obstacles(const Twist& cmd) const {
   const planning::local::CommandLimits lim{robot_.max_vel_x_mps, robot_.max_vel_x_backwards_mps,
                                            robot_.max_vel_theta_radps, robot_.acc_lim_x_mps2,
                                            robot_.acc_lim_theta_radps2};
-  return planning::local::yield_to_moving_obstacles(cmd, localizer_.T_map_base(), localizer_.velocity(), moving,
+  return planning::local::yield_to_moving_obstacles(cmd, localizer_.T_map_base(), reference_velocity(), moving,
                                                     local_.costmap(), lim, 1.0 / params_.control_rate_hz, now_s_,
                                                     params_.server.local.avoidance)
       .cmd;
 }
 
+Twist acceleration_reference(const Twist& measured, const Twist& last_command) {
+  // While slowing down, the lagging measurement would undo the braking already commanded; while
+  // speeding up it keeps the commands from running ahead of a robot that cannot follow.
+  const auto pick = [](double commanded, double actual) {
+    return std::abs(commanded) < std::abs(actual) ? commanded : actual;
+  };
+  Twist v = measured;
+  v.linear_x = pick(last_command.linear_x, measured.linear_x);
+  v.angular_z = pick(last_command.angular_z, measured.angular_z);
+  return v;
+}
+
+Twist Navigator::reference_velocity() const {
+  return params_.brake_from_last_command ? acceleration_reference(localizer_.velocity(), cmd_) : localizer_.velocity();
+}
+
 bool Navigator::sensors_alive() const { return gate_.all_alive(now_s_); }
 
 void Navigator::control() {
-  server_->set_view({now_s_, localizer_.T_map_base(), localizer_.velocity()});
+  server_->set_view({now_s_, localizer_.T_map_base(), reference_velocity()});
   // Plans and goal checks wait for the first map built from the sensors.
   if (status_.state != NavState::ACTIVE || !map_ready_) {
     server_->stop();

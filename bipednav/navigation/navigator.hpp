@@ -32,11 +32,23 @@ struct NavigatorParams {
   SensorGateParams sensors;       // stale / out-of-order / NaN data; SensorsAlive = no range sensor silent
   planning::local::MovingObstacleParams moving_obstacles;  // blob tracking at the local map's rate
   std::string behavior_tree;                               // BT XML file (navigate.xml)
+  // The local planner and the moving-obstacle yield limit their accelerations from (and roll out
+  // from) the measured velocity, or, with this on, from the last command while it is the slower
+  // (acceleration_reference). A walker follows its commands with a lag (0.3 s on Digit), so a
+  // command clamped to the measured velocity minus one period's change brakes at about a third of
+  // the limit: in digit_lab_dynamic seed 9 Digit, told to stop for the person 1.3 s ahead, kept
+  // 0.4 m/s for 1 s and walked 0.9 m into its lane. On for walkers (for_robot).
+  bool brake_from_last_command = false;
 
   // Defaults with footprint-dependent values (inscribed radius, velocity limits) from the robot.
   static NavigatorParams for_robot(const RobotProfile& robot);
   void validate() const;
 };
+
+// The velocity a command's acceleration limits apply from: per component, the last command when
+// it is slower than the measured velocity (the robot is still catching up with a slow-down), else
+// the measured velocity.
+Twist acceleration_reference(const Twist& measured, const Twist& last_command);
 
 // The profile's LiDAR mount name (empty without one) and its depth camera mount names.
 std::string lidar_mount_name(const RobotProfile& robot);
@@ -106,6 +118,7 @@ class Navigator {
   void update_maps();
   void track_moving_obstacles();
   Twist yield_to_moving_obstacles(const Twist& cmd) const;
+  Twist reference_velocity() const;  // see NavigatorParams::brake_from_last_command
   void control();
   void register_leaves(BtFactory& factory);
   bool sensors_alive() const;

@@ -63,6 +63,8 @@ NavigatorParams NavigatorParams::for_robot(const RobotProfile& robot) {
   // Digit) makes its band oscillate around obstacles, so walkers default to the path tracker
   // (with its forward collision check) until TEB models the lag. `run --local-planner teb` overrides.
   if (robot.kind == "walker") p.server.local_planner = "tracker";
+  // A walker brakes from its last command, not from its lagging odometry.
+  p.brake_from_last_command = robot.kind == "walker";
   p.behavior_tree = config_dir() + "/behavior_trees/navigate.xml";
   return p;
 }
