@@ -10,43 +10,11 @@
 
 namespace bipednav::mapping {
 
-// Visits the cells of the 8-connected Bresenham line from `a` to `b`: `a` first, `b` last (only
-// when `include_end`). Every step moves one cell along the major axis, so the line has
-// max(|dx|, |dy|) + 1 cells and no cell twice.
-template <typename Visit>
-void for_each_line_cell(Cell a, Cell b, bool include_end, Visit&& visit) {
-  const int dx = std::abs(b.x - a.x), dy = std::abs(b.y - a.y);
-  const int sx = b.x >= a.x ? 1 : -1, sy = b.y >= a.y ? 1 : -1;
-  int x = a.x, y = a.y;
-  if (dx >= dy) {
-    int err = 2 * dy - dx;
-    for (int i = 0; i < dx; ++i) {
-      visit(x, y);
-      if (err > 0) {
-        y += sy;
-        err -= 2 * dx;
-      }
-      err += 2 * dy;
-      x += sx;
-    }
-  } else {
-    int err = 2 * dx - dy;
-    for (int i = 0; i < dy; ++i) {
-      visit(x, y);
-      if (err > 0) {
-        x += sx;
-        err -= 2 * dy;
-      }
-      err += 2 * dx;
-      y += sy;
-    }
-  }
-  if (include_end) visit(x, y);
-}
-
-// for_each_line_cell on a row-major grid `width` cells wide: the same cells in the same order,
-// each with its index (y * width + x). The minor-axis step is taken without a branch: on a ray
-// trace's long lines it is taken at random and mispredicted often.
+// Visits the cells of the 8-connected Bresenham line from `a` to `b` on a row-major grid `width`
+// cells wide, each with its index (y * width + x): `a` first, `b` last (only when `include_end`).
+// Every step moves one cell along the major axis, so the line has max(|dx|, |dy|) + 1 cells and no
+// cell twice. The minor-axis step is taken without a branch: on a ray trace's long lines it is
+// taken at random and mispredicted often.
 template <typename Visit>
 void for_each_line_index(Cell a, Cell b, bool include_end, int width, Visit&& visit) {
   const int dx = std::abs(b.x - a.x), dy = std::abs(b.y - a.y);
@@ -73,6 +41,12 @@ void for_each_line_index(Cell a, Cell b, bool include_end, int width, Visit&& vi
     i += major_i;
   }
   if (include_end) visit(static_cast<std::size_t>(i), x, y);
+}
+
+// for_each_line_index without the grid: visit(x, y) for the same cells in the same order.
+template <typename Visit>
+void for_each_line_cell(Cell a, Cell b, bool include_end, Visit&& visit) {
+  for_each_line_index(a, b, include_end, 0, [&](std::size_t, int x, int y) { visit(x, y); });
 }
 
 // The cells of the Bresenham line from `a` to `b` (see for_each_line_cell).

@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <set>
+#include <vector>
 
 using namespace bipednav::mapping;
 
@@ -31,14 +33,42 @@ TEST(RayTrace, BresenhamLinesAreConnectedAndEndExact) {
   EXPECT_EQ(l, expect);
 }
 
+namespace {
+
+// The textbook Bresenham line (a branch for the minor-axis step), the reference for the
+// branch-free one in ray_trace.hpp.
+std::vector<Cell> reference_line(Cell a, Cell b, bool include_end) {
+  std::vector<Cell> out;
+  const int dx = std::abs(b.x - a.x), dy = std::abs(b.y - a.y);
+  const int sx = b.x >= a.x ? 1 : -1, sy = b.y >= a.y ? 1 : -1;
+  const bool x_major = dx >= dy;
+  const int n = x_major ? dx : dy, m = x_major ? dy : dx;
+  int x = a.x, y = a.y, err = 2 * m - n;
+  for (int k = 0; k < n; ++k) {
+    out.push_back({x, y});
+    if (err > 0) {
+      (x_major ? y : x) += x_major ? sy : sx;
+      err -= 2 * n;
+    }
+    err += 2 * m;
+    (x_major ? x : y) += x_major ? sx : sy;
+  }
+  if (include_end) out.push_back({x, y});
+  return out;
+}
+
+}  // namespace
+
 TEST(RayTrace, LineIndicesAreTheLineCells) {
-  // for_each_line_index visits exactly for_each_line_cell's cells, in order, with their indices.
+  // for_each_line_index visits exactly the reference line's cells, in order, with their indices;
+  // line_cells (for_each_line_cell) gives the same cells.
   const int width = 37;
   for (const bool include_end : {true, false})
     for (int bx = -40; bx <= 40; ++bx)
       for (int by = -40; by <= 40; ++by) {
         const Cell a{50, 60}, b{50 + bx, 60 + by};
-        const auto cells = line_cells(a, b, include_end);
+        const auto cells = reference_line(a, b, include_end);
+        ASSERT_EQ(line_cells(a, b, include_end), cells) << bx << " " << by;
         std::vector<Cell> seen;
         for_each_line_index(a, b, include_end, width, [&](std::size_t i, int x, int y) {
           EXPECT_EQ(i, static_cast<std::size_t>(y) * width + static_cast<std::size_t>(x));
