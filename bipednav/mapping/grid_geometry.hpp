@@ -22,6 +22,7 @@ struct GridGeometry {
   double origin_x_m = 0.0;
   double origin_y_m = 0.0;
 
+  bool operator==(const GridGeometry&) const = default;
   std::size_t size() const { return static_cast<std::size_t>(width) * static_cast<std::size_t>(height); }
   bool in_bounds(int x, int y) const { return x >= 0 && y >= 0 && x < width && y < height; }
   bool in_bounds(const Cell& c) const { return in_bounds(c.x, c.y); }

@@ -8,9 +8,7 @@ DStarLitePlanner::DStarLitePlanner(const GlobalPlannerParams& params) : params_(
 
 bool DStarLitePlanner::can_repair(const mapping::Costmap2D& map, std::size_t goal) const {
   const auto& g = map.geometry();
-  return !needs_reset_ && dstar_.initialized() && goal == dstar_.goal() && g.width == geometry_.width &&
-         g.height == geometry_.height && g.resolution_m == geometry_.resolution_m &&
-         g.origin_x_m == geometry_.origin_x_m && g.origin_y_m == geometry_.origin_y_m;
+  return !needs_reset_ && dstar_.initialized() && goal == dstar_.goal() && g == geometry_;
 }
 
 std::vector<CellUpdate> DStarLitePlanner::collect_updates(const mapping::Costmap2D& map,

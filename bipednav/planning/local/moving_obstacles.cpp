@@ -81,8 +81,7 @@ void MovingObstacleParams::validate() const {
 void StaticStructure::update(const mapping::Costmap2D& occupancy, double stamp_s) {
   if (!std::isfinite(stamp_s) || stamp_s <= stamp_s_) return;
   const mapping::GridGeometry& g = occupancy.geometry();
-  if (since_.size() != g.size() || g.width != geometry_.width || g.resolution_m != geometry_.resolution_m ||
-      g.origin_x_m != geometry_.origin_x_m || g.origin_y_m != geometry_.origin_y_m) {
+  if (since_.size() != g.size() || g != geometry_) {
     geometry_ = g;
     since_.assign(g.size(), kInf);
   }
