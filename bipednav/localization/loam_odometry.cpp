@@ -21,10 +21,11 @@ double time_fraction(const PointCloud& c, std::size_t i, double scan_period_s) {
   return std::clamp(static_cast<double>(c.time_offsets_s[i]) / scan_period_s, 0.0, 1.0);
 }
 
-PointCloud deskew_to_end(const PointCloud& cloud, const SE3& T_start_end, double scan_period_s) {
+void deskew_points_to_end(const PointCloud& cloud, const SE3& T_start_end, double scan_period_s,
+                          std::vector<Eigen::Vector3f>& out) {
   const Vector6d x = se3_to_motion(T_start_end);
   const SE3 T_end_start = T_start_end.inverse();
-  PointCloud out = cloud;
+  out.resize(cloud.size());
   // One transform per distinct time: a VLP-16 sweep comes column by column, 16 points at a time.
   double last_s = -1.0;
   SE3 A = SE3::Identity();
@@ -34,14 +35,22 @@ PointCloud deskew_to_end(const PointCloud& cloud, const SE3& T_start_end, double
     if (s != last_s) {
       const bool shared = i + 1 < out.size() && time_fraction(cloud, i + 1, scan_period_s) == s;
       if (!shared) {  // a time of its own (feature clouds): move the point, no transform to compose
-        out.points[i] = (T_end_start * apply_motion(x, s, p)).cast<float>();
+        out[i] = (T_end_start * apply_motion(x, s, p)).cast<float>();
         continue;
       }
       A = T_end_start * motion_to_se3(x, s);
       last_s = s;
     }
-    out.points[i] = (A * p).cast<float>();
+    out[i] = (A * p).cast<float>();
   }
+}
+
+PointCloud deskew_to_end(const PointCloud& cloud, const SE3& T_start_end, double scan_period_s) {
+  PointCloud out = cloud.empty_copy();
+  out.time_offsets_s = cloud.time_offsets_s;
+  out.rings = cloud.rings;
+  out.intensities = cloud.intensities;
+  deskew_points_to_end(cloud, T_start_end, scan_period_s, out.points);
   return out;
 }
 
@@ -69,7 +78,7 @@ struct MovingReference {
   std::vector<Eigen::Vector3f> positions;
 
   void update(const PointCloud& raw, const SE3& T, double scan_period_s) {
-    positions = deskew_to_end(raw, T, scan_period_s).points;
+    deskew_points_to_end(raw, T, scan_period_s, positions);
     bool rebuild = tree.size() != positions.size();
     for (std::size_t i = 0; i < positions.size() && !rebuild; ++i)
       rebuild = (positions[i] - tree.point(i)).squaredNorm() > kRebuildM * kRebuildM;

@@ -37,6 +37,9 @@ double time_fraction(const PointCloud& c, std::size_t i, double scan_period_s);
 // Moves every point to the LiDAR frame at the sweep end with the interpolated motion
 // (eq. 4.8-4.10; Algorithm 1, line 15). Other fields are kept; time offsets are kept as measured.
 PointCloud deskew_to_end(const PointCloud& cloud, const SE3& T_start_end, double scan_period_s);
+// deskew_to_end's points only, into `out` (resized to the cloud's size; its capacity is reused).
+void deskew_points_to_end(const PointCloud& cloud, const SE3& T_start_end, double scan_period_s,
+                          std::vector<Eigen::Vector3f>& out);
 
 class LoamOdometry {
  public:

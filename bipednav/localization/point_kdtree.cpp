@@ -42,25 +42,29 @@ struct PointKdTree::Nearest {
 };
 
 PointKdTree::PointKdTree(std::vector<Eigen::Vector3f> points) : points_(std::move(points)) {
-  ids_.reserve(points_.size());
+  std::vector<Slot> slots;
+  slots.reserve(points_.size());
   for (std::size_t i = 0; i < points_.size(); ++i)
-    if (points_[i].allFinite()) ids_.push_back(static_cast<std::uint32_t>(i));
-  if (ids_.empty()) return;
-  nodes_.reserve(4 * ids_.size() / kLeafSize + 2);
-  build(0, static_cast<std::uint32_t>(ids_.size()));
-  x_.resize(ids_.size());
-  y_.resize(ids_.size());
-  z_.resize(ids_.size());
-  for (std::size_t s = 0; s < ids_.size(); ++s) {
-    const Eigen::Vector3f& p = points_[ids_[s]];
-    x_[s] = p.x();
-    y_[s] = p.y();
-    z_[s] = p.z();
+    if (points_[i].allFinite()) slots.push_back({points_[i], static_cast<std::uint32_t>(i)});
+  if (slots.empty()) return;
+  nodes_.reserve(4 * slots.size() / kLeafSize + 2);
+  build(slots, 0, static_cast<std::uint32_t>(slots.size()));
+  ids_.resize(slots.size());
+  x_.resize(slots.size());
+  y_.resize(slots.size());
+  z_.resize(slots.size());
+  for (std::size_t s = 0; s < slots.size(); ++s) {
+    ids_[s] = slots[s].id;
+    x_[s] = slots[s].p.x();
+    y_[s] = slots[s].p.y();
+    z_[s] = slots[s].p.z();
   }
 }
 
-// Median split on the axis of largest extent: a balanced tree whatever the point density.
-std::uint32_t PointKdTree::build(std::uint32_t begin, std::uint32_t end) {
+// Median split on the axis of largest extent: a balanced tree whatever the point density. The
+// points are moved with their indices (no indirection while partitioning); nth_element sees the
+// same comparisons as on the indices alone, so it leaves the same order.
+std::uint32_t PointKdTree::build(std::vector<Slot>& slots, std::uint32_t begin, std::uint32_t end) {
   const auto index = static_cast<std::uint32_t>(nodes_.size());
   nodes_.emplace_back();
   if (end - begin <= kLeafSize) {
@@ -69,24 +73,23 @@ std::uint32_t PointKdTree::build(std::uint32_t begin, std::uint32_t end) {
     nodes_[index].dim = kLeaf;
     return index;
   }
-  Eigen::Vector3f lo = points_[ids_[begin]], hi = lo;
+  Eigen::Vector3f lo = slots[begin].p, hi = lo;
   for (std::uint32_t s = begin + 1; s < end; ++s) {
-    lo = lo.cwiseMin(points_[ids_[s]]);
-    hi = hi.cwiseMax(points_[ids_[s]]);
+    lo = lo.cwiseMin(slots[s].p);
+    hi = hi.cwiseMax(slots[s].p);
   }
   Eigen::Index dim = 0;
   (hi - lo).maxCoeff(&dim);
   const std::uint32_t mid = begin + (end - begin) / 2;
-  const auto coord = [&](std::uint32_t id) { return points_[id][dim]; };
-  std::nth_element(ids_.begin() + begin, ids_.begin() + mid, ids_.begin() + end,
-                   [&](std::uint32_t a, std::uint32_t b) { return coord(a) < coord(b); });
-  float left_max = coord(ids_[begin]);
-  for (std::uint32_t s = begin + 1; s < mid; ++s) left_max = std::max(left_max, coord(ids_[s]));
+  std::nth_element(slots.begin() + begin, slots.begin() + mid, slots.begin() + end,
+                   [dim](const Slot& a, const Slot& b) { return a.p[dim] < b.p[dim]; });
+  float left_max = slots[begin].p[dim];
+  for (std::uint32_t s = begin + 1; s < mid; ++s) left_max = std::max(left_max, slots[s].p[dim]);
   nodes_[index].lo = left_max;
-  nodes_[index].hi = coord(ids_[mid]);
+  nodes_[index].hi = slots[mid].p[dim];
   nodes_[index].dim = static_cast<std::uint8_t>(dim);
-  build(begin, mid);
-  const std::uint32_t right = build(mid, end);
+  build(slots, begin, mid);
+  const std::uint32_t right = build(slots, mid, end);
   nodes_[index].begin = right;
   return index;
 }

@@ -45,7 +45,11 @@ class PointKdTree {
   struct Knn;
   struct Nearest;
 
-  std::uint32_t build(std::uint32_t begin, std::uint32_t end);
+  struct Slot {
+    Eigen::Vector3f p;
+    std::uint32_t id;
+  };
+  std::uint32_t build(std::vector<Slot>& slots, std::uint32_t begin, std::uint32_t end);
   template <class Result>
   void search(std::uint32_t node, const float* q, float* offset, float cell_sq, Result& r) const;
 
