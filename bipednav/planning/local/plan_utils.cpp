@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "bipednav/common/angles.hpp"
 
@@ -23,6 +24,8 @@ std::optional<Result> check_inputs(const Pose2& T_map_base, const Twist& velocit
 }
 
 namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
 
 bool inside_window(const mapping::GridGeometry& g, const Pose2& p, double margin) {
   return p.x >= g.origin_x_m + margin && p.y >= g.origin_y_m + margin && p.x <= g.origin_x_m + g.size_x_m() - margin &&
@@ -93,6 +96,73 @@ bool poses_feasible(const std::vector<Pose2>& poses, const mapping::Costmap2D& c
   const auto bad = [&](double x, double y) {
     const int c = cost_at(x, y);
     return c >= limit && c != mapping::kUnknown;
+  };
+  for (std::size_t i = 1; i < poses.size(); ++i) {
+    const double len = distance(poses[i - 1], poses[i]);
+    const int steps = std::max(1, static_cast<int>(std::ceil(len / g.resolution_m)));
+    for (int s = 1; s <= steps; ++s) {
+      const double f = static_cast<double>(s) / steps;
+      if (bad(poses[i - 1].x + f * (poses[i].x - poses[i - 1].x), poses[i - 1].y + f * (poses[i].y - poses[i - 1].y)))
+        return false;
+    }
+  }
+  return true;
+}
+
+double lethal_clearance(const mapping::Costmap2D& costmap, double x, double y, double max_m, Eigen::Vector2d* nearest) {
+  const auto& g = costmap.geometry();
+  const auto c = g.world_to_cell_unbounded(x, y);
+  if (!c || !std::isfinite(max_m) || max_m < 0.0) return kInf;
+  const int rings = static_cast<int>(std::ceil(max_m / g.resolution_m)) + 1;
+  double best2 = max_m * max_m;
+  bool found = false;
+  const auto visit = [&](int cx, int cy) {
+    if (!g.in_bounds(cx, cy) || costmap.cost(cx, cy) != mapping::kLethal) return;
+    const Eigen::Vector2d d = g.cell_center(cx, cy) - Eigen::Vector2d{x, y};
+    if (d.squaredNorm() < best2 || (!found && d.squaredNorm() <= best2)) {
+      best2 = d.squaredNorm(), found = true;
+      if (nearest) *nearest = g.cell_center(cx, cy);
+    }
+  };
+  for (int k = 0; k <= rings; ++k) {
+    // Every cell centre on ring k (Chebyshev distance k from the point's cell) is at least
+    // (k - 0.5) cells away from the point.
+    const double lower = std::max(0.0, (k - 0.5) * g.resolution_m);
+    if (lower * lower > best2) break;
+    if (k == 0) {
+      visit(c->x, c->y);
+      continue;
+    }
+    for (int i = -k; i <= k; ++i) {
+      visit(c->x + i, c->y - k);
+      visit(c->x + i, c->y + k);
+    }
+    for (int i = -k + 1; i <= k - 1; ++i) {
+      visit(c->x - k, c->y + i);
+      visit(c->x + k, c->y + i);
+    }
+  }
+  return found ? std::sqrt(best2) : kInf;
+}
+
+bool poses_keep_clearance(const std::vector<Pose2>& poses, const mapping::Costmap2D& costmap) {
+  if (poses.empty()) return true;
+  const auto& g = costmap.geometry();
+  const auto cost_at = [&](double x, double y) -> int {
+    const auto c = g.world_to_cell(x, y);
+    return c ? costmap.cost(*c) : -1;
+  };
+  const int own = cost_at(poses.front().x, poses.front().y);
+  if (own < mapping::kInscribed || own == mapping::kUnknown) return poses_feasible(poses, costmap);
+  // Only points in inscribed or lethal cells are checked, and those lie within the inscribed
+  // radius of a lethal cell: a search out to a few metres finds their nearest one.
+  constexpr double kSearchM = 3.0;
+  const double start = lethal_clearance(costmap, poses.front().x, poses.front().y, kSearchM);
+  const auto bad = [&](double x, double y) {
+    const int c = cost_at(x, y);
+    if (c < mapping::kInscribed || c == mapping::kUnknown) return false;
+    if (c == mapping::kLethal && own != mapping::kLethal) return true;
+    return lethal_clearance(costmap, x, y, kSearchM) < start;
   };
   for (std::size_t i = 1; i < poses.size(); ++i) {
     const double len = distance(poses[i - 1], poses[i]);

@@ -45,6 +45,19 @@ Twist clamp_command(const Twist& desired, const Twist& current, const CommandLim
 // inscribed space. Off-map and unknown cells count as free.
 bool poses_feasible(const std::vector<Pose2>& poses, const mapping::Costmap2D& costmap);
 
+// Distance from (x, y) to the centre of the nearest lethal cell, searched out to max_m; +inf when
+// no lethal cell lies that close. Off-map cells count as free. `nearest` (if given) gets that
+// cell's centre when one was found.
+double lethal_clearance(const mapping::Costmap2D& costmap, double x, double y, double max_m,
+                        Eigen::Vector2d* nearest = nullptr);
+
+// poses_feasible without its loophole: a robot already in inscribed space may follow the poses
+// only if none of them (and of the points between, sampled as poses_feasible does) that lies in
+// inscribed or lethal space is closer to a lethal cell than the first pose (lethal_clearance), and
+// none is lethal unless the first one is. Every cell within the inscribed radius costs the same,
+// so without this an arc could go on towards the obstacle. Outside inscribed space: poses_feasible.
+bool poses_keep_clearance(const std::vector<Pose2>& poses, const mapping::Costmap2D& costmap);
+
 // Near the final goal: zero once within both tolerances, else a turn on the spot to the goal yaw.
 struct GoalApproach {
   bool near = false;     // within the xy tolerance

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "bipednav/common/angles.hpp"
 #include "bipednav/common/error.hpp"
@@ -40,6 +41,26 @@ Twist pure_pursuit_command(const Eigen::Vector2d& target_in_base, double dist_to
   return t;
 }
 
+namespace {
+
+constexpr double kLargeScore = 1e300;
+
+// The poses of the robot holding `cmd` for horizon_s, every 0.05 s from `start`.
+Path simulate_arc(const Pose2& start, const Twist& cmd, double horizon_s, const std::string& frame_id) {
+  Path arc;
+  arc.frame_id = frame_id;
+  Pose2 p = start;
+  const double dt = 0.05;
+  for (double t = 0.0; t <= horizon_s + 1e-9; t += dt) {
+    arc.poses.push_back(p);
+    arc.times_s.push_back(t);
+    p = p * Pose2{cmd.linear_x * dt, 0.0, cmd.angular_z * dt};
+  }
+  return arc;
+}
+
+}  // namespace
+
 PathTracker::PathTracker(TrackerParams params) : params_(std::move(params)) { params_.validate(); }
 
 LocalPlanResult PathTracker::compute(const Pose2& T_map_base, const Twist& current_velocity, const Path& global_plan,
@@ -71,20 +92,61 @@ LocalPlanResult PathTracker::follow(const Pose2& T_map_base, const Twist& curren
   }
   r.cmd = clamp_command(desired, current_velocity, lim, params_.control_period_s);
   // Forward-simulate the arc for display and the collision check.
-  Pose2 p = T_map_base;
-  const double dt = 0.05;
-  for (double t = 0.0; t <= params_.collision_check_horizon_s + 1e-9; t += dt) {
-    r.trajectory.poses.push_back(p);
-    r.trajectory.times_s.push_back(t);
-    p = p * Pose2{r.cmd.linear_x * dt, 0.0, r.cmd.angular_z * dt};
-  }
-  if (!poses_feasible(r.trajectory.poses, local_costmap)) {
+  r.trajectory = simulate_arc(T_map_base, r.cmd, params_.collision_check_horizon_s, global_plan.frame_id);
+  if (!poses_keep_clearance(r.trajectory.poses, local_costmap)) {
+    if (escape(r, T_map_base, current_velocity, desired, local_costmap)) return r;
     r.result = {Outcome::COLLISION, "the tracked arc enters lethal or inscribed cells"};
     r.cmd = Twist{};
     return r;
   }
   r.result.message = ga.reached ? "goal reached" : "ok";
   return r;
+}
+
+bool PathTracker::escape(LocalPlanResult& r, const Pose2& T_map_base, const Twist& current_velocity,
+                         const Twist& desired, const mapping::Costmap2D& local_costmap) const {
+  const auto& g = local_costmap.geometry();
+  const auto cell = g.world_to_cell(T_map_base.x, T_map_base.y);
+  if (!cell) return false;
+  const int own = local_costmap.cost(*cell);
+  if (own < mapping::kInscribed || own == mapping::kUnknown) return false;
+  constexpr double kSearchM = 3.0;
+  Eigen::Vector2d nearest;
+  const double start = lethal_clearance(local_costmap, T_map_base.x, T_map_base.y, kSearchM, &nearest);
+  if (!std::isfinite(start)) return false;
+  // Away from the nearest lethal cell (any direction when the robot sits on its centre).
+  const Eigen::Vector2d away = T_map_base.position() - nearest;
+  const double away_yaw = away.norm() > 1e-9 ? std::atan2(away.y(), away.x()) : T_map_base.theta;
+  const CommandLimits lim{params_.max_vel_x_mps, params_.max_vel_x_backwards_mps, params_.max_vel_theta_radps,
+                          params_.acc_lim_x_mps2, params_.acc_lim_theta_radps2};
+  const double vb = params_.max_vel_x_backwards_mps, vf = params_.max_vel_x_mps, wm = params_.max_vel_theta_radps;
+  // Candidates: a grid of backing, turning and forward commands within one period's acceleration.
+  // Score: the clearance gained at the end of the arc, then (to pick a turn on the spot) how
+  // squarely the robot ends up facing away, then closeness to the tracker's command.
+  bool found = false;
+  double best_score = -kLargeScore;
+  Twist best_cmd;
+  Path best_arc;
+  for (const double v : {-vb, -0.5 * vb, 0.0, 0.5 * vf, vf}) {
+    for (const double w : {-wm, -0.5 * wm, 0.0, 0.5 * wm, wm}) {
+      const Twist c = clamp_command({v, 0.0, w}, current_velocity, lim, params_.control_period_s);
+      Path arc = simulate_arc(T_map_base, c, params_.collision_check_horizon_s, r.trajectory.frame_id);
+      if (!poses_keep_clearance(arc.poses, local_costmap)) continue;
+      const Pose2& end = arc.poses.back();
+      const double gain = std::min(lethal_clearance(local_costmap, end.x, end.y, kSearchM), start + 1.0) - start;
+      const double facing = std::cos(angle_diff(away_yaw, end.theta));
+      const double deviation = std::abs(c.linear_x - desired.linear_x) / std::max(vf, 1e-3) +
+                               std::abs(c.angular_z - desired.angular_z) / std::max(wm, 1e-3);
+      const double score = gain + 0.05 * facing - 1e-3 * deviation;
+      if (!found || score > best_score) found = true, best_score = score, best_cmd = c, best_arc = std::move(arc);
+    }
+  }
+  if (!found) return false;
+  r.cmd = best_cmd;
+  r.trajectory = std::move(best_arc);
+  r.goal_reached = false;
+  r.result = {Outcome::SUCCESS, "leaving inscribed space"};
+  return true;
 }
 
 }  // namespace bipednav::planning::local

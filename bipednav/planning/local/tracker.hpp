@@ -14,7 +14,11 @@ namespace bipednav::planning::local {
 Twist pure_pursuit_command(const Eigen::Vector2d& target_in_base, double dist_to_goal_m, const TrackerParams& p);
 
 // The simple alternative local planner: follows the global plan with pure pursuit and stops with
-// COLLISION when the forward-simulated arc hits lethal or inscribed cells.
+// COLLISION when the forward-simulated arc hits lethal or inscribed cells. A robot already in
+// inscribed space may only follow arcs that keep its distance to the nearest lethal cell
+// (poses_keep_clearance); when the tracked arc does not, it takes the command of a small grid
+// (backing, turning, forward) whose arc gains the most clearance (escape), and stops with
+// COLLISION only when none keeps it.
 class PathTracker : public LocalPlanner {
  public:
   explicit PathTracker(TrackerParams params);
@@ -27,6 +31,10 @@ class PathTracker : public LocalPlanner {
  private:
   LocalPlanResult follow(const Pose2& T_map_base, const Twist& current_velocity, const Path& global_plan,
                          const mapping::Costmap2D& local_costmap);
+  // In inscribed space: replaces r's command and arc by the best clearance-keeping candidate;
+  // false when the robot is not in inscribed space or no candidate keeps its clearance.
+  bool escape(LocalPlanResult& r, const Pose2& T_map_base, const Twist& current_velocity, const Twist& desired,
+              const mapping::Costmap2D& local_costmap) const;
 
   TrackerParams params_;
 };

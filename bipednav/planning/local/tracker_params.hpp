@@ -6,7 +6,7 @@ namespace bipednav::planning::local {
 struct TrackerParams {
   double lookahead_m = 0.6;
   double max_vel_x_mps = 0.5;
-  double max_vel_x_backwards_mps = 0.2;  // only for yielding to moving obstacles (the tracker never reverses)
+  double max_vel_x_backwards_mps = 0.2;  // only for yielding to moving obstacles and leaving inscribed space
   double max_vel_theta_radps = 0.8;
   double acc_lim_x_mps2 = 0.5;
   double acc_lim_theta_radps2 = 1.0;

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "bipednav/planning/local/plan_utils.hpp"
 #include "bipednav/planning/local/tracker.hpp"
 #include "local_test_utils.hpp"
@@ -40,6 +42,40 @@ TEST(PlanUtils, FeasibilityChecksLethalAndInscribedCells) {
   EXPECT_FALSE(poses_feasible({{0, 0, 0}, {0.75, 0, 0}}, map));  // ends in inscribed space
   EXPECT_TRUE(poses_feasible({{0, 0, 0}, {2, 1, 0}}, map));
   EXPECT_TRUE(poses_feasible({{0.75, 0, 0}, {0.5, 0, 0}}, map));  // leaving inscribed space is fine
+}
+
+TEST(PlanUtils, LethalClearanceIsTheDistanceToTheNearestLethalCellCentre) {
+  auto map = test::empty_costmap(0.0, 0.0, 4.0);  // cells [-2 + 0.05 k, -2 + 0.05 (k + 1)]
+  EXPECT_TRUE(std::isinf(lethal_clearance(map, 0.0, 0.0, 3.0)));
+  map.set_cost(*map.geometry().world_to_cell(1.01, 0.01), mapping::kLethal);   // centre (1.025, 0.025)
+  map.set_cost(*map.geometry().world_to_cell(-1.51, 0.01), mapping::kLethal);  // centre (-1.525, 0.025)
+  Eigen::Vector2d nearest;
+  EXPECT_NEAR(lethal_clearance(map, 0.0, 0.0, 3.0, &nearest), std::hypot(1.025, 0.025), 1e-12);
+  EXPECT_NEAR(nearest.x(), 1.025, 1e-12);
+  EXPECT_NEAR(lethal_clearance(map, -0.5, 0.0, 3.0), std::hypot(1.025, 0.025), 1e-12);  // the other one
+  EXPECT_NEAR(lethal_clearance(map, 1.03, 0.02, 3.0), std::hypot(0.005, 0.005), 1e-12);
+  EXPECT_TRUE(std::isinf(lethal_clearance(map, 0.0, 0.0, 1.0)));  // beyond max_m
+}
+
+TEST(PlanUtils, InInscribedSpaceOnlyPosesKeepingTheClearancePass) {
+  auto map = test::empty_costmap(0.0, 0.0, 4.0);
+  test::add_box(map, 0.5, -1.0, 1.5, 1.0, 0.38);
+  // The robot at x = 0.25 is in inscribed space, 0.275 m from the nearest lethal cell centres.
+  const Pose2 start{0.25, 0.0, 0.0};
+  const std::vector<Pose2> closer{start, {0.4, 0.0, 0.0}};
+  EXPECT_TRUE(poses_feasible(closer, map));  // the loophole: every inscribed cell costs the same
+  EXPECT_FALSE(poses_keep_clearance(closer, map));
+  EXPECT_FALSE(poses_keep_clearance({start, {0.25, 0.0, 0.0}, {0.27, 0.3, 0.0}}, map));  // in then out of reach
+  EXPECT_TRUE(poses_keep_clearance({start, {0.1, 0.0, 0.0}}, map));                      // away
+  EXPECT_TRUE(poses_keep_clearance({start, {0.25, 0.0, 1.5}, {0.25, 0.0, 3.0}}, map));   // turn on the spot
+  EXPECT_TRUE(poses_keep_clearance({start, {0.2, 0.2, 0.0}, {-0.5, 0.4, 0.0}}, map));
+  EXPECT_FALSE(poses_keep_clearance({start, {-0.2, 0.0, 0.0}, {0.6, 0.0, 0.0}}, map));  // into the box
+  // Outside inscribed space it is poses_feasible.
+  for (const auto& poses :
+       {std::vector<Pose2>{{0.0, 0.0, 0.0}, {0.2, 0.0, 0.0}}, std::vector<Pose2>{{0.0, 0.0, 0.0}, {-0.5, 0.0, 0.0}}}) {
+    EXPECT_EQ(poses_keep_clearance(poses, map), poses_feasible(poses, map));
+  }
+  EXPECT_FALSE(poses_keep_clearance({{0.0, 0.0, 0.0}, {0.2, 0.0, 0.0}}, map));
 }
 
 TEST(PlanUtils, OscillationDetector) {
@@ -83,6 +119,88 @@ TEST(PathTracker, ReachesGoalAndStopsBeforeObstacles) {
   const auto r = tracker.compute({0, 0, 0}, {0.3, 0, 0}, test::straight_plan(0, 0, 3, 0), map, 0.0);
   EXPECT_EQ(r.result.outcome, Outcome::COLLISION);
   EXPECT_TRUE(r.cmd.is_zero());
+}
+
+namespace {
+
+// The smallest lethal_clearance minus the start's along the robot's arc holding cmd for 1 s.
+double clearance_change(const Pose2& start, const Twist& cmd, const mapping::Costmap2D& map) {
+  const double c0 = lethal_clearance(map, start.x, start.y, 3.0);
+  double worst = 0.0;
+  Pose2 p = start;
+  for (int i = 0; i < 100; ++i) {
+    p = test::integrate(p, cmd, 0.01);
+    worst = std::min(worst, lethal_clearance(map, p.x, p.y, 3.0) - c0);
+  }
+  return worst;
+}
+
+}  // namespace
+
+// A robot whose estimate is already in inscribed space (0.275 m from the wall's lethal cells,
+// inscribed radius 0.38 m) facing the wall, with a plan straight through it: the tracker's arc
+// used to pass (only lethal cells counted there); now no command brings the robot closer.
+TEST(PathTracker, InInscribedSpaceFacingTheObstacleNoCommandClosesIn) {
+  auto map = test::empty_costmap(0.0, 0.0);
+  test::add_box(map, 0.5, -1.0, 1.5, 1.0, 0.38);
+  const Pose2 start{0.25, 0.0, 0.0};
+  const Path plan = test::straight_plan(0.25, 0.0, 3.0, 0.0);
+  PathTracker tracker(TrackerParams{});
+  // At rest: it backs away (straight back gains the most clearance).
+  auto r = tracker.compute(start, {}, plan, map, 0.0);
+  EXPECT_EQ(r.result.outcome, Outcome::SUCCESS);
+  EXPECT_EQ(r.result.message, "leaving inscribed space");
+  EXPECT_LT(r.cmd.linear_x, 0.0);
+  EXPECT_DOUBLE_EQ(r.cmd.linear_x, -0.05);            // one period's deceleration limit
+  EXPECT_LE(std::abs(r.cmd.angular_z), 0.1 + 1e-12);  // (turning a little while it backs)
+  EXPECT_GE(clearance_change(start, r.cmd, map), 0.0);
+  // Walking towards it at 0.3 m/s: every reachable command still closes in, so it stops.
+  r = tracker.compute(start, {0.3, 0.0, 0.0}, plan, map, 0.0);
+  EXPECT_EQ(r.result.outcome, Outcome::COLLISION);
+  EXPECT_TRUE(r.cmd.is_zero());
+  // Turned 30 degrees off the wall: none of the commands closes in either.
+  for (const double yaw : {-0.5, 0.5}) {
+    const Pose2 s{0.25, 0.0, yaw};
+    r = tracker.compute(s, {}, plan, map, 0.0);
+    EXPECT_GE(clearance_change(s, r.cmd, map), 0.0) << yaw;
+  }
+}
+
+TEST(PathTracker, InInscribedSpaceFacingAwayItWalksOn) {
+  auto map = test::empty_costmap(0.0, 0.0);
+  test::add_box(map, 0.5, -1.0, 1.5, 1.0, 0.38);
+  PathTracker tracker(TrackerParams{});
+  const Pose2 start{0.25, 0.0, M_PI};
+  const auto r = tracker.compute(start, {0.2, 0.0, 0.0}, test::straight_plan(0.25, 0.0, -3.0, 0.0), map, 0.0);
+  EXPECT_EQ(r.result.outcome, Outcome::SUCCESS);
+  EXPECT_EQ(r.result.message, "ok");
+  EXPECT_DOUBLE_EQ(r.cmd.linear_x, 0.25);
+  EXPECT_GT(clearance_change(start, r.cmd, map), 0.0 - 1e-12);
+}
+
+// Closed loop from inside inscribed space, facing the wall, with a plan along it: the robot gets
+// out (never closer to the wall while inside) and reaches the goal instead of freezing.
+TEST(PathTracker, LeavesInscribedSpaceAndReachesTheGoal) {
+  auto map = test::empty_costmap(0.0, -1.5);
+  test::add_box(map, 0.5, -1.0, 1.5, 1.0, 0.38);
+  PathTracker tracker(TrackerParams{});
+  const Pose2 start{0.25, 0.0, 0.0};
+  Path plan = test::straight_plan(0.25, 0.0, -0.3, -0.8);
+  const Path rest = test::straight_plan(-0.3, -0.8, 1.0, -2.5);
+  plan.poses.insert(plan.poses.end(), rest.poses.begin() + 1, rest.poses.end());
+  const auto run = test::simulate(tracker, start, plan, map, 400);
+  EXPECT_TRUE(run.reached) << run.final_pose.x << " " << run.final_pose.y;
+  double prev = lethal_clearance(map, start.x, start.y, 3.0);
+  for (const auto& p : run.poses) {
+    const auto c = map.geometry().world_to_cell(p.x, p.y);
+    ASSERT_TRUE(c);
+    const double clearance = lethal_clearance(map, p.x, p.y, 3.0);
+    EXPECT_NE(map.cost(*c), mapping::kLethal);
+    if (map.cost(*c) >= mapping::kInscribed) {
+      EXPECT_GE(clearance, prev - 1e-3) << p.x << " " << p.y;
+    }
+    prev = clearance;
+  }
 }
 
 }  // namespace bipednav::planning::local
