@@ -1,9 +1,11 @@
 #include "bipednav/localization/feature_association.hpp"
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 #include "bipednav/common/error.hpp"
 
@@ -22,25 +24,45 @@ struct LocalFit {
   Eigen::Matrix3d eigenvectors = Eigen::Matrix3d::Identity();
 };
 
-// The k nearest reference points, all within max_correspondence_m: false when there are fewer.
-bool nearest_within(const PointKdTree& tree, const Eigen::Vector3f& q, std::size_t k, float max_sq, std::uint32_t* idx,
-                    float* d2) {
-  // knn() keeps points strictly closer than the bound; points at exactly max_correspondence_m count.
-  return tree.knn(q, k, idx, d2, std::nextafter(max_sq, std::numeric_limits<float>::infinity())) == k;
-}
+const PointKdTree& search_tree(const PointKdTree& tree) { return tree; }
+const PointKdTree& search_tree(const MovedPoints& moved) { return *moved.tree; }
 
-bool nearest_within(const MovedPoints& moved, const Eigen::Vector3f& q, std::size_t k, float max_sq, std::uint32_t* idx,
-                    float* d2) {
-  if (moved.tree->size() != moved.positions->size()) return false;
-  return nearest_within(*moved.tree, q, k, max_sq, idx, d2);
+// A tighter search bound from the hint's points (their largest squared distance to q, computed as
+// the search computes distances, with a margin for rounding), or `bound` unchanged.
+float hinted_bound(const PointKdTree& tree, const Eigen::Vector3f& q, std::size_t k, const NeighbourHint* hint,
+                   float bound) {
+  if (hint == nullptr || hint->n != k) return bound;
+  float worst = 0.0f;
+  for (std::size_t i = 0; i < k; ++i) {
+    if (hint->idx[i] >= tree.size()) return bound;
+    const Eigen::Vector3f& p = tree.point(hint->idx[i]);
+    const float dx = p.x() - q.x(), dy = p.y() - q.y(), dz = p.z() - q.z();
+    const float d = dx * dx + dy * dy + dz * dz;
+    if (!(d <= std::numeric_limits<float>::max())) return bound;  // not indexed (non-finite), or overflow
+    worst = std::max(worst, d);
+  }
+  return std::min(bound, worst * 1.001f + 1e-12f);
 }
 
 template <class Tree>
-bool fit_neighbours(const Tree& tree, const Eigen::Vector3d& q, const AssociationParams& p, LocalFit& f) {
+bool fit_neighbours(const Tree& tree, const Eigen::Vector3d& q, const AssociationParams& p, LocalFit& f,
+                    NeighbourHint* hint) {
   std::array<float, kMaxNeighbours> d2{};
   const std::size_t k = std::min<std::size_t>(static_cast<std::size_t>(p.neighbours), kMaxNeighbours);
   const auto max_sq = static_cast<float>(p.max_correspondence_m * p.max_correspondence_m);
-  if (!nearest_within(tree, q.cast<float>(), k, max_sq, f.idx.data(), d2.data())) return false;
+  const Eigen::Vector3f qf = q.cast<float>();
+  if constexpr (std::is_same_v<Tree, MovedPoints>) {
+    if (tree.tree->size() != tree.positions->size()) return false;
+  }
+  const PointKdTree& searched = search_tree(tree);
+  // knn() keeps points strictly closer than the bound; points at exactly max_correspondence_m count.
+  const float bound =
+      hinted_bound(searched, qf, k, hint, std::nextafter(max_sq, std::numeric_limits<float>::infinity()));
+  if (searched.knn(qf, k, f.idx.data(), d2.data(), bound) != k) return false;
+  if (hint != nullptr) {
+    std::copy_n(f.idx.begin(), k, hint->idx.begin());
+    hint->n = static_cast<std::uint8_t>(k);
+  }
   f.n = k;
   for (std::size_t i = 0; i < f.n; ++i) f.mean += tree.point(f.idx[i]).template cast<double>();
   f.mean /= static_cast<double>(f.n);
@@ -82,9 +104,9 @@ namespace {
 
 template <class Tree>
 bool edge_match(const Tree& edges, const Eigen::Vector3d& point, double s, const Eigen::Vector3d& q,
-                const AssociationParams& p, Constraint& out, const ViewCheck* view) {
+                const AssociationParams& p, Constraint& out, const ViewCheck* view, NeighbourHint* hint) {
   LocalFit f;
-  if (edges.empty() || !fit_neighbours(edges, q, p, f)) return false;
+  if (edges.empty() || !fit_neighbours(edges, q, p, f, hint)) return false;
   if (f.eigenvalues(2) < p.min_line_ratio * f.eigenvalues(1)) return false;
   const Eigen::Vector3d u = f.eigenvectors.col(2);
   if (view != nullptr) {  // the half-space facing the sensor now, bounded through the line
@@ -99,9 +121,9 @@ bool edge_match(const Tree& edges, const Eigen::Vector3d& point, double s, const
 
 template <class Tree>
 bool planar_match(const Tree& planars, const Eigen::Vector3d& point, double s, const Eigen::Vector3d& q,
-                  const AssociationParams& p, Constraint& out, const ViewCheck* view) {
+                  const AssociationParams& p, Constraint& out, const ViewCheck* view, NeighbourHint* hint) {
   LocalFit f;
-  if (planars.empty() || !fit_neighbours(planars, q, p, f)) return false;
+  if (planars.empty() || !fit_neighbours(planars, q, p, f, hint)) return false;
   const Eigen::Vector3d normal = f.eigenvectors.col(0);
   for (std::size_t t = 0; t < f.n; ++t)
     if (std::abs(normal.dot(planars.point(f.idx[t]).template cast<double>() - f.mean)) > p.max_plane_deviation_m)
@@ -119,23 +141,23 @@ bool planar_match(const Tree& planars, const Eigen::Vector3d& point, double s, c
 }  // namespace
 
 bool edge_correspondence(const PointKdTree& edges, const Eigen::Vector3d& point, double s, const Eigen::Vector3d& q,
-                         const AssociationParams& p, Constraint& out, const ViewCheck* view) {
-  return edge_match(edges, point, s, q, p, out, view);
+                         const AssociationParams& p, Constraint& out, const ViewCheck* view, NeighbourHint* hint) {
+  return edge_match(edges, point, s, q, p, out, view, hint);
 }
 
 bool planar_correspondence(const PointKdTree& planars, const Eigen::Vector3d& point, double s, const Eigen::Vector3d& q,
-                           const AssociationParams& p, Constraint& out, const ViewCheck* view) {
-  return planar_match(planars, point, s, q, p, out, view);
+                           const AssociationParams& p, Constraint& out, const ViewCheck* view, NeighbourHint* hint) {
+  return planar_match(planars, point, s, q, p, out, view, hint);
 }
 
 bool edge_correspondence(const MovedPoints& edges, const Eigen::Vector3d& point, double s, const Eigen::Vector3d& q,
-                         const AssociationParams& p, Constraint& out, const ViewCheck* view) {
-  return edge_match(edges, point, s, q, p, out, view);
+                         const AssociationParams& p, Constraint& out, const ViewCheck* view, NeighbourHint* hint) {
+  return edge_match(edges, point, s, q, p, out, view, hint);
 }
 
 bool planar_correspondence(const MovedPoints& planars, const Eigen::Vector3d& point, double s, const Eigen::Vector3d& q,
-                           const AssociationParams& p, Constraint& out, const ViewCheck* view) {
-  return planar_match(planars, point, s, q, p, out, view);
+                           const AssociationParams& p, Constraint& out, const ViewCheck* view, NeighbourHint* hint) {
+  return planar_match(planars, point, s, q, p, out, view, hint);
 }
 
 }  // namespace bipednav::localization

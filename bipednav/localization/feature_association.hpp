@@ -1,5 +1,7 @@
 #pragma once
 
+#include <array>
+#include <cstdint>
 #include <vector>
 
 #include "bipednav/localization/kdtree.hpp"
@@ -45,15 +47,29 @@ struct MovedPoints {
   const Eigen::Vector3f& point(std::size_t i) const { return (*positions)[i]; }
 };
 
+// The reference points a feature was matched with in an earlier round (as indices of the tree's
+// points). Any k distinct indexed points bound the distance of the k-th nearest from above, so
+// their distances let the kd-tree search prune from its start; the neighbours found are the same
+// with or without a hint (see PointKdTree::knn: the k first by distance, then by visiting order,
+// among the points closer than the bound). A match stores the neighbours it searched.
+struct NeighbourHint {
+  std::array<std::uint32_t, 16> idx{};
+  std::uint8_t n = 0;
+};
+
 // PointKdTree bounds its search by the correspondence distance, so a feature without a match costs
 // little; MovedPoints searches a tree whose points were moved (see above).
 bool edge_correspondence(const PointKdTree& edges, const Eigen::Vector3d& point, double s, const Eigen::Vector3d& q,
-                         const AssociationParams& p, Constraint& out, const ViewCheck* view = nullptr);
+                         const AssociationParams& p, Constraint& out, const ViewCheck* view = nullptr,
+                         NeighbourHint* hint = nullptr);
 bool planar_correspondence(const PointKdTree& planars, const Eigen::Vector3d& point, double s, const Eigen::Vector3d& q,
-                           const AssociationParams& p, Constraint& out, const ViewCheck* view = nullptr);
+                           const AssociationParams& p, Constraint& out, const ViewCheck* view = nullptr,
+                           NeighbourHint* hint = nullptr);
 bool edge_correspondence(const MovedPoints& edges, const Eigen::Vector3d& point, double s, const Eigen::Vector3d& q,
-                         const AssociationParams& p, Constraint& out, const ViewCheck* view = nullptr);
+                         const AssociationParams& p, Constraint& out, const ViewCheck* view = nullptr,
+                         NeighbourHint* hint = nullptr);
 bool planar_correspondence(const MovedPoints& planars, const Eigen::Vector3d& point, double s, const Eigen::Vector3d& q,
-                           const AssociationParams& p, Constraint& out, const ViewCheck* view = nullptr);
+                           const AssociationParams& p, Constraint& out, const ViewCheck* view = nullptr,
+                           NeighbourHint* hint = nullptr);
 
 }  // namespace bipednav::localization

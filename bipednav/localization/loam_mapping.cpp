@@ -68,13 +68,18 @@ std::vector<Constraint> LoamMapping::associate(const PointCloud& edges, const Po
   Constraint c;
   const ViewCheck edge_view{&edge_map_.viewpoints(), T.translation()};
   const ViewCheck planar_view{&planar_map_.viewpoints(), T.translation()};
-  for (const auto& p : edges.points) {
-    const Eigen::Vector3d q = T * p.cast<double>();
-    if (edge_correspondence(edge_tree_, q, 1.0, q, p_.association, c, &edge_view)) cs.push_back(c);
+  // Each point's neighbours of the previous round bound its next search (see NeighbourHint).
+  thread_local std::vector<NeighbourHint> edge_hints, planar_hints;
+  edge_hints.resize(edges.size());
+  planar_hints.resize(planars.size());
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    const Eigen::Vector3d q = T * edges.points[i].cast<double>();
+    if (edge_correspondence(edge_tree_, q, 1.0, q, p_.association, c, &edge_view, &edge_hints[i])) cs.push_back(c);
   }
-  for (const auto& p : planars.points) {
-    const Eigen::Vector3d q = T * p.cast<double>();
-    if (planar_correspondence(planar_tree_, q, 1.0, q, p_.association, c, &planar_view)) cs.push_back(c);
+  for (std::size_t i = 0; i < planars.size(); ++i) {
+    const Eigen::Vector3d q = T * planars.points[i].cast<double>();
+    if (planar_correspondence(planar_tree_, q, 1.0, q, p_.association, c, &planar_view, &planar_hints[i]))
+      cs.push_back(c);
   }
   return cs;
 }

@@ -101,15 +101,22 @@ std::vector<Constraint> LoamOdometry::associate(const LoamFeatures& f, const Vec
   std::vector<Constraint> cs;
   cs.reserve(f.edges.size() + f.planars.size());
   Constraint c;
+  // Each feature's neighbours of the previous round (or sweep) bound its next search (any
+  // neighbours do: see NeighbourHint; the matches do not depend on them).
+  thread_local std::vector<NeighbourHint> edge_hints, planar_hints;
+  edge_hints.resize(f.edges.size());
+  planar_hints.resize(f.planars.size());
   for (std::size_t i = 0; i < f.edges.size(); ++i) {
     const Eigen::Vector3d p = f.edges.points[i].cast<double>();
     const double s = time_fraction(f.edges, i, p_.scan_period_s);
-    if (edge_correspondence(edge_points, p, s, apply_motion(x, s, p), p_.association, c)) cs.push_back(c);
+    if (edge_correspondence(edge_points, p, s, apply_motion(x, s, p), p_.association, c, nullptr, &edge_hints[i]))
+      cs.push_back(c);
   }
   for (std::size_t i = 0; i < f.planars.size(); ++i) {
     const Eigen::Vector3d p = f.planars.points[i].cast<double>();
     const double s = time_fraction(f.planars, i, p_.scan_period_s);
-    if (planar_correspondence(planar_points, p, s, apply_motion(x, s, p), p_.association, c)) cs.push_back(c);
+    if (planar_correspondence(planar_points, p, s, apply_motion(x, s, p), p_.association, c, nullptr, &planar_hints[i]))
+      cs.push_back(c);
   }
   return cs;
 }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <random>
 #include <vector>
 
 #include "bipednav/common/rng.hpp"
@@ -72,6 +73,42 @@ TEST(PointKdTree, KnnMatchesBruteForce) {
     ASSERT_TRUE(tree.nearest(q, std::numeric_limits<float>::infinity(), j, dj));
     EXPECT_FLOAT_EQ(dj, all[0]);
     EXPECT_EQ(tree.nearest(q, all[0], j, dj), false);  // strictly closer than the bound only
+  }
+}
+
+TEST(PointKdTree, TighterBoundKeepsTheSameNeighbours) {
+  // A bound above the k-th nearest distance gives the same neighbours in the same order, ties
+  // (exact duplicates) included: what lets LOAM bound a search by earlier neighbours' distances.
+  Rng rng(5);
+  const auto pts = scene(rng, 3000);
+  const PointKdTree tree(pts);
+  const float inf = std::numeric_limits<float>::infinity();
+  for (int t = 0; t < 400; ++t) {
+    const Eigen::Vector3f q =
+        t % 2 ? pts[static_cast<std::size_t>(rng.uniform_int(0, 2999))]
+              : Eigen::Vector3f(static_cast<float>(rng.uniform(-7, 7)), static_cast<float>(rng.uniform(-7, 7)),
+                                static_cast<float>(rng.uniform(-3, 3)));
+    const std::size_t k = 5;
+    std::uint32_t want[k], got[k];
+    float want_d[k], got_d[k];
+    ASSERT_EQ(tree.knn(q, k, want, want_d), k);
+    // The tightest such bound, and the largest distance of k other distinct points near q.
+    std::vector<float> bounds = {std::nextafter(want_d[k - 1], inf)};
+    const std::vector<float> all = brute_sq(pts, q);
+    std::vector<std::size_t> order(pts.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return all[a] < all[b]; });
+    std::shuffle(order.begin(), order.begin() + 30, std::mt19937(static_cast<unsigned>(t)));
+    float worst = 0.0f;
+    for (std::size_t i = 0; i < k; ++i) worst = std::max(worst, all[order[i]]);
+    bounds.push_back(worst * 1.001f + 1e-12f);
+    for (const float b : bounds) {
+      ASSERT_EQ(tree.knn(q, k, got, got_d, b), k);
+      for (std::size_t i = 0; i < k; ++i) {
+        EXPECT_EQ(got[i], want[i]) << t << " " << i;
+        EXPECT_EQ(got_d[i], want_d[i]);
+      }
+    }
   }
 }
 
