@@ -187,7 +187,7 @@ PlaneFit fit_plane_ransac(const std::vector<Eigen::Vector3f>& points, const Rans
       best.inliers = refit_count;
     }
   }
-  best.inlier_std_m = inlier_std(s, best.plane, t);
+  if (params.inlier_std) best.inlier_std_m = inlier_std(s, best.plane, t);
   return best;
 }
 

@@ -18,6 +18,7 @@ struct RansacParams {
   Eigen::Vector3d prior_normal{0.0, 0.0, 1.0};
   double max_normal_angle_rad = 0.2618;  // 15 deg
   bool refit = true;                     // least-squares refit on the inliers of the best model
+  bool inlier_std = true;                // fill PlaneFit::inlier_std_m (one more pass over the points)
 
   void validate() const;
 };
