@@ -59,11 +59,23 @@ bool fit_neighbours(const Tree& tree, const Eigen::Vector3d& q, const Associatio
   const float bound =
       hinted_bound(searched, qf, k, hint, std::nextafter(max_sq, std::numeric_limits<float>::infinity()));
   if (searched.knn(qf, k, f.idx.data(), d2.data(), bound) != k) return false;
+  f.n = k;
+  // A tree's own points do not move (MovedPoints' do): the same neighbours of the same tree as in
+  // the previous round give the same fit.
+  const std::uint64_t fixed = std::is_same_v<Tree, PointKdTree> ? searched.id() : 0;
   if (hint != nullptr) {
+    const bool same = fixed != 0 && hint->fit_tree == fixed && hint->n == k &&
+                      std::equal(f.idx.begin(), f.idx.begin() + static_cast<std::ptrdiff_t>(k), hint->idx.begin());
     std::copy_n(f.idx.begin(), k, hint->idx.begin());
     hint->n = static_cast<std::uint8_t>(k);
+    if (same) {
+      f.mean = hint->mean;
+      f.eigenvalues = hint->eigenvalues;
+      f.eigenvectors = hint->eigenvectors;
+      return true;
+    }
+    hint->fit_tree = 0;
   }
-  f.n = k;
   for (std::size_t i = 0; i < f.n; ++i) f.mean += tree.point(f.idx[i]).template cast<double>();
   f.mean /= static_cast<double>(f.n);
   Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
@@ -76,6 +88,12 @@ bool fit_neighbours(const Tree& tree, const Eigen::Vector3d& q, const Associatio
   es.computeDirect(cov / static_cast<double>(f.n));
   f.eigenvalues = es.eigenvalues();
   f.eigenvectors = es.eigenvectors();
+  if (hint != nullptr && fixed != 0) {
+    hint->fit_tree = fixed;
+    hint->mean = f.mean;
+    hint->eigenvalues = f.eigenvalues;
+    hint->eigenvectors = f.eigenvectors;
+  }
   return true;
 }
 

@@ -51,10 +51,16 @@ struct MovedPoints {
 // points). Any k distinct indexed points bound the distance of the k-th nearest from above, so
 // their distances let the kd-tree search prune from its start; the neighbours found are the same
 // with or without a hint (see PointKdTree::knn: the k first by distance, then by visiting order,
-// among the points closer than the bound). A match stores the neighbours it searched.
+// among the points closer than the bound). A match stores the neighbours it searched, and against
+// a PointKdTree (whose points do not move) their fit, reused while the same tree gives the same
+// neighbours.
 struct NeighbourHint {
   std::array<std::uint32_t, 16> idx{};
   std::uint8_t n = 0;
+  std::uint64_t fit_tree = 0;  // PointKdTree::id() of the tree the fit below is of (0: none)
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  Eigen::Vector3d eigenvalues = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d eigenvectors = Eigen::Matrix3d::Identity();
 };
 
 // PointKdTree bounds its search by the correspondence distance, so a feature without a match costs

@@ -1,6 +1,7 @@
 #include "bipednav/localization/point_kdtree.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <limits>
 
 namespace bipednav::localization {
@@ -42,6 +43,8 @@ struct PointKdTree::Nearest {
 };
 
 PointKdTree::PointKdTree(std::vector<Eigen::Vector3f> points) : points_(std::move(points)) {
+  static std::atomic<std::uint64_t> built{0};
+  id_ = ++built;
   std::vector<Slot> slots;
   slots.reserve(points_.size());
   for (std::size_t i = 0; i < points_.size(); ++i)

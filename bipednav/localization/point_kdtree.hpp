@@ -17,6 +17,8 @@ class PointKdTree {
   explicit PointKdTree(std::vector<Eigen::Vector3f> points);
 
   bool empty() const { return ids_.empty(); }
+  // Unique to each tree built from points (copies share it; 0 for a default-constructed tree).
+  std::uint64_t id() const { return id_; }
   std::size_t indexed() const { return ids_.size(); }
   std::size_t size() const { return points_.size(); }
   const Eigen::Vector3f& point(std::size_t i) const { return points_[i]; }
@@ -57,6 +59,7 @@ class PointKdTree {
   std::vector<std::uint32_t> ids_;       // slot -> index into points_
   std::vector<float> x_, y_, z_;         // per slot, leaf order
   std::vector<Node> nodes_;              // preorder, root first
+  std::uint64_t id_ = 0;
 };
 
 }  // namespace bipednav::localization

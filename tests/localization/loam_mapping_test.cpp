@@ -47,6 +47,32 @@ TEST(FeatureAssociation, APatchSeenFromTheOtherSideOfAThinWallIsNotMatched) {
   EXPECT_TRUE(planar_correspondence(tree, q, 1.0, q, p, c, &no_viewpoints));
 }
 
+TEST(FeatureAssociation, HintsGiveTheSameMatches) {
+  // Hinted searches (earlier neighbours bound the search, the same neighbours of the same tree
+  // reuse their fit) give the constraints of unhinted ones, also when the hint is from another
+  // tree or another point.
+  const ThinWall wall;
+  const PointKdTree tree(wall.points), other(std::vector<Eigen::Vector3f>(wall.points.rbegin(), wall.points.rend()));
+  AssociationParams p;
+  NeighbourHint hint;
+  for (int t = 0; t < 200; ++t) {
+    const Eigen::Vector3d q(0.01 * (t % 23) - 0.05, 0.013 * (t % 17) - 0.1, 0.011 * (t % 13) - 0.07);
+    const PointKdTree& searched = t % 3 == 0 ? other : tree;
+    for (const bool planar : {true, false}) {
+      Constraint want, got;
+      const bool w = planar ? planar_correspondence(searched, q, 1.0, q, p, want)
+                            : edge_correspondence(searched, q, 1.0, q, p, want);
+      const bool g = planar ? planar_correspondence(searched, q, 1.0, q, p, got, nullptr, &hint)
+                            : edge_correspondence(searched, q, 1.0, q, p, got, nullptr, &hint);
+      ASSERT_EQ(g, w) << t;
+      if (!w) continue;
+      EXPECT_EQ(got.anchor, want.anchor) << t;
+      EXPECT_EQ(got.axis, want.axis) << t;
+      EXPECT_EQ(got.point, want.point) << t;
+    }
+  }
+}
+
 TEST(VoxelPointMap, KeepsBothFacesOfAWallThinnerThanAVoxel) {
   VoxelPointMap map(0.4);
   map.insert({0.05f, 0.1f, 0.1f}, {-3.0f, 0.0f, 0.0f});
