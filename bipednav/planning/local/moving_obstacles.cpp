@@ -65,6 +65,8 @@ void MovingObstacleParams::validate() const {
           ">= 0");
   require(std::isfinite(min_displacement_m) && min_displacement_m >= 0.0, "moving_obstacles.min_displacement_m",
           ">= 0");
+  require(positive(motion_window_s), "moving_obstacles.motion_window_s", "> 0");
+  require(std::isfinite(moving_pause_s) && moving_pause_s >= 0.0, "moving_obstacles.moving_pause_s", ">= 0");
   require(positive(max_prediction_s), "moving_obstacles.max_prediction_s", "> 0");
   require(std::isfinite(global_map_margin_m) && global_map_margin_m >= 0.0, "moving_obstacles.global_map_margin_m",
           ">= 0");
@@ -354,8 +356,29 @@ double coast_growth(const TrackedObstacle& t, double max_growth_m) {
 }  // namespace
 
 bool MovingObstacleTracker::is_moving(const TrackedObstacle& t) const {
+  if (params_.recent_motion) return t.moving;
   return t.hits >= params_.min_hits && t.velocity.norm() >= params_.min_moving_speed_mps &&
          (t.position - t.origin).norm() >= params_.min_displacement_m;
+}
+
+void MovingObstacleTracker::update_motion(TrackedObstacle& t, double stamp_s) const {
+  if (!params_.recent_motion) return;
+  // The window's samples and the latest one before it (where the track was motion_window_s ago, or
+  // when last seen before a longer gap).
+  auto& recent = t.recent;
+  recent.push_back({stamp_s, t.position});
+  auto first_in = std::find_if(recent.begin(), recent.end(), [&](const TrackedObstacle::Sample& s) {
+    return s.stamp_s >= stamp_s - params_.motion_window_s;
+  });
+  if (first_in != recent.begin()) recent.erase(recent.begin(), first_in - 1);
+  // The farthest of them from the latest centroid: the recent travel.
+  double travel2 = 0.0;
+  for (const auto& s : recent) travel2 = std::max(travel2, (t.position - s.position).squaredNorm());
+  const double d_min = params_.min_displacement_m;
+  const bool fast = t.velocity.norm() >= params_.min_moving_speed_mps;
+  if (fast || !t.moving) t.last_fast_s = stamp_s;
+  const bool pausing = t.moving && stamp_s - t.last_fast_s <= params_.moving_pause_s;
+  t.moving = t.hits >= params_.min_hits && travel2 >= d_min * d_min && (fast || pausing);
 }
 
 void MovingObstacleTracker::update_blobs(const std::vector<Blob>& blobs, double stamp_s,
@@ -387,19 +410,14 @@ void MovingObstacleTracker::update_blobs(const std::vector<Blob>& blobs, double 
     if (track_used[i] || blob_used[j]) continue;
     track_used[i] = blob_used[j] = 1;
     auto& t = tracks_[i];
-    double rj2 = r2;
-    if (params_.partial_view_noise) {
-      const double r = params_.measurement_noise_m + std::max(0.0, t.max_radius_m - blobs[j].radius_m);
-      rj2 = r * r;
-    }
-    kf_update(t.position.x(), t.velocity.x(), t.cov_x, blobs[j].centroid.x(), rj2);
-    kf_update(t.position.y(), t.velocity.y(), t.cov_y, blobs[j].centroid.y(), rj2);
+    kf_update(t.position.x(), t.velocity.x(), t.cov_x, blobs[j].centroid.x(), r2);
+    kf_update(t.position.y(), t.velocity.y(), t.cov_y, blobs[j].centroid.y(), r2);
     const double speed = t.velocity.norm();
     if (speed > params_.max_speed_mps) t.velocity *= params_.max_speed_mps / speed;
-    t.max_radius_m = std::max(t.max_radius_m, blobs[j].radius_m);
-    t.radius_m = params_.keep_largest_radius ? t.max_radius_m : blobs[j].radius_m;
+    t.radius_m = blobs[j].radius_m;
     t.top_m = std::max(t.top_m, blobs[j].top_m);
     ++t.hits;
+    update_motion(t, stamp_s);
   }
   // Tracks not seen this cycle keep their prediction until they are too old; a moving one whose
   // prediction is where no sensor could see it coasts on (the sensors' silence says nothing).
@@ -429,7 +447,8 @@ void MovingObstacleTracker::update_blobs(const std::vector<Blob>& blobs, double 
     TrackedObstacle t;
     t.id = next_id_++;
     t.position = t.origin = blobs[j].centroid;
-    t.radius_m = t.max_radius_m = blobs[j].radius_m;
+    if (params_.recent_motion) t.recent.push_back({stamp_s, t.position});
+    t.radius_m = blobs[j].radius_m;
     t.top_m = blobs[j].top_m;
     t.stamp_s = t.last_seen_s = stamp_s;
     t.hits = 1;
