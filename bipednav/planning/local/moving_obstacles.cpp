@@ -410,11 +410,17 @@ void MovingObstacleTracker::update_blobs(const std::vector<Blob>& blobs, double 
     if (track_used[i] || blob_used[j]) continue;
     track_used[i] = blob_used[j] = 1;
     auto& t = tracks_[i];
-    kf_update(t.position.x(), t.velocity.x(), t.cov_x, blobs[j].centroid.x(), r2);
-    kf_update(t.position.y(), t.velocity.y(), t.cov_y, blobs[j].centroid.y(), r2);
+    double rj2 = r2;
+    if (params_.partial_view_noise) {
+      const double r = params_.measurement_noise_m + std::max(0.0, t.max_radius_m - blobs[j].radius_m);
+      rj2 = r * r;
+    }
+    kf_update(t.position.x(), t.velocity.x(), t.cov_x, blobs[j].centroid.x(), rj2);
+    kf_update(t.position.y(), t.velocity.y(), t.cov_y, blobs[j].centroid.y(), rj2);
     const double speed = t.velocity.norm();
     if (speed > params_.max_speed_mps) t.velocity *= params_.max_speed_mps / speed;
-    t.radius_m = blobs[j].radius_m;
+    t.max_radius_m = std::max(t.max_radius_m, blobs[j].radius_m);
+    t.radius_m = params_.keep_largest_radius ? t.max_radius_m : blobs[j].radius_m;
     t.top_m = std::max(t.top_m, blobs[j].top_m);
     ++t.hits;
     update_motion(t, stamp_s);
@@ -448,7 +454,7 @@ void MovingObstacleTracker::update_blobs(const std::vector<Blob>& blobs, double 
     t.id = next_id_++;
     t.position = t.origin = blobs[j].centroid;
     if (params_.recent_motion) t.recent.push_back({stamp_s, t.position});
-    t.radius_m = blobs[j].radius_m;
+    t.radius_m = t.max_radius_m = blobs[j].radius_m;
     t.top_m = blobs[j].top_m;
     t.stamp_s = t.last_seen_s = stamp_s;
     t.hits = 1;

@@ -430,6 +430,51 @@ TEST(MovingObstacles, UnseenTrackInViewIsDroppedAndCoastingIsBounded) {
   EXPECT_DOUBLE_EQ(last_moving(off, {0.2, 2.0}, {0.2, 0.0}, 14.0, true), 2.5);
 }
 
+TEST(MovingObstacles, KeepLargestRadiusRemembersTheWholeObject) {
+  // A 0.5 m cube (bounding radius 0.35 m) seen whole, then only a corner of it (radius 0.1 m) as it
+  // crosses the edge of the sensors' view: with keep_largest_radius the track keeps 0.35 m.
+  const auto radius_after = [](bool keep) {
+    MovingObstacleParams p;
+    p.keep_largest_radius = keep;
+    MovingObstacleTracker tracker(p);
+    for (int k = 0; k <= 20; ++k) {
+      const double t = 0.1 * k;
+      const Eigen::Vector2d c(0.3 * t, 2.0);
+      tracker.update_blobs({Blob{c, k < 10 ? 0.35 : 0.1, 0.5, 20}}, t);
+    }
+    const auto m = tracker.moving(2.0);
+    return m.size() == 1 ? m[0].radius_m : -1.0;
+  };
+  EXPECT_DOUBLE_EQ(radius_after(false), 0.1);
+  EXPECT_DOUBLE_EQ(radius_after(true), 0.35);
+}
+
+TEST(MovingObstacles, PartialViewNoiseKeepsTheVelocityOfAShrinkingBlob) {
+  // A 0.5 m cube moving at 0.25 m/s in -y, seen whole for 3 s; then, for 0.6 s, only a shrinking
+  // piece of its far side (as it passes under the LiDAR's lowest ring), whose centroid recedes
+  // from the robot (+x) by up to 0.25 m.
+  const auto velocity_after = [](bool partial_view_noise) {
+    MovingObstacleParams p;
+    p.partial_view_noise = partial_view_noise;
+    MovingObstacleTracker tracker(p);
+    for (int k = 0; k <= 36; ++k) {
+      const double t = 0.1 * k;
+      const Eigen::Vector2d c(0.0, 2.0 - 0.25 * t);
+      const double f = k <= 30 ? 0.0 : (k - 30) / 6.0;  // share of the view lost
+      tracker.update_blobs({Blob{c + Eigen::Vector2d(0.25 * f, 0.0), 0.35 - 0.3 * f, 0.5, 20}}, t);
+    }
+    EXPECT_EQ(tracker.tracks().size(), 1u);
+    return tracker.tracks().empty() ? Eigen::Vector2d::Zero().eval() : tracker.tracks()[0].velocity;
+  };
+  const Eigen::Vector2d off = velocity_after(false), on = velocity_after(true);
+  // The receding centroid is read as motion away (0.415 m/s), with the noise grown by the lost
+  // extent less than half of it (0.169 m/s); the true motion is kept either way.
+  EXPECT_GT(off.x(), 0.4);
+  EXPECT_LT(on.x(), 0.2);
+  EXPECT_NEAR(off.y(), -0.25, 0.01);
+  EXPECT_NEAR(on.y(), -0.25, 0.01);
+}
+
 }  // namespace bipednav::planning::local
 
 namespace bipednav::planning::local {
