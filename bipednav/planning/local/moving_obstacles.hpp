@@ -98,7 +98,9 @@ struct MovingObstacleParams {
   // bounding radius 0.35 m, tracked with 0.13-0.2 m while it closed in from the side, so yielding
   // chose a slow back-off that its corner still reached). With coast_in_blind_zone, seeds 1-10 at
   // 2987194: three_rooms/digit 9/10 (9 touches cube_2; 4/10 with both off, 7/10 coasting alone),
-  // three_rooms/turtlebot3 10/10 (9/10 off). Off: the other pairs are not measured with it yet.
+  // three_rooms/turtlebot3 10/10 (9/10 off). Off: with both on, hexagon_dynamic/turtlebot3 fell
+  // to 5/10 (1, 2, 4, 5, 8 PAT_EXCEEDED; 8/10 off), digit_lab_dynamic/turtlebot3 9/10 (2 touches),
+  // digit_lab_dynamic/digit 9/10 (9 touches; 10/10 off).
   bool keep_largest_radius = false;
   // A blob smaller than the largest its track has had is a partial view, its centroid off the
   // object's centre by up to the difference: its measurement noise grows by that much (so a track's
