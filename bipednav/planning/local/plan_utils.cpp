@@ -32,6 +32,28 @@ bool inside_window(const mapping::GridGeometry& g, const Pose2& p, double margin
          p.y <= g.origin_y_m + g.size_y_m() - margin;
 }
 
+// The cost of the cell under (x, y); -1 off the map.
+int cost_at_point(const mapping::Costmap2D& costmap, double x, double y) {
+  const auto c = costmap.geometry().world_to_cell(x, y);
+  return c ? costmap.cost(*c) : -1;
+}
+
+// Whether bad(x, y) holds at any point sampled along the poses' segments, one sample per cell
+// length (the first pose itself is not sampled).
+template <typename Pred>
+bool any_sampled_point(const std::vector<Pose2>& poses, double step_m, const Pred& bad) {
+  for (std::size_t i = 1; i < poses.size(); ++i) {
+    const double len = distance(poses[i - 1], poses[i]);
+    const int steps = std::max(1, static_cast<int>(std::ceil(len / step_m)));
+    for (int s = 1; s <= steps; ++s) {
+      const double f = static_cast<double>(s) / steps;
+      if (bad(poses[i - 1].x + f * (poses[i].x - poses[i - 1].x), poses[i - 1].y + f * (poses[i].y - poses[i - 1].y)))
+        return true;
+    }
+  }
+  return false;
+}
+
 }  // namespace
 
 LocalGoal select_local_goal(const Path& plan, const Pose2& T_map_base, const mapping::Costmap2D& costmap,
@@ -87,26 +109,14 @@ Twist clamp_command(const Twist& desired, const Twist& current, const CommandLim
 bool poses_feasible(const std::vector<Pose2>& poses, const mapping::Costmap2D& costmap) {
   if (poses.empty()) return true;
   const auto& g = costmap.geometry();
-  const auto cost_at = [&](double x, double y) -> int {
-    const auto c = g.world_to_cell(x, y);
-    return c ? costmap.cost(*c) : -1;
-  };
+  const auto cost_at = [&](double x, double y) { return cost_at_point(costmap, x, y); };
   const int own = cost_at(poses.front().x, poses.front().y);
   const int limit = own >= mapping::kInscribed && own != mapping::kUnknown ? mapping::kLethal : mapping::kInscribed;
   const auto bad = [&](double x, double y) {
     const int c = cost_at(x, y);
     return c >= limit && c != mapping::kUnknown;
   };
-  for (std::size_t i = 1; i < poses.size(); ++i) {
-    const double len = distance(poses[i - 1], poses[i]);
-    const int steps = std::max(1, static_cast<int>(std::ceil(len / g.resolution_m)));
-    for (int s = 1; s <= steps; ++s) {
-      const double f = static_cast<double>(s) / steps;
-      if (bad(poses[i - 1].x + f * (poses[i].x - poses[i - 1].x), poses[i - 1].y + f * (poses[i].y - poses[i - 1].y)))
-        return false;
-    }
-  }
-  return true;
+  return !any_sampled_point(poses, g.resolution_m, bad);
 }
 
 double lethal_clearance(const mapping::Costmap2D& costmap, double x, double y, double max_m, Eigen::Vector2d* nearest) {
@@ -148,10 +158,7 @@ double lethal_clearance(const mapping::Costmap2D& costmap, double x, double y, d
 bool poses_keep_clearance(const std::vector<Pose2>& poses, const mapping::Costmap2D& costmap) {
   if (poses.empty()) return true;
   const auto& g = costmap.geometry();
-  const auto cost_at = [&](double x, double y) -> int {
-    const auto c = g.world_to_cell(x, y);
-    return c ? costmap.cost(*c) : -1;
-  };
+  const auto cost_at = [&](double x, double y) { return cost_at_point(costmap, x, y); };
   const int own = cost_at(poses.front().x, poses.front().y);
   if (own < mapping::kInscribed || own == mapping::kUnknown) return poses_feasible(poses, costmap);
   // Only points in inscribed or lethal cells are checked, and those lie within the inscribed
@@ -164,16 +171,7 @@ bool poses_keep_clearance(const std::vector<Pose2>& poses, const mapping::Costma
     if (c == mapping::kLethal && own != mapping::kLethal) return true;
     return lethal_clearance(costmap, x, y, kSearchM) < start;
   };
-  for (std::size_t i = 1; i < poses.size(); ++i) {
-    const double len = distance(poses[i - 1], poses[i]);
-    const int steps = std::max(1, static_cast<int>(std::ceil(len / g.resolution_m)));
-    for (int s = 1; s <= steps; ++s) {
-      const double f = static_cast<double>(s) / steps;
-      if (bad(poses[i - 1].x + f * (poses[i].x - poses[i - 1].x), poses[i - 1].y + f * (poses[i].y - poses[i - 1].y)))
-        return false;
-    }
-  }
-  return true;
+  return !any_sampled_point(poses, g.resolution_m, bad);
 }
 
 GoalApproach approach_goal(const Pose2& T_map_base, const Pose2& goal, double xy_tol_m, double yaw_tol_rad,
