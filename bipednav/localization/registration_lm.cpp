@@ -9,7 +9,7 @@ namespace bipednav::localization {
 
 namespace {
 
-Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
+Eigen::Matrix3d skew_matrix(const Eigen::Vector3d& v) {
   Eigen::Matrix3d K;
   K << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
   return K;
@@ -36,7 +36,7 @@ struct RodriguesCoefficients {
 Eigen::Matrix3d rodrigues(const Eigen::Vector3d& theta) {
   const RodriguesCoefficients c(theta);
   // theta^ theta^ = theta theta^T - |theta|^2 I
-  Eigen::Matrix3d R = c.b * theta * theta.transpose() + c.a * skew(theta);
+  Eigen::Matrix3d R = c.b * theta * theta.transpose() + c.a * skew_matrix(theta);
   R.diagonal().array() += 1.0 - c.b * theta.squaredNorm();
   return R;
 }

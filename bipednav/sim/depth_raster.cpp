@@ -10,7 +10,7 @@
 namespace bipednav::sim {
 namespace {
 
-constexpr float kInf = std::numeric_limits<float>::infinity();
+constexpr float kFarDepth = std::numeric_limits<float>::infinity();
 // Surfaces nearer than this along the optical axis are not drawn (a ray cast would return
 // them, but they are far below any camera's minimum range).
 constexpr double kNearM = 1e-6;
@@ -98,9 +98,9 @@ void DepthRasterizer::depth_row(int v, float* out) const {
   int u = 0;
   for (; u + 4 <= width_; u += 4) {
     const F4 q = load(in + u);
-    store(out + u, select(q > 0.0f, splat(1.0f) / q, splat(kInf)));
+    store(out + u, select(q > 0.0f, splat(1.0f) / q, splat(kFarDepth)));
   }
-  for (; u < width_; ++u) out[u] = in[u] > 0.0f ? 1.0f / in[u] : kInf;
+  for (; u < width_; ++u) out[u] = in[u] > 0.0f ? 1.0f / in[u] : kFarDepth;
 }
 
 void DepthRasterizer::render(const RasterScene& scene, const SE3& T_world_camera, float* depth) {

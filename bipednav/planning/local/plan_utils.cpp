@@ -25,7 +25,8 @@ std::optional<Result> check_inputs(const Pose2& T_map_base, const Twist& velocit
 
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
+// Named apart from moving_obstacles.cpp's kInf: the sanitizer build compiles this library as unity batches.
+constexpr double kNoClearance = std::numeric_limits<double>::infinity();
 
 bool inside_window(const mapping::GridGeometry& g, const Pose2& p, double margin) {
   return p.x >= g.origin_x_m + margin && p.y >= g.origin_y_m + margin && p.x <= g.origin_x_m + g.size_x_m() - margin &&
@@ -122,7 +123,7 @@ bool poses_feasible(const std::vector<Pose2>& poses, const mapping::Costmap2D& c
 double lethal_clearance(const mapping::Costmap2D& costmap, double x, double y, double max_m, Eigen::Vector2d* nearest) {
   const auto& g = costmap.geometry();
   const auto c = g.world_to_cell_unbounded(x, y);
-  if (!c || !std::isfinite(max_m) || max_m < 0.0) return kInf;
+  if (!c || !std::isfinite(max_m) || max_m < 0.0) return kNoClearance;
   const int rings = static_cast<int>(std::ceil(max_m / g.resolution_m)) + 1;
   double best2 = max_m * max_m;
   bool found = false;
@@ -152,7 +153,7 @@ double lethal_clearance(const mapping::Costmap2D& costmap, double x, double y, d
       visit(c->x + k, c->y + i);
     }
   }
-  return found ? std::sqrt(best2) : kInf;
+  return found ? std::sqrt(best2) : kNoClearance;
 }
 
 bool poses_keep_clearance(const std::vector<Pose2>& poses, const mapping::Costmap2D& costmap) {
