@@ -95,7 +95,7 @@ RunResult run_scenario(const sim::Scenario& scenario, const RunOptions& o) {
       nav.set_goal(goals[next_goal].pose);
     }
     const double t0_ms = process_cpu_ms();
-    const SensorFrame frame = faults.empty() ? sim.step(cmd) : injector.apply(sim.step(cmd));
+    SensorFrame frame = faults.empty() ? sim.step(cmd) : injector.apply(sim.step(cmd));
     const double t1_ms = process_cpu_ms();
     cmd = nav.tick(frame);
     sim_ms += t1_ms - t0_ms;
@@ -113,6 +113,7 @@ RunResult run_scenario(const sim::Scenario& scenario, const RunOptions& o) {
         out.snapshots.push_back(snapshot(sim.now_s(), nav, sim));
       last_path = nav.global_path();
     }
+    sim.recycle(std::move(frame));  // its clouds' buffers hold the next frames' clouds
     const bool more_goals = next_goal < goals.size();
     const auto state = nav.status().state;
     if (!more_goals && (state == navigation::NavState::SUCCEEDED || state == navigation::NavState::FAILED)) break;

@@ -71,12 +71,20 @@ Eigen::Vector3f DepthCamera::pixel_ray(int u, int v) const {
 }
 
 PointCloud DepthCamera::capture(const SE3& T_world_camera, const RayCaster& caster) {
-  PointCloud c = capture_at(next_capture_s(), T_world_camera, caster);
+  PointCloud c = std::move(spare_);  // a recycled cloud's buffers, or none
+  spare_ = PointCloud{};
+  render_into(c, next_capture_s(), T_world_camera, caster);
   ++count_;
   return c;
 }
 
 PointCloud DepthCamera::capture_at(double stamp_s, const SE3& T_world_camera, const RayCaster& caster) {
+  PointCloud c;
+  render_into(c, stamp_s, T_world_camera, caster);
+  return c;
+}
+
+void DepthCamera::render_into(PointCloud& cloud, double stamp_s, const SE3& T_world_camera, const RayCaster& caster) {
   // The rasteriser's rows are read out one by one below (into depth_, a row at a time).
   const bool raster = params_.renderer == "raster";
   if (raster)
@@ -86,7 +94,7 @@ PointCloud DepthCamera::capture_at(double stamp_s, const SE3& T_world_camera, co
 
   // Noise and points row by row (noise drawn in pixel order).
   static_assert(sizeof(Eigen::Vector3f) == 3 * sizeof(float));  // points are packed x y z
-  PointCloud cloud;
+  cloud.clear();                                                // every point is written below
   cloud.frame_id = frame_id_;
   cloud.stamp_s = stamp_s;
   const auto w = static_cast<std::size_t>(params_.width);
@@ -119,7 +127,6 @@ PointCloud DepthCamera::capture_at(double stamp_s, const SE3& T_world_camera, co
       out_row[u] = Eigen::Vector3f(x, x * su[u], x * sv);
     }
   }
-  return cloud;
 }
 
 // One Embree ray per pixel, tile by tile; keeps the depth (distance along the optical axis).

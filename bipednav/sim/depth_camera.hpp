@@ -47,6 +47,8 @@ class DepthCamera {
   PointCloud capture(const SE3& T_world_camera, const RayCaster& caster);
   // Captures at an arbitrary time without touching the schedule.
   PointCloud capture_at(double stamp_s, const SE3& T_world_camera, const RayCaster& caster);
+  // Hands back a returned image's cloud: the next capture() is written into its buffers.
+  void recycle(PointCloud&& cloud) { spare_ = std::move(cloud); }
 
   // Unit ray of pixel (u, v) in the camera body frame.
   Eigen::Vector3f pixel_ray(int u, int v) const;
@@ -54,6 +56,8 @@ class DepthCamera {
 
  private:
   void cast_depth(const SE3& T_world_camera, const RayCaster& caster);
+  // The image at stamp_s into `cloud` (its old contents replaced, its buffers reused).
+  void render_into(PointCloud& cloud, double stamp_s, const SE3& T_world_camera, const RayCaster& caster);
 
   DepthCameraParams params_;
   std::string frame_id_;
@@ -70,6 +74,7 @@ class DepthCamera {
   DepthRasterizer rasterizer_;
   std::vector<float> depth_;      // scratch: depth per pixel (row-major; raster: one row), +inf without a hit
   std::vector<float> noise_row_;  // scratch: one row of noise samples
+  PointCloud spare_;              // a recycled cloud's buffers, for the next capture()
 };
 
 }  // namespace bipednav::sim

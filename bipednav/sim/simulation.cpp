@@ -105,6 +105,16 @@ SensorFrame Simulation::step(const Twist& cmd) {
   return frame;
 }
 
+void Simulation::recycle(SensorFrame&& frame) {
+  if (lidar_ && frame.lidar) lidar_->recycle(std::move(*frame.lidar));
+  for (DepthCloud& d : frame.depth)
+    for (Camera& c : cameras_)
+      if (c.mount.name == d.camera) {
+        c.camera.recycle(std::move(d.cloud));
+        break;
+      }
+}
+
 void Simulation::update_collision() {
   const double t = clock_.now_s();
   proximity_ = collision_.nearest(robot_.state().pose.position(), t);

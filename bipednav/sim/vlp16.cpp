@@ -116,7 +116,9 @@ std::optional<PointCloud> Vlp16::fire_until(double t_end_s, const RayCaster& cas
     const double t = column_time_s(sweep_, next_column_);
     if (t >= t_end_s) break;
     if (next_column_ == 0) {
-      current_ = PointCloud{};
+      current_ = std::move(spare_);  // a recycled sweep's buffers, or none
+      spare_ = PointCloud{};
+      current_.clear();
       current_.frame_id = frame_id_;
       current_.stamp_s = t;
       current_.reserve(beams_.size());

@@ -48,6 +48,8 @@ class Vlp16 {
 
   // Fires every column whose firing time is < t_end_s. Returns the sweep if this completed it.
   std::optional<PointCloud> fire_until(double t_end_s, const RayCaster& caster, const PoseAt& T_world_sensor_at);
+  // Hands back a returned sweep: the next sweep is written into its buffers (no allocation).
+  void recycle(PointCloud&& sweep) { spare_ = std::move(sweep); }
 
   double column_time_s(std::uint64_t sweep, int column) const;
   double ring_elevation_rad(int ring) const;
@@ -71,6 +73,7 @@ class Vlp16 {
   std::uint64_t sweep_ = 0;
   int next_column_ = 0;
   PointCloud current_;
+  PointCloud spare_;  // a recycled sweep's buffers
 };
 
 }  // namespace bipednav::sim
