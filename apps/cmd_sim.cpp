@@ -112,10 +112,11 @@ RunRecord run(sim::Simulation& sim, const sim::Scenario& scenario, const RobotPr
   const Stopwatch wall;
   for (std::size_t i = 0; i < steps; ++i) {
     const Twist cmd = scenario.commands.empty() ? straight : scenario.command_at(sim.now_s());
-    const SensorFrame frame = sim.step(cmd);
+    SensorFrame frame = sim.step(cmd);
     rec.distance_m += distance(rec.track.pose.back(), sim.true_pose());
     rec.track.add(sim.now_s(), sim.true_pose());
     record_frame(frame, rec);
+    sim.recycle(std::move(frame));  // its clouds' buffers hold the next frames' clouds
     if (sim.in_collision() && !touching)
       rec.collisions.push_back(
           {sim.now_s(), sim.true_pose(), sim.nearest_obstacle().point, sim.nearest_obstacle().obstacle});
