@@ -112,9 +112,10 @@ BagRunSummary run_scenario_to_bag(const sim::Scenario& scenario, const runner::R
   while (sim.now_s() < limit) {
     const sim::TimedGoal* g = scenario.goal_at(sim.now_s());
     if (g && g != active) nav.set_goal((active = g)->pose);
-    const SensorFrame frame = sim.step(cmd);
+    SensorFrame frame = sim.step(cmd);
     cmd = nav.tick(frame);
     recorder.record(sim, frame, nav, cmd);
+    sim.recycle(std::move(frame));  // its clouds' buffers hold the next frames' clouds
     const bool last_goal = scenario.goals.empty() || active == &scenario.goals.back();
     const auto state = nav.status().state;
     if (last_goal && (state == navigation::NavState::SUCCEEDED || state == navigation::NavState::FAILED)) break;

@@ -111,7 +111,9 @@ void SimNode::run() {
   while (ros::ok()) {
     ros::spinOnce();
     if (sim_->now_s() - cmd_stamp_s_ > p_.cmd_timeout_s) cmd_ = Twist{};
-    publish(sim_->step(cmd_));
+    SensorFrame frame = sim_->step(cmd_);
+    publish(frame);
+    sim_->recycle(std::move(frame));  // its clouds' buffers hold the next frames' clouds
     if (sim_->first_collision() && sim_->first_collision()->time_s + step_s >= sim_->now_s())
       ROS_WARN("bipednav_sim_node: collision with %s at t = %.2f s", sim_->first_collision()->obstacle.c_str(),
                sim_->first_collision()->time_s);
