@@ -17,7 +17,7 @@ std::vector<BtLeafSpec> make_specs() {
        C,
        {goal, error_code},
        "the goal is on the map and not in collision; else error_code = BLOCKED_GOAL (55) / OUT_OF_MAP (63)"},
-      {"GoalReached", C, {goal}, "the robot is within the goal checker's xy and yaw tolerance of goal"},
+      {"GoalReached", C, {goal}, "the robot is within the goal checker's xy and yaw tolerance of goal and stopped"},
       {"IsPathValid",
        C,
        {P::input("path", BtType::Path, "{path}")},

@@ -18,6 +18,17 @@ void ServerParams::validate() const {
   require(path_check_distance_m > 0.0, "path_check_distance_m", "> 0");
   require(relaxed_cost_weight_factor > 0.0 && relaxed_cost_weight_factor <= 1.0, "relaxed_cost_weight_factor",
           "in (0, 1]");
+  require(controller_goal_tolerance_fraction >= 0.0 && controller_goal_tolerance_fraction <= 1.0,
+          "controller_goal_tolerance_fraction", "in [0, 1]");
+}
+
+void apply_controller_goal_tolerances(ServerParams& params) {
+  const double f = params.controller_goal_tolerance_fraction;
+  if (!(f > 0.0)) return;
+  const double xy = f * params.goal.xy_tolerance_m, yaw = f * params.goal.yaw_tolerance_rad;
+  params.local.teb.xy_goal_tolerance_m = params.local.tracker.xy_goal_tolerance_m = xy;
+  params.local.teb.yaw_goal_tolerance_rad = params.local.tracker.yaw_goal_tolerance_rad = yaw;
+  params.local.teb.xy_goal_release_m = params.local.tracker.xy_goal_release_m = params.goal.xy_tolerance_m;
 }
 
 NavigationServer::NavigationServer(ServerParams params, RobotProfile robot, mapping::GlobalCostmap& global,
@@ -30,6 +41,7 @@ NavigationServer::NavigationServer(ServerParams params, RobotProfile robot, mapp
       progress_(params_.progress),
       oscillation_(params_.oscillation) {
   params_.validate();
+  apply_controller_goal_tolerances(params_);
   make_global_planner(false);
   local_planner_ = planning::local::make_local_planner(params_.local_planner, params_.local);
 }
@@ -84,7 +96,7 @@ ActionStep NavigationServer::exe_path(const Path& path, bool first) {
   } else {
     blocked_since_s_ = -1.0;
   }
-  if (goal_checker_.reached(view_.pose, path.poses.back())) {
+  if (goal_checker_.reached(view_.pose, path.poses.back(), view_.velocity, view_.now_s)) {
     cmd_ = {};
     return {ActionStep::State::SUCCEEDED, {Outcome::SUCCESS, "goal reached"}};
   }
@@ -191,7 +203,9 @@ Result NavigationServer::relax_constraints() {
   return {Outcome::SUCCESS, "planner cost weight relaxed"};
 }
 
-bool NavigationServer::goal_reached(const Pose2& goal) const { return goal_checker_.reached(view_.pose, goal); }
+bool NavigationServer::goal_reached(const Pose2& goal) const {
+  return goal_checker_.reached(view_.pose, goal, view_.velocity, view_.now_s);
+}
 
 Result NavigationServer::goal_valid(const Pose2& goal) const {
   if (!goal.is_finite()) return {Outcome::INVALID_GOAL, "the goal is not finite"};

@@ -23,6 +23,11 @@ struct ServerParams {
   std::string local_planner = "teb";  // teb | tracker
   planning::local::LocalPlannerParams local;
   control::GoalCheckerParams goal;
+  // The local planners aim at this share of the goal checker's xy and yaw tolerances (and hold
+  // the goal out to the checker's xy tolerance), so that with the checker waiting for the robot to
+  // stop, it comes to rest inside the tolerances rather than on their edge, where localization error
+  // puts the true pose outside half the time. 0: the planners keep their own goal tolerances.
+  double controller_goal_tolerance_fraction = 0.5;
   control::ProgressCheckerParams progress;
   control::OscillationCheckerParams oscillation;
   int controller_failures_allowed = 10;  // consecutive failed control cycles before exe_path fails
@@ -32,6 +37,10 @@ struct ServerParams {
 
   void validate() const;
 };
+
+// Sets the local planners' goal tolerances from the goal checker's and
+// controller_goal_tolerance_fraction (no change when it is 0).
+void apply_controller_goal_tolerances(ServerParams& params);
 
 // What the actions see of the robot this tick (filled in by the Navigator).
 struct RobotView {

@@ -16,3 +16,25 @@ TEST(NavigatorParams, WheeledRobotsProjectLoamsReferenceWithThePriorChange) {
     EXPECT_EQ(mapping::height_aware_maps_for(robot), wheeled) << kind;
   }
 }
+
+TEST(NavigatorParams, LocalPlannersAimAtAShareOfTheGoalCheckersTolerance) {
+  navigation::ServerParams p;
+  p.goal.xy_tolerance_m = 0.2;
+  p.goal.yaw_tolerance_rad = 0.3;
+  p.controller_goal_tolerance_fraction = 0.5;
+  navigation::apply_controller_goal_tolerances(p);
+  for (const double xy : {p.local.teb.xy_goal_tolerance_m, p.local.tracker.xy_goal_tolerance_m})
+    EXPECT_DOUBLE_EQ(xy, 0.1);
+  for (const double yaw : {p.local.teb.yaw_goal_tolerance_rad, p.local.tracker.yaw_goal_tolerance_rad})
+    EXPECT_DOUBLE_EQ(yaw, 0.15);
+  for (const double release : {p.local.teb.xy_goal_release_m, p.local.tracker.xy_goal_release_m})
+    EXPECT_DOUBLE_EQ(release, 0.2);
+  navigation::ServerParams own;
+  own.controller_goal_tolerance_fraction = 0.0;  // the planners keep their own tolerances
+  own.local.teb.xy_goal_tolerance_m = 0.3;
+  navigation::apply_controller_goal_tolerances(own);
+  EXPECT_DOUBLE_EQ(own.local.teb.xy_goal_tolerance_m, 0.3);
+  EXPECT_DOUBLE_EQ(own.local.tracker.xy_goal_release_m, 0.0);
+  own.controller_goal_tolerance_fraction = 1.5;
+  EXPECT_THROW(own.validate(), ParamError);
+}

@@ -176,9 +176,11 @@ bool poses_keep_clearance(const std::vector<Pose2>& poses, const mapping::Costma
 }
 
 GoalApproach approach_goal(const Pose2& T_map_base, const Pose2& goal, double xy_tol_m, double yaw_tol_rad,
-                           double rotate_gain, double max_vel_theta_radps) {
+                           double rotate_gain, double max_vel_theta_radps, double release_m, bool* holding) {
   GoalApproach a;
-  a.near = distance(T_map_base, goal) <= xy_tol_m;
+  const double d = distance(T_map_base, goal);
+  a.near = d <= xy_tol_m || (holding != nullptr && *holding && d <= release_m);
+  if (holding != nullptr) *holding = a.near;
   if (!a.near) return a;
   const double err = angle_diff(goal.theta, T_map_base.theta);
   a.reached = std::abs(err) <= yaw_tol_rad;

@@ -64,8 +64,13 @@ struct GoalApproach {
   bool reached = false;  // ... and the yaw tolerance
   Twist cmd;             // desired (unclamped) command
 };
+// Within xy_tol_m of the goal: turn on the spot to its yaw. With `holding` (the caller's state,
+// cleared on a new goal) the approach stays near once it got within xy_tol_m until the robot is more
+// than release_m away (hysteresis: localization noise and a walker's sway while turning do not send
+// it back to path following for a few centimetres); release_m <= xy_tol_m or no `holding`: none.
 GoalApproach approach_goal(const Pose2& T_map_base, const Pose2& goal, double xy_tol_m, double yaw_tol_rad,
-                           double rotate_gain, double max_vel_theta_radps);
+                           double rotate_gain, double max_vel_theta_radps, double release_m = 0.0,
+                           bool* holding = nullptr);
 
 // Detects oscillation in the command history: the mean velocities stay small while the yaw rate
 // (or the forward speed) keeps changing sign.

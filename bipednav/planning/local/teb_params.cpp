@@ -79,6 +79,7 @@ void TebParams::validate() const {
   require(pos(via_point_separation_m), "via_point_separation_m", "> 0");
   require(pos(xy_goal_tolerance_m), "xy_goal_tolerance_m", "> 0");
   require(pos(yaw_goal_tolerance_rad), "yaw_goal_tolerance_rad", "> 0");
+  require(std::isfinite(xy_goal_release_m) && xy_goal_release_m >= 0.0, "xy_goal_release_m", ">= 0");
   require(pos(rotate_gain), "rotate_gain", "> 0");
   require(pos(control_period_s), "control_period_s", "> 0");
   require(feasibility_check_poses >= 1, "feasibility_check_poses", ">= 1");

@@ -106,6 +106,9 @@ struct TebParams {
   double via_point_separation_m = 0.5;
   double xy_goal_tolerance_m = 0.2;
   double yaw_goal_tolerance_rad = 0.2;
+  // Once within xy_goal_tolerance_m, keep turning to the goal yaw until this far from the goal
+  // (approach_goal's hysteresis); <= xy_goal_tolerance_m: none.
+  double xy_goal_release_m = 0.0;
   double rotate_gain = 1.5;  // yaw-rate per rad of yaw error when turning on the goal
   double control_period_s = 0.1;
   int feasibility_check_poses = 5;

@@ -25,6 +25,7 @@ void TebPlanner::reset() {
   homotopy_.reset();
   oscillation_.clear();
   obstacles_.clear();
+  holding_goal_ = false;
 }
 
 CommandLimits TebPlanner::command_limits() const {
@@ -62,7 +63,7 @@ LocalPlanResult TebPlanner::plan(const Pose2& T_map_base, const Twist& current_v
   const Pose2 robot{T_map_base.x, T_map_base.y, normalize_angle(T_map_base.theta)};
   const GoalApproach ga =
       approach_goal(robot, global_plan.poses.back(), params_.xy_goal_tolerance_m, params_.yaw_goal_tolerance_rad,
-                    params_.rotate_gain, params_.limits.max_vel_theta_radps);
+                    params_.rotate_gain, params_.limits.max_vel_theta_radps, params_.xy_goal_release_m, &holding_goal_);
   if (ga.near) {
     // Turn on the spot to the goal yaw; the band is not needed any more.
     homotopy_.reset();

@@ -20,6 +20,7 @@ void TrackerParams::validate() const {
   require(pos(rotate_in_place_angle_rad), "rotate_in_place_angle_rad", "> 0");
   require(pos(xy_goal_tolerance_m), "xy_goal_tolerance_m", "> 0");
   require(pos(yaw_goal_tolerance_rad), "yaw_goal_tolerance_rad", "> 0");
+  require(std::isfinite(xy_goal_release_m) && xy_goal_release_m >= 0.0, "xy_goal_release_m", ">= 0");
   require(pos(rotate_gain), "rotate_gain", "> 0");
   require(pos(control_period_s), "control_period_s", "> 0");
   require(pos(collision_check_horizon_s), "collision_check_horizon_s", "> 0");
@@ -80,8 +81,9 @@ LocalPlanResult PathTracker::follow(const Pose2& T_map_base, const Twist& curren
   const CommandLimits lim{params_.max_vel_x_mps, 0.0, params_.max_vel_theta_radps, params_.acc_lim_x_mps2,
                           params_.acc_lim_theta_radps2};
   const Pose2& goal = global_plan.poses.back();
-  const GoalApproach ga = approach_goal(T_map_base, goal, params_.xy_goal_tolerance_m, params_.yaw_goal_tolerance_rad,
-                                        params_.rotate_gain, params_.max_vel_theta_radps);
+  const GoalApproach ga =
+      approach_goal(T_map_base, goal, params_.xy_goal_tolerance_m, params_.yaw_goal_tolerance_rad, params_.rotate_gain,
+                    params_.max_vel_theta_radps, params_.xy_goal_release_m, &holding_goal_);
   Twist desired = ga.cmd;
   r.goal_reached = ga.reached;
   if (!ga.near) {

@@ -25,7 +25,7 @@ class PathTracker : public LocalPlanner {
 
   LocalPlanResult compute(const Pose2& T_map_base, const Twist& current_velocity, const Path& global_plan,
                           const mapping::Costmap2D& local_costmap, double now_s) override;
-  void reset() override {}
+  void reset() override { holding_goal_ = false; }
   std::string_view name() const override { return "tracker"; }
 
  private:
@@ -37,6 +37,7 @@ class PathTracker : public LocalPlanner {
               const mapping::Costmap2D& local_costmap) const;
 
   TrackerParams params_;
+  bool holding_goal_ = false;  // approach_goal's hysteresis
 };
 
 }  // namespace bipednav::planning::local

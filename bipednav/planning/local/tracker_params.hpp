@@ -13,6 +13,9 @@ struct TrackerParams {
   double rotate_in_place_angle_rad = 0.8;  // turn on the spot when the lookahead point is further off
   double xy_goal_tolerance_m = 0.2;
   double yaw_goal_tolerance_rad = 0.2;
+  // Once within xy_goal_tolerance_m, keep turning to the goal yaw until this far from the goal
+  // (approach_goal's hysteresis); <= xy_goal_tolerance_m: none.
+  double xy_goal_release_m = 0.0;
   double rotate_gain = 1.5;
   double control_period_s = 0.1;
   double collision_check_horizon_s = 1.0;  // forward-simulated arc checked against the costmap

@@ -97,6 +97,27 @@ TEST(PlanUtils, ApproachGoalTurnsOnTheSpot) {
   EXPECT_TRUE(approach_goal({0, 0, 0}, {0.1, 0, 0.1}, 0.2, 0.2, 1.5, 0.8).reached);
 }
 
+TEST(PlanUtils, ApproachGoalHoldsTheGoalUntilTheReleaseDistance) {
+  bool holding = false;
+  const Pose2 goal{0, 0, 1.0};
+  const auto at = [&](double x) { return approach_goal({x, 0, 0}, goal, 0.1, 0.1, 1.5, 0.8, 0.2, &holding); };
+  EXPECT_FALSE(at(0.15).near);  // not yet within 0.1 m
+  EXPECT_FALSE(holding);
+  EXPECT_TRUE(at(0.09).near);
+  EXPECT_TRUE(holding);
+  const auto drifted = at(0.15);  // drifted while turning: still turning on the spot
+  EXPECT_TRUE(drifted.near);
+  EXPECT_DOUBLE_EQ(drifted.cmd.linear_x, 0.0);
+  EXPECT_GT(drifted.cmd.angular_z, 0.0);
+  EXPECT_FALSE(at(0.21).near);  // beyond the release distance: back to following the path
+  EXPECT_FALSE(holding);
+  EXPECT_FALSE(at(0.15).near);
+  // Without state (or with release <= tolerance) there is no hysteresis.
+  EXPECT_FALSE(approach_goal({0.15, 0, 0}, goal, 0.1, 0.1, 1.5, 0.8).near);
+  holding = true;
+  EXPECT_FALSE(approach_goal({0.15, 0, 0}, goal, 0.1, 0.1, 1.5, 0.8, 0.1, &holding).near);
+}
+
 TEST(PathTracker, PurePursuitCurvature) {
   TrackerParams p;
   const Twist t = pure_pursuit_command({1.0, 0.0}, 5.0, p);
