@@ -137,6 +137,39 @@ TEST(Decimation, FourBlocksAtOnceMatchOneAtATime) {
   for (std::size_t i = 0; i < a.size(); ++i) ASSERT_EQ(a.points[i], b.points[i]) << i;
 }
 
+// Rows whose width mixes the decimation loops (8 blocks at a time with AVX2, 4 at a time, one at a
+// time): the same points as one block per row pair.
+TEST(Decimation, MixedBlockLoopsMatchOneAtATime) {
+  Rng rng(5);
+  std::vector<Eigen::Vector3f> blocks;  // 4 points per block: top-left, top-right, bottom-left, bottom-right
+  for (int b = 0; b < 3000; ++b)
+    for (int i = 0; i < 4; ++i) {
+      Eigen::Vector3f p(static_cast<float>(rng.uniform(-3, 3)), static_cast<float>(rng.uniform(-3, 3)),
+                        static_cast<float>(rng.uniform(-3, 3)));
+      if (rng.uniform(0, 1) < 0.3) p.y() = kNan;
+      if (b % 5 == 0 && i == 1) p = Eigen::Vector3f(blocks.back().z(), blocks.back().x(), blocks.back().y());
+      blocks.push_back(p);
+    }
+  for (const int per_row : {13, 17, 25, 12, 4}) {  // blocks per row pair: 26, 34, 50, 24, 8 columns
+    const int pairs = 3000 / per_row;
+    PointCloud wide, narrow;
+    for (int g = 0; g < pairs; ++g)
+      for (int row = 0; row < 2; ++row)
+        for (int k = 0; k < per_row; ++k)
+          for (int c = 0; c < 2; ++c)
+            wide.points.push_back(blocks[static_cast<std::size_t>(4 * (per_row * g + k) + 2 * row + c)]);
+    narrow.points.assign(blocks.begin(), blocks.begin() + 4 * static_cast<std::ptrdiff_t>(pairs * per_row));
+    PointCloud a, b;
+    EXPECT_EQ(decimate_depth(wide, 2 * per_row, 2, a), decimate_depth(narrow, 2, 2, b)) << per_row;
+    const DecimationCounts na = decimate_depth_within(wide, 2 * per_row, 2, 2.5, a);
+    const DecimationCounts nb = decimate_depth_within(narrow, 2, 2, 2.5, b);
+    EXPECT_EQ(na.finite, nb.finite);
+    EXPECT_EQ(na.blocks, nb.blocks);
+    ASSERT_EQ(a.size(), b.size()) << per_row;
+    for (std::size_t i = 0; i < a.size(); ++i) ASSERT_EQ(a.points[i], b.points[i]) << per_row << " " << i;
+  }
+}
+
 // The pipeline voxelises the fused output without a crop; on the Digit frame's depth clouds the
 // voxels are bit for bit those of decimating, then voxelising with the range crop (the crop's
 // dropped points only split runs of the voxel sums, whose double sums of floats are exact).
