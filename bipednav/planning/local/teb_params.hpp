@@ -62,6 +62,9 @@ struct TebOptimizerParams {
   // loop. TurtleBot3, seeds 1-10, at 2987194: banded_lm 55 of 60 against Ceres' 56 (three_rooms fails seeds 2
   // and 9 on the moving cubes, Ceres 10; digit_lab_dynamic seed 2, Ceres 5); dense_normal_cholesky takes
   // three_rooms to 6/10 (cube contacts on 2, 4, 9, 10). Ceres stays the default until the cube contacts go.
+  // Again with goal settling (065344f): banded_lm 55 of 60 against Ceres' 56 (three_rooms fails 2 and 9,
+  // cube_3 contacts at 121 s, Ceres 10; digit_lab_dynamic 2, Ceres 5; hexagon_dynamic 5 and 6 both; the
+  // other three 10/10 both); Digit uses the tracker (its runs are identical).
   std::string linear_solver = "sparse_normal_cholesky";
 
   void validate() const;
