@@ -49,22 +49,59 @@ inline F4 range2_or_inf4(const float* p) {
   return r2 <= std::numeric_limits<float>::max() ? r2 : F4{inf, inf, inf, inf};
 }
 
-// sort2 on four blocks at once.
-inline void sort2(F4& a, I4& ia, F4& b, I4& ib) {
-  const I4 swap = b < a;
-  const F4 lo = swap ? b : a, hi = swap ? a : b;
-  const I4 ilo = swap ? ib : ia, ihi = swap ? ia : ib;
+// sort2 on a vector of blocks at once (4 or 8 lanes).
+template <class F, class I>
+__attribute__((always_inline)) inline void sort2(F& a, I& ia, F& b, I& ib) {
+  const I swap = b < a;
+  const F lo = swap ? b : a, hi = swap ? a : b;
+  const I ilo = swap ? ib : ia, ihi = swap ? ia : ib;
   a = lo;
   b = hi;
   ia = ilo;
   ib = ihi;
 }
 
+// decimate_by_2's step on L neighbouring blocks at once: r[k] lane j holds the squared range of
+// pixel k (0, 1: top row; 2, 3: bottom row) of block j, the block of columns u + 2j, u + 2j + 1.
+// Sorts each block by the 5-comparator network and emits its median when it is within r2_max.
+// One template for the 4-lane loop and the 8-lane AVX2 loop (inlined into each, so the 8-lane
+// instance compiles with the AVX2 target): the same comparisons and selections lane for lane.
+template <class F, class I, int L>
+__attribute__((always_inline)) inline void decimate_lanes(F (&r)[4], const Eigen::Vector3f* row0,
+                                                          const Eigen::Vector3f* row1, std::size_t u, float r2_max,
+                                                          Eigen::Vector3f*& o, DecimationCounts& n_out) {
+  const float inf = std::numeric_limits<float>::infinity();
+  const I zero{};
+  I id[4] = {zero, zero + 1, zero + 2, zero + 3};
+  const I n = -((r[0] < inf) + (r[1] < inf) + (r[2] < inf) + (r[3] < inf));
+  std::int32_t any = 0, total = 0;
+  for (int j = 0; j < L; ++j) any |= n[j], total += n[j];
+  if (any == 0) return;
+  n_out.finite += static_cast<std::size_t>(total);
+  sort2(r[0], id[0], r[1], id[1]);
+  sort2(r[2], id[2], r[3], id[3]);
+  sort2(r[0], id[0], r[2], id[2]);
+  sort2(r[1], id[1], r[3], id[3]);
+  sort2(r[1], id[1], r[2], id[2]);
+  const I three = n >= 3;  // (n - 1) / 2 is 1 for n = 3, 4 and 0 for n = 1, 2
+  const F r_mid = three ? r[1] : r[0];
+  const I id_mid = three ? id[1] : id[0];
+  const I some = n > 0;
+  const I keep = some & (r_mid <= r2_max);
+  std::int32_t blocks = 0;
+  for (int j = 0; j < L; ++j) blocks += some[j];
+  n_out.blocks += static_cast<std::size_t>(-blocks);
+  for (int j = 0; j < L; ++j) {
+    if (!keep[j]) continue;
+    const auto k = static_cast<std::uint32_t>(id_mid[j]);
+    *o++ = (k < 2 ? row0 : row1)[u + 2 * static_cast<std::size_t>(j) + (k & 1u)];
+  }
+}
+
 #if defined(__x86_64__) && defined(__GNUC__)
 #define BIPEDNAV_DECIMATE_AVX2 1
 // Eight blocks at a time where the CPU has AVX2 (checked at run time; the build targets baseline
-// x86-64): the same comparisons and selections lane for lane as the four-block loop of
-// decimate_by_2, so the same medians in the same order.
+// x86-64).
 using DecimateF8 = float __attribute__((vector_size(32)));
 using DecimateI8 = std::int32_t __attribute__((vector_size(32)));
 
@@ -78,66 +115,22 @@ __attribute__((target("avx2"))) inline DecimateF8 decimate_join(F4 lo, F4 hi) {
   return __builtin_shufflevector(lo, hi, 0, 1, 2, 3, 4, 5, 6, 7);
 }
 
-__attribute__((target("avx2"))) inline DecimateI8 decimate_splat8(std::int32_t x) {
-  return DecimateI8{x, x, x, x, x, x, x, x};
-}
-
-__attribute__((target("avx2"))) inline void decimate_sort2_8(DecimateF8& a, DecimateI8& ia, DecimateF8& b,
-                                                             DecimateI8& ib) {
-  const DecimateI8 swap = b < a;
-  const DecimateF8 lo = swap ? b : a, hi = swap ? a : b;
-  const DecimateI8 ilo = swap ? ib : ia, ihi = swap ? ia : ib;
-  a = lo;
-  b = hi;
-  ia = ilo;
-  ib = ihi;
-}
-
-// decimate_by_2's four-block step on eight blocks at a time, columns u .. u + 15 of rows row0, row1,
-// from u while 16 columns are left; returns the first column not done.
+// decimate_by_2's blocks eight at a time, columns u .. u + 15 of rows row0, row1, from u while 16
+// columns are left; returns the first column not done.
 __attribute__((target("avx2"))) std::size_t decimate_8_blocks_avx2(const Eigen::Vector3f* row0,
                                                                    const Eigen::Vector3f* row1, std::size_t u,
                                                                    std::size_t w, float r2_max, Eigen::Vector3f*& o,
                                                                    DecimationCounts& n_out) {
   for (; u + 16 <= w; u += 16) {
-    DecimateF8 r[4];
-    {
-      const F4 a0 = range2_or_inf4(row0[u].data()), b0 = range2_or_inf4(row0[u + 4].data());
-      const F4 a1 = range2_or_inf4(row1[u].data()), b1 = range2_or_inf4(row1[u + 4].data());
-      const F4 c0 = range2_or_inf4(row0[u + 8].data()), d0 = range2_or_inf4(row0[u + 12].data());
-      const F4 c1 = range2_or_inf4(row1[u + 8].data()), d1 = range2_or_inf4(row1[u + 12].data());
-      r[0] = decimate_join(shuffle<0, 2, 4, 6>(a0, b0), shuffle<0, 2, 4, 6>(c0, d0));
-      r[1] = decimate_join(shuffle<1, 3, 5, 7>(a0, b0), shuffle<1, 3, 5, 7>(c0, d0));
-      r[2] = decimate_join(shuffle<0, 2, 4, 6>(a1, b1), shuffle<0, 2, 4, 6>(c1, d1));
-      r[3] = decimate_join(shuffle<1, 3, 5, 7>(a1, b1), shuffle<1, 3, 5, 7>(c1, d1));
-    }
-    DecimateI8 id[4] = {decimate_splat8(0), decimate_splat8(1), decimate_splat8(2), decimate_splat8(3)};
-    const float inf = std::numeric_limits<float>::infinity();
-    const DecimateF8 infs{inf, inf, inf, inf, inf, inf, inf, inf};
-    const DecimateI8 n = -((r[0] < infs) + (r[1] < infs) + (r[2] < infs) + (r[3] < infs));
-    std::int32_t any = 0, total = 0;
-    for (int j = 0; j < 8; ++j) any |= n[j], total += n[j];
-    if (any == 0) continue;
-    n_out.finite += static_cast<std::size_t>(total);
-    decimate_sort2_8(r[0], id[0], r[1], id[1]);
-    decimate_sort2_8(r[2], id[2], r[3], id[3]);
-    decimate_sort2_8(r[0], id[0], r[2], id[2]);
-    decimate_sort2_8(r[1], id[1], r[3], id[3]);
-    decimate_sort2_8(r[1], id[1], r[2], id[2]);
-    const DecimateI8 three = n >= 3;  // (n - 1) / 2 is 1 for n = 3, 4 and 0 for n = 1, 2
-    const DecimateF8 r_mid = three ? r[1] : r[0];
-    const DecimateI8 id_mid = three ? id[1] : id[0];
-    const DecimateI8 some = n > 0;
-    const DecimateI8 keep =
-        some & (r_mid <= DecimateF8{r2_max, r2_max, r2_max, r2_max, r2_max, r2_max, r2_max, r2_max});
-    std::int32_t blocks = 0;
-    for (int j = 0; j < 8; ++j) blocks += some[j];
-    n_out.blocks += static_cast<std::size_t>(-blocks);
-    for (int j = 0; j < 8; ++j) {
-      if (!keep[j]) continue;
-      const auto k = static_cast<std::uint32_t>(id_mid[j]);
-      *o++ = (k < 2 ? row0 : row1)[u + 2 * static_cast<std::size_t>(j) + (k & 1u)];
-    }
+    const F4 a0 = range2_or_inf4(row0[u].data()), b0 = range2_or_inf4(row0[u + 4].data());
+    const F4 a1 = range2_or_inf4(row1[u].data()), b1 = range2_or_inf4(row1[u + 4].data());
+    const F4 c0 = range2_or_inf4(row0[u + 8].data()), d0 = range2_or_inf4(row0[u + 12].data());
+    const F4 c1 = range2_or_inf4(row1[u + 8].data()), d1 = range2_or_inf4(row1[u + 12].data());
+    DecimateF8 r[4] = {decimate_join(shuffle<0, 2, 4, 6>(a0, b0), shuffle<0, 2, 4, 6>(c0, d0)),
+                       decimate_join(shuffle<1, 3, 5, 7>(a0, b0), shuffle<1, 3, 5, 7>(c0, d0)),
+                       decimate_join(shuffle<0, 2, 4, 6>(a1, b1), shuffle<0, 2, 4, 6>(c1, d1)),
+                       decimate_join(shuffle<1, 3, 5, 7>(a1, b1), shuffle<1, 3, 5, 7>(c1, d1))};
+    decimate_lanes<DecimateF8, DecimateI8, 8>(r, row0, row1, u, r2_max, o, n_out);
   }
   return u;
 }
@@ -166,30 +159,9 @@ DecimationCounts decimate_by_2(const Eigen::Vector3f* p, std::size_t w, std::siz
     for (; u + 8 <= w; u += 8) {
       const F4 a0 = range2_or_inf4(row0[u].data()), b0 = range2_or_inf4(row0[u + 4].data());
       const F4 a1 = range2_or_inf4(row1[u].data()), b1 = range2_or_inf4(row1[u + 4].data());
-      // r[k]: lane j holds pixel k (0, 1: top row; 2, 3: bottom row) of block j.
       F4 r[4] = {shuffle<0, 2, 4, 6>(a0, b0), shuffle<1, 3, 5, 7>(a0, b0), shuffle<0, 2, 4, 6>(a1, b1),
                  shuffle<1, 3, 5, 7>(a1, b1)};
-      I4 id[4] = {I4{0, 0, 0, 0}, I4{1, 1, 1, 1}, I4{2, 2, 2, 2}, I4{3, 3, 3, 3}};
-      const F4 infs{inf, inf, inf, inf};
-      const I4 n = -((r[0] < infs) + (r[1] < infs) + (r[2] < infs) + (r[3] < infs));
-      if ((n[0] | n[1] | n[2] | n[3]) == 0) continue;
-      n_out.finite += static_cast<std::size_t>(n[0] + n[1] + n[2] + n[3]);
-      sort2(r[0], id[0], r[1], id[1]);
-      sort2(r[2], id[2], r[3], id[3]);
-      sort2(r[0], id[0], r[2], id[2]);
-      sort2(r[1], id[1], r[3], id[3]);
-      sort2(r[1], id[1], r[2], id[2]);
-      const I4 three = n >= 3;  // (n - 1) / 2 is 1 for n = 3, 4 and 0 for n = 1, 2
-      const F4 r_mid = three ? r[1] : r[0];
-      const I4 id_mid = three ? id[1] : id[0];
-      const I4 some = n > 0;
-      const I4 keep = some & (r_mid <= F4{r2_max, r2_max, r2_max, r2_max});
-      n_out.blocks += static_cast<std::size_t>(-(some[0] + some[1] + some[2] + some[3]));
-      for (int j = 0; j < 4; ++j) {
-        if (!keep[j]) continue;
-        const auto k = static_cast<std::uint32_t>(id_mid[j]);
-        *o++ = (k < 2 ? row0 : row1)[u + 2 * static_cast<std::size_t>(j) + (k & 1u)];
-      }
+      decimate_lanes<F4, I4, 4>(r, row0, row1, u, r2_max, o, n_out);
     }
     for (; u + 2 <= w; u += 2) {
       float r[4] = {range2_or_inf(row0[u]), range2_or_inf(row0[u + 1]), range2_or_inf(row1[u]),
