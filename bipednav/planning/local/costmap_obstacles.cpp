@@ -98,11 +98,30 @@ Obstacle make_obstacle(const std::vector<Eigen::Vector2d>& pts, double half_cell
     o.vertices = {mean + lo * major, mean + hi * major};
     return o;
   }
+  // The hull of the cells' corners only needs the first and last cell of each row (equal y): the corners of
+  // the cells between lie on the segments joining theirs (same y), so they are never hull vertices. Cells
+  // come in scan order (rows, then x) from extract_obstacles; other orders are sorted first.
+  const auto row_less = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return a.y() < b.y() || (a.y() == b.y() && a.x() < b.x());
+  };
+  std::vector<Eigen::Vector2d> sorted;
+  const std::vector<Eigen::Vector2d>* rows = &pts;
+  if (!std::is_sorted(pts.begin(), pts.end(), row_less)) {
+    sorted = pts;
+    std::sort(sorted.begin(), sorted.end(), row_less);
+    rows = &sorted;
+  }
   std::vector<Eigen::Vector2d> corners;
-  corners.reserve(pts.size() * 4);
-  for (const auto& p : pts) {
+  const auto add_corners = [&](const Eigen::Vector2d& p) {
     for (const double sx : {-half_cell_m, half_cell_m})
       for (const double sy : {-half_cell_m, half_cell_m}) corners.emplace_back(p.x() + sx, p.y() + sy);
+  };
+  for (std::size_t i = 0; i < rows->size();) {
+    std::size_t j = i + 1;
+    while (j < rows->size() && (*rows)[j].y() == (*rows)[i].y()) ++j;
+    add_corners((*rows)[i]);
+    if (j - 1 > i) add_corners((*rows)[j - 1]);
+    i = j;
   }
   o.kind = Obstacle::Kind::kPolygon;
   o.vertices = convex_hull(std::move(corners));

@@ -1,5 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <random>
+
 #include "bipednav/planning/local/costmap_obstacles.hpp"
 #include "local_test_utils.hpp"
 
@@ -33,6 +36,48 @@ TEST(CostmapObstacles, LargeClustersAreCutIntoBlocks) {
   const auto obs = extract_obstacles(map, p);
   EXPECT_GE(obs.size(), 6u);
   for (const auto& o : obs) EXPECT_LE(o.radius_m, 0.9);
+}
+
+// make_obstacle builds the hull from each row's end cells only: the vertices must be those of the hull of
+// every cell's corners, bit for bit, for blobs in scan order and shuffled.
+TEST(CostmapObstacles, PolygonFromRowEndsMatchesAllCorners) {
+  auto map = test::empty_costmap(-3.3, 1.7, 4.0);
+  const auto& g = map.geometry();
+  const double half = 0.5 * g.resolution_m;
+  std::mt19937 rng(7);
+  int polygons = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    std::vector<Eigen::Vector2d> pts;
+    const int cx = 20 + static_cast<int>(rng() % 30), cy = 20 + static_cast<int>(rng() % 30);
+    const int w = 2 + static_cast<int>(rng() % 18), h = 2 + static_cast<int>(rng() % 18);
+    for (int y = cy; y < cy + h; ++y) {
+      // ragged rows (some with holes), so the row ends move and the hull has slanted edges
+      const int x0 = cx + static_cast<int>(rng() % 4), x1 = cx + w - static_cast<int>(rng() % 4);
+      for (int x = x0; x <= x1; ++x) {
+        if (x != x0 && x != x1 && rng() % 5 == 0) continue;
+        pts.push_back(g.cell_center(x, y));
+      }
+    }
+    std::vector<Eigen::Vector2d> corners;
+    for (const auto& p : pts) {
+      for (const double sx : {-half, half})
+        for (const double sy : {-half, half}) corners.emplace_back(p.x() + sx, p.y() + sy);
+    }
+    const auto expected = convex_hull(corners);
+    auto shuffled = pts;
+    std::shuffle(shuffled.begin(), shuffled.end(), rng);
+    for (const auto* input : {&pts, &shuffled}) {
+      const Obstacle o = make_obstacle(*input, half, ObstacleParams{});
+      if (o.kind != Obstacle::Kind::kPolygon) continue;
+      ++polygons;
+      ASSERT_EQ(o.vertices.size(), expected.size());
+      for (std::size_t i = 0; i < expected.size(); ++i) {
+        EXPECT_EQ(o.vertices[i].x(), expected[i].x());
+        EXPECT_EQ(o.vertices[i].y(), expected[i].y());
+      }
+    }
+  }
+  EXPECT_GT(polygons, 300);
 }
 
 TEST(CostmapObstacles, ConvexHullCounterClockwise) {
