@@ -152,7 +152,9 @@ std::vector<Obstacle> extract_obstacles(const mapping::Costmap2D& costmap, const
 
 std::vector<int> nearest_obstacles(const std::vector<Obstacle>& obstacles, const Eigen::Vector2d& p, int k,
                                    double max_dist_m) {
-  std::vector<std::pair<double, int>> cand;
+  // Called per band pose several times a cycle: the candidate buffer keeps its capacity.
+  thread_local std::vector<std::pair<double, int>> cand;
+  cand.clear();
   for (std::size_t i = 0; i < obstacles.size(); ++i) {
     // Cheap bounding-circle rejection before the exact distance.
     if ((obstacles[i].centroid - p).norm() - obstacles[i].radius_m > max_dist_m) continue;
@@ -161,8 +163,8 @@ std::vector<int> nearest_obstacles(const std::vector<Obstacle>& obstacles, const
   }
   const std::size_t n = std::min<std::size_t>(cand.size(), static_cast<std::size_t>(std::max(k, 0)));
   std::partial_sort(cand.begin(), cand.begin() + static_cast<long>(n), cand.end());
-  std::vector<int> idx;
-  for (std::size_t i = 0; i < n; ++i) idx.push_back(cand[i].second);
+  std::vector<int> idx(n);
+  for (std::size_t i = 0; i < n; ++i) idx[i] = cand[i].second;
   return idx;
 }
 
