@@ -65,6 +65,14 @@ struct TebOptimizerParams {
   // Again with goal settling (065344f): banded_lm 55 of 60 against Ceres' 56 (three_rooms fails 2 and 9,
   // cube_3 contacts at 121 s, Ceres 10; digit_lab_dynamic 2, Ceres 5; hexagon_dynamic 5 and 6 both; the
   // other three 10/10 both); Digit uses the tracker (its runs are identical).
+  // The contacts are chance, not solver quality (at 21bccdb, before blind-zone coasting became the default): solving
+  // every optimize_band call of banded_lm's three_rooms seed 2 run both ways (3404 solves) gave the same ok flags,
+  // bands within 1.5e-11 (and, over its first 60 s, the objective at both results within 5e-11 relative). The two runs'
+  // traces part at 34.5 s by 0.1 mm; with banded_lm the robot reaches x ~ 27 at 117-119 s (seeds 2 and 9) while cube_3
+  // climbs its x = 28 leg, turns north beside it and is caught when the cube turns west along y = 1 at 0.3 m/s (the
+  // robot's limit is 0.26 m/s); Ceres' runs reach the loop at other phases of the cube. Moving every optimised inner
+  // pose by 1e-12 m in x gives three_rooms seeds 1-10: Ceres 7 (+1e-12: 2, 6, 10 fail) and 9 (-1e-12: 9), banded_lm 9
+  // (+: 9) and 10 (-).
   std::string linear_solver = "sparse_normal_cholesky";
 
   void validate() const;
