@@ -236,6 +236,7 @@ void HomotopyPlanner::optimise_all(const Twist& v0, const std::vector<Eigen::Vec
   input.obstacles = &obstacles;
   input.via_points = via;
   input.start_velocity = v0;
+  input.moving = &moving_;
   pool_.parallel_for(bands_.size(), [&](std::size_t i) {
     BandCandidate& b = bands_[i];
     b.ok = optimize_band(b.band, input, params_.limits, params_.band, params_.optim);

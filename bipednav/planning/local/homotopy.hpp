@@ -56,6 +56,9 @@ class HomotopyPlanner {
                             const std::vector<Eigen::Vector2d>& via_points, const std::vector<Obstacle>& obstacles);
   void reset();
   const std::vector<BandCandidate>& candidates() const { return bands_; }
+  // The moving obstacles the next plan()s optimise against (with TebOptimizerParams::dynamic_obstacles;
+  // positions at the time of the band's start).
+  void set_moving_obstacles(std::vector<TebMovingObstacle> moving) { moving_ = std::move(moving); }
 
  private:
   void warm_start(const Pose2& start, const Pose2& goal, const std::vector<Eigen::Vector2d>& centroids);
@@ -68,6 +71,7 @@ class HomotopyPlanner {
   TebParams params_;
   ThreadPool pool_;
   std::vector<BandCandidate> bands_;
+  std::vector<TebMovingObstacle> moving_;
   std::uint64_t next_id_ = 1;
   std::uint64_t selected_id_ = 0;
 };

@@ -254,6 +254,16 @@ double TebLmSolver::evaluate(const std::vector<double>& z, Mode mode, std::vecto
       }
     }
   }
+  if (p_->moving != nullptr && p_->pose_times != nullptr) {
+    for (std::size_t k = 1; k + 1 < n_ && k < p_->pose_times->size(); ++k) {
+      const double* q = pose(z, k);
+      idx[0] = pose_index(k), idx[1] = idx[0] < 0 ? -1 : idx[0] + 1;
+      for (const auto& o : *p_->moving) {
+        r[0] = dynamic_obstacle_jacobian(c, o, (*p_->pose_times)[k], q[0], q[1], J);
+        add_block(1, 2, r, J, idx, mode, grad, hband, cost);
+      }
+    }
+  }
   if (p_->via != nullptr) {
     const double wv = std::sqrt(c.w->via);
     for (const auto& [k, v] : *p_->via) {

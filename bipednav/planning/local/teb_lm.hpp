@@ -24,6 +24,9 @@ struct TebLmProblem {
   const std::vector<Obstacle>* obstacles = nullptr;      // may be null
   const std::vector<std::vector<int>>* assoc = nullptr;  // per pose: indices into obstacles (may be null)
   const std::vector<std::pair<std::size_t, Eigen::Vector2d>>* via = nullptr;  // (pose index, via point)
+  // Moving obstacles against every inner pose, pose k at pose_times[k] (both null or both set).
+  const std::vector<TebMovingObstacle>* moving = nullptr;
+  const std::vector<double>* pose_times = nullptr;
   Twist start_velocity;
   double dt_min_s = 0.01;
   int max_iterations = 5;

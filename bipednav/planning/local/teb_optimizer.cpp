@@ -62,6 +62,18 @@ struct ObstacleFunctor {
   }
 };
 
+// One pose (at a fixed time) against every moving obstacle's prediction.
+struct DynamicObstacleFunctor {
+  Context c;
+  const std::vector<TebMovingObstacle>* moving;
+  double t_s;
+  template <typename T>
+  bool operator()(const T* p, T* r) const {
+    for (std::size_t j = 0; j < moving->size(); ++j) r[j] = dynamic_obstacle_residual(c, (*moving)[j], t_s, p);
+    return true;
+  }
+};
+
 struct ViaFunctor {
   Context c;
   Eigen::Vector2d via;
@@ -101,7 +113,8 @@ ceres::LinearSolverType solver_type(const std::string& name) {
 // One Levenberg-Marquardt solve over the band stored in x (3 per pose) and dt.
 bool solve_once(std::vector<double>& x, std::vector<double>& dt, const TebProblemInput& input,
                 std::vector<std::vector<int>>& assoc, const std::vector<std::pair<std::size_t, Eigen::Vector2d>>& via,
-                const Context& ctx, const TebBandParams& bp) {
+                const std::vector<TebMovingObstacle>& moving, const std::vector<double>& times, const Context& ctx,
+                const TebBandParams& bp) {
   const std::size_t n = dt.size() + 1;
   ceres::Problem problem;
   for (std::size_t k = 0; k < n; ++k) problem.AddParameterBlock(&x[3 * k], 3);
@@ -129,6 +142,14 @@ bool solve_once(std::vector<double>& x, std::vector<double>& dt, const TebProble
       auto* f = new ObstacleFunctor{ctx, input.obstacles, &assoc[k]};
       problem.AddResidualBlock(new ceres::AutoDiffCostFunction<ObstacleFunctor, ceres::DYNAMIC, 3>(f, kobs), nullptr,
                                &x[3 * k]);
+    }
+  }
+  if (!moving.empty()) {
+    const int m = static_cast<int>(moving.size());
+    for (std::size_t k = 1; k + 1 < n; ++k) {
+      auto* f = new DynamicObstacleFunctor{ctx, &moving, times[k]};
+      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<DynamicObstacleFunctor, ceres::DYNAMIC, 3>(f, m),
+                               nullptr, &x[3 * k]);
     }
   }
   for (const auto& [k, v] : via) {
@@ -161,6 +182,25 @@ void associate(const std::vector<double>& x, std::size_t n, const TebProblemInpu
 
 }  // namespace
 
+std::vector<TebMovingObstacle> band_moving_obstacles(const TebProblemInput& input, const TebOptimizerParams& params) {
+  std::vector<TebMovingObstacle> out;
+  if (!params.dynamic_obstacles || input.moving == nullptr) return out;
+  for (const auto& o : *input.moving) {
+    if (o.usable()) out.push_back(o);
+  }
+  return out;
+}
+
+std::vector<double> band_pose_times(const std::vector<double>& dt_s, double max_s) {
+  std::vector<double> t(dt_s.size() + 1, 0.0);
+  double sum = 0.0;
+  for (std::size_t k = 0; k < dt_s.size(); ++k) {
+    sum += dt_s[k];
+    t[k + 1] = std::min(sum, max_s);
+  }
+  return t;
+}
+
 bool optimize_band(TebBand& band, const TebProblemInput& input, const TebLimits& limits,
                    const TebBandParams& band_params, const TebOptimizerParams& params) {
   if (band.size() < 2) return false;
@@ -171,6 +211,8 @@ bool optimize_band(TebBand& band, const TebProblemInput& input, const TebLimits&
   std::vector<std::vector<int>> assoc;
   const bool banded = params.linear_solver == "banded_lm";
   TebLmSolver lm;  // its buffers are reused over the outer iterations
+  const std::vector<TebMovingObstacle> moving = band_moving_obstacles(input, params);
+  std::vector<double> times;
   for (int outer = 0; outer < params.no_outer_iterations; ++outer) {
     resample_band(work, band_params);
     const std::size_t n = work.size();
@@ -181,23 +223,27 @@ bool optimize_band(TebBand& band, const TebProblemInput& input, const TebLimits&
     dt = work.dt_s;
     associate(x, n, input, params, assoc);
     const auto via = assign_via_points(x, n, input.via_points);
+    // The poses' times are the band's at the solve's set-up, held fixed during it (as teb_local_planner).
+    if (!moving.empty()) times = band_pose_times(dt, params.dynamic_obstacle_max_prediction_s);
     if (banded) {
       TebLmProblem lp;
       lp.ctx = ctx;
       lp.obstacles = input.obstacles;
       lp.assoc = &assoc;
       lp.via = &via;
+      if (!moving.empty()) lp.moving = &moving, lp.pose_times = &times;
       lp.start_velocity = input.start_velocity;
       lp.dt_min_s = band_params.dt_min_s;
       lp.max_iterations = params.no_inner_iterations;
       lp.function_tolerance = params.function_tolerance;
       if (!lm.solve(lp, x, dt)) return false;
-    } else if (!solve_once(x, dt, input, assoc, via, ctx, band_params)) {
+    } else if (!solve_once(x, dt, input, assoc, via, moving, times, ctx, band_params)) {
       return false;
     }
     for (std::size_t k = 0; k < n; ++k) work.poses[k] = {x[3 * k], x[3 * k + 1], normalize_angle(x[3 * k + 2])};
     work.dt_s = dt;
     w.obstacle *= params.weight_adapt_factor;  // weight adaptation between outer iterations
+    w.dynamic_obstacle *= params.weight_adapt_factor;
     w.nh *= params.weight_adapt_factor;
   }
   for (const auto& p : work.poses) {
@@ -240,6 +286,17 @@ BandCost evaluate_band(const TebBand& band, const TebProblemInput& input, const 
         const double d = obstacle_distance((*input.obstacles)[static_cast<std::size_t>(i)], s[k].x, s[k].y);
         c.min_obstacle_dist_m = std::min(c.min_obstacle_dist_m, d);
         c.obstacle += w.obstacle * sq(penalty_below(d, limits.min_obstacle_dist_m, eps));
+      }
+    }
+  }
+  const std::vector<TebMovingObstacle> moving = band_moving_obstacles(input, params);
+  if (!moving.empty()) {
+    const auto times = band_pose_times(band.dt_s, params.dynamic_obstacle_max_prediction_s);
+    for (std::size_t k = 1; k + 1 < s.size(); ++k) {
+      for (const auto& o : moving) {
+        const double d = (s[k].position() - o.at(times[k])).norm();
+        c.min_dynamic_dist_m = std::min(c.min_dynamic_dist_m, d - o.radius_m);
+        c.dynamic_obstacle += w.dynamic_obstacle * sq(penalty_below(d, o.clearance_m, eps));
       }
     }
   }

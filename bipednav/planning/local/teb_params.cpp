@@ -33,7 +33,7 @@ void TebBandParams::validate() const {
 
 void TebOptimizerParams::validate() const {
   for (double w : {weight_optimaltime, weight_kinematics_nh, weight_backwards, weight_max_vel_x, weight_max_vel_theta,
-                   weight_acc_lim_x, weight_acc_lim_theta, weight_obstacle, weight_viapoint})
+                   weight_acc_lim_x, weight_acc_lim_theta, weight_obstacle, weight_viapoint, weight_dynamic_obstacle})
     require(nonneg(w), "weight_*", "finite weights >= 0");
   require(std::isfinite(weight_adapt_factor) && weight_adapt_factor >= 1.0, "weight_adapt_factor", ">= 1");
   require(nonneg(penalty_epsilon), "penalty_epsilon", ">= 0");
@@ -43,6 +43,8 @@ void TebOptimizerParams::validate() const {
   require(no_outer_iterations >= 1, "no_outer_iterations", ">= 1");
   require(obstacles_per_pose >= 0 && obstacles_per_pose <= 8, "obstacles_per_pose", "in [0, 8]");
   require(pos(obstacle_influence_dist_m), "obstacle_influence_dist_m", "> 0");
+  require(nonneg(dynamic_obstacle_dist_m), "dynamic_obstacle_dist_m", ">= 0");
+  require(nonneg(dynamic_obstacle_max_prediction_s), "dynamic_obstacle_max_prediction_s", ">= 0");
   require(linear_solver == "banded_lm" || linear_solver == "sparse_normal_cholesky" ||
               linear_solver == "dense_normal_cholesky" || linear_solver == "dense_qr" || linear_solver == "dense_schur",
           "linear_solver", "banded_lm, sparse_normal_cholesky, dense_normal_cholesky, dense_qr or dense_schur");

@@ -73,6 +73,20 @@ struct TebOptimizerParams {
   // robot's limit is 0.26 m/s); Ceres' runs reach the loop at other phases of the cube. Moving every optimised inner
   // pose by 1e-12 m in x gives three_rooms seeds 1-10: Ceres 7 (+1e-12: 2, 6, 10 fail) and 9 (-1e-12: 9), banded_lm 9
   // (+: 9) and 10 (-).
+  // Moving obstacles in the band (teb_local_planner's include_dynamic_obstacles / EdgeDynamicObstacle):
+  // for every inner pose s_i and every moving track j (LocalPlanner's tracker, MovingObstacleTracker::moving)
+  // the residual sqrt(weight_dynamic_obstacle) * max{0, (r_robot + r_j + dynamic_obstacle_dist_m + eps) -
+  // |s_i - c_j(t_i)|}, c_j the track's constant-velocity prediction at the pose's time t_i (the sum of the
+  // band's dT up to i, taken when each solve is set up and held fixed during it, at most
+  // dynamic_obstacle_max_prediction_s), r_robot the avoidance robot radius (DynamicAvoidanceParams). Its
+  // weight is adapted with the static obstacle weight. The tracks' cells stay in the static obstacles too
+  // (as teb_local_planner, which keeps costmap obstacles and dynamic obstacles apart): the costmap still
+  // holds them, the feasibility check and the homotopy roadmap see them, and at t = 0 the static copy is
+  // where the track is. The yield step still runs afterwards. Off by default: no closed-loop evidence yet.
+  bool dynamic_obstacles = false;
+  double weight_dynamic_obstacle = 50.0;
+  double dynamic_obstacle_dist_m = 0.12;  // margin beyond robot radius + track radius
+  double dynamic_obstacle_max_prediction_s = 4.0;
   std::string linear_solver = "sparse_normal_cholesky";
 
   void validate() const;

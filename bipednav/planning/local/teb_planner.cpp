@@ -50,13 +50,27 @@ LocalPlanResult TebPlanner::finish(LocalPlanResult r, const Twist& desired, cons
 
 LocalPlanResult TebPlanner::compute(const Pose2& T_map_base, const Twist& current_velocity, const Path& global_plan,
                                     const mapping::Costmap2D& local_costmap, double now_s) {
-  LocalPlanResult r = plan(T_map_base, current_velocity, global_plan, local_costmap);
+  LocalPlanResult r = plan(T_map_base, current_velocity, global_plan, local_costmap, now_s);
   yield(r, T_map_base, current_velocity, local_costmap, command_limits(), params_.control_period_s, now_s);
   return r;
 }
 
+std::vector<TebMovingObstacle> TebPlanner::band_moving(double now_s) const {
+  std::vector<TebMovingObstacle> out;
+  if (!params_.optim.dynamic_obstacles || !moving_ || !moving_->params().enabled || !std::isfinite(now_s)) return out;
+  for (const auto& t : moving_->moving(now_s)) {
+    TebMovingObstacle o;
+    o.position = t.predict(now_s);
+    o.velocity = t.velocity;
+    o.radius_m = t.radius_m;
+    o.clearance_m = avoidance_.robot_radius_m + t.radius_m + params_.optim.dynamic_obstacle_dist_m;
+    if (o.usable()) out.push_back(o);  // a track with a non-finite state is left out
+  }
+  return out;
+}
+
 LocalPlanResult TebPlanner::plan(const Pose2& T_map_base, const Twist& current_velocity, const Path& global_plan,
-                                 const mapping::Costmap2D& local_costmap) {
+                                 const mapping::Costmap2D& local_costmap, double now_s) {
   if (auto bad = reject_bad_inputs(T_map_base, current_velocity, global_plan, local_costmap)) return *bad;
   LocalPlanResult r;
   r.trajectory.frame_id = global_plan.frame_id;
@@ -76,6 +90,7 @@ LocalPlanResult TebPlanner::plan(const Pose2& T_map_base, const Twist& current_v
   const LocalGoal lg = select_local_goal(global_plan, robot, local_costmap, params_.lookahead_m,
                                          params_.window_margin_m, params_.via_point_separation_m);
   obstacles_ = extract_obstacles(local_costmap, params_.obstacles);
+  homotopy_.set_moving_obstacles(band_moving(now_s));
   const BandCandidate* best = homotopy_.plan(robot, lg.goal, current_velocity, lg.via_points, obstacles_);
   if (best == nullptr) {
     r.result = {Outcome::NO_VALID_CMD, "no candidate trajectory could be optimised"};

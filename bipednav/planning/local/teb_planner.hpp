@@ -31,7 +31,9 @@ class TebPlanner : public LocalPlanner {
 
  private:
   LocalPlanResult plan(const Pose2& T_map_base, const Twist& current_velocity, const Path& global_plan,
-                       const mapping::Costmap2D& local_costmap);
+                       const mapping::Costmap2D& local_costmap, double now_s);
+  // The tracker's moving obstacles at now_s for the band (TebOptimizerParams::dynamic_obstacles).
+  std::vector<TebMovingObstacle> band_moving(double now_s) const;
   LocalPlanResult finish(LocalPlanResult r, const Twist& desired, const Twist& current);
   CommandLimits command_limits() const;
 

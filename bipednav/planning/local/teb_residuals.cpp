@@ -50,8 +50,9 @@ double segment_distance_gradient(double px, double py, const Eigen::Vector2d& a,
 }  // namespace
 
 TebWeights base_weights(const TebOptimizerParams& p) {
-  return {p.weight_kinematics_nh, p.weight_backwards,   p.weight_max_vel_x, p.weight_max_vel_theta, p.weight_acc_lim_x,
-          p.weight_acc_lim_theta, p.weight_optimaltime, p.weight_obstacle,  p.weight_viapoint};
+  return {p.weight_kinematics_nh, p.weight_backwards,       p.weight_max_vel_x,   p.weight_max_vel_theta,
+          p.weight_acc_lim_x,     p.weight_acc_lim_theta,   p.weight_optimaltime, p.weight_obstacle,
+          p.weight_viapoint,      p.weight_dynamic_obstacle};
 }
 
 IntervalVelocity interval_velocity(const double* a, const double* b, double dt, double sign_gain) {
@@ -170,6 +171,17 @@ void start_acc_jacobian(const TebResidualContext& c, const Twist& v0, const Inte
   };
   row(iv.v, v0.linear_x, iv.dv, std::sqrt(c.w->acc_x), c.limits->acc_lim_x_mps2, &r[0], J);
   row(iv.w, v0.angular_z, iv.dw, std::sqrt(c.w->acc_th), c.limits->acc_lim_theta_radps2, &r[1], J + 7);
+}
+
+double dynamic_obstacle_jacobian(const TebResidualContext& c, const TebMovingObstacle& o, double t_s, double x,
+                                 double y, double* J) {
+  double g[2];
+  const double d = point_distance_gradient(x, y, o.at(t_s), g);
+  const double w = std::sqrt(c.w->dynamic_obstacle);
+  const double active = d < o.clearance_m + c.params->penalty_epsilon ? 1.0 : 0.0;
+  J[0] = -w * g[0] * active;
+  J[1] = -w * g[1] * active;
+  return w * penalty_below(d, o.clearance_m, c.params->penalty_epsilon);
 }
 
 double obstacle_distance_gradient(const Obstacle& o, double x, double y, double* grad) {

@@ -20,7 +20,24 @@ namespace bipednav::planning::local {
 
 // Weights of the residual blocks (squared into the objective); the outer iterations adapt nh and obstacle.
 struct TebWeights {
-  double nh, back, vel_x, vel_th, acc_x, acc_th, time, obstacle, via;
+  double nh, back, vel_x, vel_th, acc_x, acc_th, time, obstacle, via, dynamic_obstacle;
+};
+
+// A moving obstacle as the band sees it (TebOptimizerParams::dynamic_obstacles): its predicted centre
+// at the band's start time, its velocity, its radius and the distance the robot's centre keeps from its
+// centre (robot radius + radius + margin).
+struct TebMovingObstacle {
+  Eigen::Vector2d position = Eigen::Vector2d::Zero();
+  Eigen::Vector2d velocity = Eigen::Vector2d::Zero();
+  double radius_m = 0.0;
+  double clearance_m = 0.0;
+
+  // Constant-velocity prediction t_s after the band's start.
+  Eigen::Vector2d at(double t_s) const { return position + velocity * t_s; }
+  bool usable() const {
+    return position.allFinite() && velocity.allFinite() && std::isfinite(radius_m) && std::isfinite(clearance_m) &&
+           clearance_m >= 0.0;
+  }
 };
 
 TebWeights base_weights(const TebOptimizerParams& p);
@@ -82,6 +99,15 @@ T obstacle_residual(const TebResidualContext& c, const Obstacle& o, const T* p) 
   return sqrt(c.w->obstacle) * penalty_below(d, c.limits->min_obstacle_dist_m, c.params->penalty_epsilon);
 }
 
+// One pose at time t_s after the band's start against one moving obstacle's prediction (mirrors
+// obstacle_residual, bound clearance_m). 1 residual.
+template <typename T>
+T dynamic_obstacle_residual(const TebResidualContext& c, const TebMovingObstacle& o, double t_s, const T* p) {
+  using std::sqrt;
+  const T d = distance_to_point(p[0], p[1], o.at(t_s));
+  return sqrt(c.w->dynamic_obstacle) * penalty_below(d, o.clearance_m, c.params->penalty_epsilon);
+}
+
 // Via-point attraction. 2 residuals.
 template <typename T>
 void via_residuals(const TebResidualContext& c, const Eigen::Vector2d& via, const T* p, T* r) {
@@ -117,6 +143,9 @@ void acc_jacobian(const TebResidualContext& c, const IntervalVelocity& iv1, cons
 // start acc: vars (a[3], b[3], dt); 2 x 7.
 void start_acc_jacobian(const TebResidualContext& c, const Twist& v0, const IntervalVelocity& iv, double dt, double* r,
                         double* J);
+// dynamic_obstacle_residual and its gradient with respect to (x, y) of the pose (J: 2 entries).
+double dynamic_obstacle_jacobian(const TebResidualContext& c, const TebMovingObstacle& o, double t_s, double x,
+                                 double y, double* J);
 // Distance of (x, y) to the obstacle (as obstacle_distance) and its gradient.
 double obstacle_distance_gradient(const Obstacle& o, double x, double y, double* grad);
 

@@ -20,7 +20,7 @@ struct Fixture {
   TebResidualContext ctx;
   Fixture() : w(base_weights(op)), ctx{&lim, &op, &w} {
     // Distinct weights so a mixed-up term shows.
-    w = {1000.0, 2.5, 2.0, 1.5, 1.2, 0.7, 1.0, 80.0, 3.0};
+    w = {1000.0, 2.5, 2.0, 1.5, 1.2, 0.7, 1.0, 80.0, 3.0, 65.0};
   }
 };
 

@@ -1,0 +1,326 @@
+// Moving obstacles in the timed elastic band (TebOptimizerParams::dynamic_obstacles, teb_local_planner's
+// EdgeDynamicObstacle): the residual's derivatives, both solvers on the same problem, the band's reaction to a
+// crossing obstacle, bad tracks and the planner's plumbing from the tracker.
+
+#include <ceres/jet.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <memory>
+#include <random>
+
+#include "bipednav/planning/local/moving_obstacles.hpp"
+#include "bipednav/planning/local/teb_lm.hpp"
+#include "bipednav/planning/local/teb_optimizer.hpp"
+#include "bipednav/planning/local/teb_planner.hpp"
+#include "bipednav/planning/local/teb_residuals.hpp"
+#include "local_test_utils.hpp"
+
+namespace bipednav::planning::local {
+
+namespace {
+
+struct DynFixture {
+  TebLimits lim;
+  TebOptimizerParams op;
+  TebWeights w;
+  TebResidualContext ctx;
+  DynFixture() : w(base_weights(op)), ctx{&lim, &op, &w} { w.dynamic_obstacle = 65.0; }
+};
+
+TebMovingObstacle track(Eigen::Vector2d p, Eigen::Vector2d v, double radius, double clearance) {
+  TebMovingObstacle o;
+  o.position = p, o.velocity = v, o.radius_m = radius, o.clearance_m = clearance;
+  return o;
+}
+
+// Smallest distance of an inner pose to the obstacle's predicted edge at the pose's time (the band's own dT).
+double predicted_clearance(const TebBand& band, const TebMovingObstacle& o) {
+  const auto t = band_pose_times(band.dt_s, 1e9);
+  double best = 1e9;
+  for (std::size_t k = 1; k + 1 < band.size(); ++k)
+    best = std::min(best, (band.poses[k].position() - o.at(t[k])).norm() - o.radius_m);
+  return best;
+}
+
+double max_pose_diff(const TebBand& a, const TebBand& b) {
+  double d = 0.0;
+  for (std::size_t k = 0; k < std::min(a.size(), b.size()); ++k) {
+    d = std::max({d, std::abs(a.poses[k].x - b.poses[k].x), std::abs(a.poses[k].y - b.poses[k].y),
+                  std::abs(a.poses[k].theta - b.poses[k].theta)});
+  }
+  for (std::size_t k = 0; k < std::min(a.dt_s.size(), b.dt_s.size()); ++k)
+    d = std::max(d, std::abs(a.dt_s[k] - b.dt_s[k]));
+  return d;
+}
+
+}  // namespace
+
+TEST(TebDynamicObstacles, ResidualJacobianMatchesAutodiffAndFiniteDifferences) {
+  DynFixture f;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int active = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const auto o = track({u(rng), u(rng)}, {0.5 * u(rng), 0.5 * u(rng)}, 0.2, 0.5 + 0.2 * u(rng));
+    const double t = 2.0 + 2.0 * u(rng);
+    const Eigen::Vector2d c = o.at(t);
+    // Poses around the prediction, inside and outside the bound.
+    const double r = 0.8 * std::abs(u(rng)) + 0.05, a = 3.2 * u(rng);
+    const double x = c.x() + r * std::cos(a), y = c.y() + r * std::sin(a);
+    double J[2];
+    const double res = dynamic_obstacle_jacobian(f.ctx, o, t, x, y, J);
+    using Jet = ceres::Jet<double, 2>;
+    const Jet p[3] = {Jet(x, 0), Jet(y, 1), Jet(0.0)};
+    const Jet rj = dynamic_obstacle_residual(f.ctx, o, t, p);
+    EXPECT_NEAR(res, rj.a, 1e-14);
+    EXPECT_NEAR(J[0], rj.v[0], 1e-12);
+    EXPECT_NEAR(J[1], rj.v[1], 1e-12);
+    const double pd[3] = {x, y, 0.0};
+    EXPECT_DOUBLE_EQ(res, dynamic_obstacle_residual(f.ctx, o, t, pd));
+    // Central differences, away from the bound's kink.
+    const double bound = o.clearance_m + f.op.penalty_epsilon;
+    if (std::abs(r - bound) < 1e-4) continue;
+    const double h = 1e-6;
+    const auto at = [&](double px, double py) {
+      const double q[3] = {px, py, 0.0};
+      return dynamic_obstacle_residual(f.ctx, o, t, q);
+    };
+    EXPECT_NEAR(J[0], (at(x + h, y) - at(x - h, y)) / (2 * h), 1e-6) << trial;
+    EXPECT_NEAR(J[1], (at(x, y + h) - at(x, y - h)) / (2 * h), 1e-6) << trial;
+    if (res > 0.0) {
+      ++active;
+      EXPECT_NEAR(res, std::sqrt(65.0) * (bound - r), 1e-9);
+    }
+  }
+  EXPECT_GT(active, 50);
+}
+
+// The banded solver's gradient and J^T J of the new term (on minus off) against central differences of
+// the cost and against the Jacobian's outer products.
+TEST(TebDynamicObstacles, BandedGradientMatchesFiniteDifferences) {
+  DynFixture f;
+  TebBandParams bp;
+  TebBand band = init_band({0, 0, 0}, {}, {2.5, 0.3, 0.2}, f.lim, bp);
+  const std::size_t n = band.size();
+  std::vector<double> x(3 * n), dt = band.dt_s;
+  for (std::size_t k = 0; k < n; ++k)
+    x[3 * k] = band.poses[k].x, x[3 * k + 1] = band.poses[k].y, x[3 * k + 2] = band.poses[k].theta;
+  const std::vector<TebMovingObstacle> moving{track({1.2, -1.0}, {0.0, 0.35}, 0.2, 0.55),
+                                              track({2.4, 0.9}, {-0.2, -0.2}, 0.15, 0.45)};
+  const auto times = band_pose_times(dt, 4.0);
+  TebLmProblem on, off;
+  on.ctx = off.ctx = f.ctx;
+  on.moving = &moving;
+  on.pose_times = &times;
+  TebLmSolver lm;
+  Eigen::VectorXd g_on, g_off;
+  Eigen::MatrixXd H_on, H_off;
+  const double c_on = lm.evaluate_dense(on, x, dt, &g_on, &H_on);
+  const double c_off = lm.evaluate_dense(off, x, dt, &g_off, &H_off);
+  ASSERT_GT(c_on - c_off, 1e-3);  // the term is active on this band
+  const auto term = [&](const std::vector<double>& xx) {
+    return lm.evaluate_dense(on, xx, dt, nullptr, nullptr) - lm.evaluate_dense(off, xx, dt, nullptr, nullptr);
+  };
+  const Eigen::VectorXd g = g_on - g_off;
+  const Eigen::MatrixXd H = H_on - H_off;
+  const double h = 1e-6;
+  for (std::size_t k = 1; k + 1 < n; ++k) {
+    for (int c = 0; c < 3; ++c) {
+      std::vector<double> xp = x, xm = x;
+      xp[3 * k + c] += h, xm[3 * k + c] -= h;
+      const double fd = (term(xp) - term(xm)) / (2 * h);
+      EXPECT_NEAR(g[static_cast<Eigen::Index>(4 * k - 3 + c)], fd, 1e-5 * std::max(1.0, std::abs(fd)))
+          << "pose " << k << " coord " << c;
+    }
+    // The times are held fixed: no dependence on dT.
+    EXPECT_EQ(g[static_cast<Eigen::Index>(4 * k)], 0.0);
+  }
+  // J^T J of the term: sum over the tracks of the 2 x 2 outer products at each pose.
+  for (std::size_t k = 1; k + 1 < n; ++k) {
+    Eigen::Matrix2d ref = Eigen::Matrix2d::Zero();
+    for (const auto& o : moving) {
+      double J[2];
+      dynamic_obstacle_jacobian(f.ctx, o, times[k], x[3 * k], x[3 * k + 1], J);
+      ref += Eigen::Vector2d(J[0], J[1]) * Eigen::Vector2d(J[0], J[1]).transpose();
+    }
+    const auto i = static_cast<Eigen::Index>(4 * k - 3);
+    EXPECT_LT((H.block<2, 2>(i, i) - ref).lpNorm<Eigen::Infinity>(), 1e-9 * std::max(1.0, ref.norm()));
+  }
+}
+
+// Ceres (automatic Jacobians) and banded_lm give the same band with the term on.
+TEST(TebDynamicObstacles, BothSolversGiveTheSameBand) {
+  TebLimits lim;
+  TebBandParams bp;
+  std::vector<Obstacle> obs(1);
+  obs[0].vertices = {{1.0, 0.6}};
+  obs[0].centroid = {1.0, 0.6};
+  const std::vector<TebMovingObstacle> moving{track({1.5, -1.6}, {0.0, 0.4}, 0.2, 0.52),
+                                              track({2.6, 1.0}, {-0.1, -0.3}, 0.15, 0.47)};
+  int compared = 0;
+  for (const double gy : {0.0, 0.4, -0.3}) {
+    TebProblemInput in;
+    in.obstacles = &obs;
+    in.moving = &moving;
+    in.start_velocity.linear_x = 0.2;
+    TebOptimizerParams ceres_op, band_op;
+    ceres_op.dynamic_obstacles = band_op.dynamic_obstacles = true;
+    ceres_op.linear_solver = "sparse_normal_cholesky";
+    band_op.linear_solver = "banded_lm";
+    TebBand b1 = init_band({0, 0, 0}, {}, {3.0, gy, 0.0}, lim, bp), b2 = b1;
+    const TebBand start = b1;
+    ASSERT_TRUE(optimize_band(b1, in, lim, bp, ceres_op));
+    ASSERT_TRUE(optimize_band(b2, in, lim, bp, band_op));
+    ASSERT_EQ(b1.size(), b2.size());
+    EXPECT_LT(max_pose_diff(b1, b2), 1e-8) << "goal y " << gy;
+    EXPECT_GT(max_pose_diff(b1, start), 1e-3);  // the solve did something
+    const BandCost c1 = evaluate_band(b1, in, lim, ceres_op), c2 = evaluate_band(b2, in, lim, band_op);
+    EXPECT_NEAR(c1.selection(), c2.selection(), 1e-9 * std::max(1.0, c1.selection()));
+    EXPECT_LT(c1.min_dynamic_dist_m, 1e8);
+    ++compared;
+  }
+  EXPECT_EQ(compared, 3);
+}
+
+// A straight band crossing in front of an obstacle that reaches the crossing when the band does: with the
+// term on, the band bends away or changes its timing so that the predicted clearance grows.
+TEST(TebDynamicObstacles, CrossingObstacleOpensThePredictedClearance) {
+  TebLimits lim;
+  TebBandParams bp;
+  const Pose2 start{0, 0, 0}, goal{3.0, 0.0, 0.0};
+  TebOptimizerParams off;
+  off.dynamic_obstacle_max_prediction_s = 20.0;
+  TebOptimizerParams on = off;
+  on.dynamic_obstacles = true;
+  // The time the band, optimised without the term, reaches x = 1.5.
+  TebBand nominal = init_band(start, {}, goal, lim, bp);
+  for (int i = 0; i < 3; ++i) ASSERT_TRUE(optimize_band(nominal, {}, lim, bp, off));
+  const auto t = band_pose_times(nominal.dt_s, 1e9);
+  double t_cross = 0.0;
+  for (std::size_t k = 0; k + 1 < nominal.size(); ++k) {
+    if (nominal.poses[k].x <= 1.5 && nominal.poses[k + 1].x > 1.5) {
+      const double f = (1.5 - nominal.poses[k].x) / (nominal.poses[k + 1].x - nominal.poses[k].x);
+      t_cross = t[k] + f * nominal.dt_s[k];
+    }
+  }
+  ASSERT_GT(t_cross, 2.0);
+  // A 0.2 m box coming from the right side (y < 0) at 0.3 m/s, at the crossing at t_cross.
+  const double speed = 0.3;
+  const std::vector<TebMovingObstacle> moving{track({1.5, -speed * t_cross}, {0.0, speed}, 0.2, 0.25 + 0.2 + 0.12)};
+  TebProblemInput in;
+  in.moving = &moving;
+  const double before = predicted_clearance(nominal, moving[0]);
+  EXPECT_LT(before, 0.05);  // the nominal band meets it
+  TebBand b_off = init_band(start, {}, goal, lim, bp), b_on = b_off;
+  for (int i = 0; i < 5; ++i) {  // five planning cycles' worth of warm-started solves
+    ASSERT_TRUE(optimize_band(b_off, in, lim, bp, off));
+    ASSERT_TRUE(optimize_band(b_on, in, lim, bp, on));
+  }
+  const double c_off = predicted_clearance(b_off, moving[0]);
+  const double c_on = predicted_clearance(b_on, moving[0]);
+  double y_off = 0.0, y_on = 0.0;
+  for (const auto& q : b_off.poses) y_off = std::max(y_off, std::abs(q.y));
+  for (const auto& q : b_on.poses) y_on = std::max(y_on, std::abs(q.y));
+  std::printf(
+      "crossing at %.3f s: predicted clearance nominal %.4f, off %.4f, on %.4f m; duration off %.3f on %.3f s; "
+      "max |y| off %.4f on %.4f m\n",
+      t_cross, before, c_off, c_on, b_off.duration_s(), b_on.duration_s(), y_off, y_on);
+  // Off: the input's moving obstacles are ignored (the same band as without them).
+  TebBand b_plain = init_band(start, {}, goal, lim, bp);
+  for (int i = 0; i < 5; ++i) ASSERT_TRUE(optimize_band(b_plain, {}, lim, bp, off));
+  EXPECT_EQ(max_pose_diff(b_off, b_plain), 0.0);
+  EXPECT_EQ(evaluate_band(b_off, in, lim, off).min_dynamic_dist_m, 1e9);
+  // On: the band keeps most of the requested clearance (0.37 m beyond the box's edge) at its own times.
+  EXPECT_LT(c_off, 0.05) << "off " << c_off;
+  EXPECT_GT(c_on, 0.25) << "on " << c_on << " off " << c_off;
+  EXPECT_GT(c_on - c_off, 0.2);
+  EXPECT_NEAR(evaluate_band(b_on, in, lim, on).min_dynamic_dist_m, c_on, 1e-12);
+  const BandCost cost_on = evaluate_band(b_on, in, lim, on);
+  EXPECT_LT(cost_on.max_nh_error, 0.05);
+  for (double dt : b_on.dt_s) EXPECT_GE(dt, bp.dt_min_s);
+  // Both solvers agree here too.
+  TebOptimizerParams on_lm = on;
+  on_lm.linear_solver = "banded_lm";
+  TebBand b_lm = init_band(start, {}, goal, lim, bp);
+  for (int i = 0; i < 5; ++i) ASSERT_TRUE(optimize_band(b_lm, in, lim, bp, on_lm));
+  ASSERT_EQ(b_lm.size(), b_on.size());
+  EXPECT_LT(max_pose_diff(b_lm, b_on), 1e-8);
+}
+
+// Tracks with non-finite values are left out; the rest of the problem is solved as without them.
+TEST(TebDynamicObstacles, NonFiniteTracksAreIgnored) {
+  TebLimits lim;
+  TebBandParams bp;
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  const auto good = track({1.5, -1.0}, {0.0, 0.3}, 0.2, 0.57);
+  const std::vector<TebMovingObstacle> clean{good};
+  const std::vector<TebMovingObstacle> dirty{
+      track({1.0, 0.2}, {nan, 0.3}, 0.2, 0.57), good,
+      track({nan, 0.0}, {0.0, 0.0}, 0.2, 0.57), track({1.2, 0.0}, {0.0, inf}, 0.2, 0.57),
+      track({1.2, 0.0}, {0.0, 0.0}, nan, 0.57), track({1.2, 0.0}, {0.0, 0.0}, 0.2, -1.0)};
+  for (const char* solver : {"sparse_normal_cholesky", "banded_lm"}) {
+    TebOptimizerParams op;
+    op.dynamic_obstacles = true;
+    op.linear_solver = solver;
+    TebProblemInput a, b;
+    a.moving = &clean;
+    b.moving = &dirty;
+    EXPECT_EQ(band_moving_obstacles(b, op).size(), 1u);
+    TebBand ba = init_band({0, 0, 0}, {}, {3.0, 0.0, 0.0}, lim, bp), bb = ba;
+    ASSERT_TRUE(optimize_band(ba, a, lim, bp, op)) << solver;
+    ASSERT_TRUE(optimize_band(bb, b, lim, bp, op)) << solver;
+    EXPECT_EQ(max_pose_diff(ba, bb), 0.0) << solver;
+    for (const auto& p : bb.poses) EXPECT_TRUE(p.is_finite());
+    const BandCost cb = evaluate_band(bb, b, lim, op);
+    EXPECT_TRUE(std::isfinite(cb.selection()));
+    EXPECT_EQ(cb.selection(), evaluate_band(ba, a, lim, op).selection());
+    // Only bad tracks: as without moving obstacles.
+    const std::vector<TebMovingObstacle> only_bad{dirty[0]};
+    TebProblemInput c;
+    c.moving = &only_bad;
+    TebBand bc = init_band({0, 0, 0}, {}, {3.0, 0.0, 0.0}, lim, bp), bn = bc;
+    ASSERT_TRUE(optimize_band(bc, c, lim, bp, op));
+    ASSERT_TRUE(optimize_band(bn, {}, lim, bp, op));
+    EXPECT_EQ(max_pose_diff(bc, bn), 0.0);
+  }
+}
+
+// The planner hands the tracker's moving tracks to the band only with the option on.
+TEST(TebDynamicObstacles, PlannerUsesTheTrackerWhenEnabled) {
+  auto tracker = std::make_shared<MovingObstacleTracker>();
+  // A box crossing the robot's way from the right at 0.4 m/s, tracked for 1.5 s.
+  double now = 0.0;
+  for (int i = 0; i <= 15; ++i) {
+    now = 0.1 * i;
+    Blob b;
+    b.centroid = {1.6, -1.8 + 0.4 * now};
+    b.radius_m = 0.2;
+    b.points = 10;
+    tracker->update_blobs({b}, now);
+  }
+  ASSERT_EQ(tracker->moving(now).size(), 1u);
+  const auto costmap = test::empty_costmap(0.0, 0.0, 8.0);
+  const Path plan = test::straight_plan(0.0, 0.0, 3.0, 0.0);
+  for (const bool enabled : {false, true}) {
+    TebParams p;
+    p.optim.dynamic_obstacles = enabled;
+    TebPlanner planner(p);
+    planner.set_moving_obstacles(tracker);
+    const LocalPlanResult r = planner.compute({0, 0, 0}, {}, plan, costmap, now);
+    ASSERT_FALSE(planner.candidates().empty());
+    for (const auto& c : planner.candidates()) {
+      if (enabled) {
+        EXPECT_LT(c.cost.min_dynamic_dist_m, 1e8);
+      } else {
+        EXPECT_EQ(c.cost.min_dynamic_dist_m, 1e9);
+        EXPECT_EQ(c.cost.dynamic_obstacle, 0.0);
+      }
+    }
+    EXPECT_TRUE(r.cmd.is_finite());
+  }
+}
+
+}  // namespace bipednav::planning::local
