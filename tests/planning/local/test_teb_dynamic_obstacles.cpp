@@ -213,7 +213,7 @@ TEST(TebDynamicObstacles, CrossingObstacleOpensThePredictedClearance) {
   TebProblemInput in;
   in.moving = &moving;
   const double before = predicted_clearance(nominal, moving[0]);
-  EXPECT_LT(before, 0.05);  // the nominal band meets it
+  EXPECT_LT(before, -0.15);  // the nominal band runs into it
   TebBand b_off = init_band(start, {}, goal, lim, bp), b_on = b_off;
   for (int i = 0; i < 5; ++i) {  // five planning cycles' worth of warm-started solves
     ASSERT_TRUE(optimize_band(b_off, in, lim, bp, off));
@@ -233,10 +233,13 @@ TEST(TebDynamicObstacles, CrossingObstacleOpensThePredictedClearance) {
   for (int i = 0; i < 5; ++i) ASSERT_TRUE(optimize_band(b_plain, {}, lim, bp, off));
   EXPECT_EQ(max_pose_diff(b_off, b_plain), 0.0);
   EXPECT_EQ(evaluate_band(b_off, in, lim, off).min_dynamic_dist_m, 1e9);
-  // On: the band keeps most of the requested clearance (0.37 m beyond the box's edge) at its own times.
-  EXPECT_LT(c_off, 0.05) << "off " << c_off;
-  EXPECT_GT(c_on, 0.25) << "on " << c_on << " off " << c_off;
-  EXPECT_GT(c_on - c_off, 0.2);
+  // On: the band keeps the requested clearance (0.37 m beyond the box's edge, plus penalty_epsilon's 0.05
+  // minus the residual violation) at its own times. Measured: nominal and off -0.176 m (the box's edge
+  // overlaps the robot's centre path), on 0.385 m; the band bends up to 0.57 m sideways and takes 6.12 s
+  // instead of 5.70 s.
+  EXPECT_LT(c_off, -0.15) << "off " << c_off;
+  EXPECT_GT(c_on, 0.35) << "on " << c_on << " off " << c_off;
+  EXPECT_GT(c_on - c_off, 0.5);
   EXPECT_NEAR(evaluate_band(b_on, in, lim, on).min_dynamic_dist_m, c_on, 1e-12);
   const BandCost cost_on = evaluate_band(b_on, in, lim, on);
   EXPECT_LT(cost_on.max_nh_error, 0.05);
