@@ -1,11 +1,13 @@
 // libFuzzer target: YAML parameters through io::ParamReader into a component parameter struct
 // (io::HeightmapImageParams, validate()d) plus every reader operation: scalars of each type,
-// lists, a nested mapping, a list of mappings, required keys and the unknown-key check.
+// lists, a nested mapping, a list of mappings, required keys and the unknown-key check; and the
+// navigation parameters file (navigation::read_navigator_params) under the key `navigator`.
 #include <string>
 #include <vector>
 
 #include "bipednav/io/heightmap_image.hpp"
 #include "bipednav/io/param_reader.hpp"
+#include "bipednav/navigation/navigator_params_yaml.hpp"
 #include "fuzz_common.hpp"
 
 namespace {
@@ -41,6 +43,13 @@ void read_all(bipednav::io::ParamReader& r) {
     double x_m = 0.0;
     item.get("x_m", x_m);
     item.finish();
+  }
+  if (r.has("navigator")) {
+    bipednav::io::ParamReader nav = r.child("navigator");
+    bipednav::navigation::NavigatorParams p =
+        bipednav::navigation::NavigatorParams::for_robot(bipednav::RobotProfile{});
+    bipednav::navigation::read_navigator_params(nav, p);
+    (void)bipednav::navigation::navigator_params_yaml(p);
   }
   r.finish();
 }

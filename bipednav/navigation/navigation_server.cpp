@@ -13,6 +13,9 @@ void ServerParams::validate() const {
   goal.validate();
   progress.validate();
   oscillation.validate();
+  // The planner factories check the names too, but only when the server is built.
+  require(global_planner == "dstar_lite" || global_planner == "astar", "global_planner", "dstar_lite or astar");
+  require(local_planner == "teb" || local_planner == "tracker", "local_planner", "teb or tracker");
   require(controller_failures_allowed >= 0, "controller_failures_allowed", ">= 0");
   require(blocked_goal_timeout_s >= 0.0, "blocked_goal_timeout_s", ">= 0");
   require(path_check_distance_m > 0.0, "path_check_distance_m", "> 0");

@@ -1,0 +1,145 @@
+// The navigation parameters file: `bipednav params` dump, read back, overrides and errors.
+#include "bipednav/navigation/navigator_params_yaml.hpp"
+
+#include <gtest/gtest.h>
+
+#include <set>
+#include <sstream>
+#include <vector>
+
+#include "bipednav/io/robot_profile_yaml.hpp"
+#include "test_data.hpp"
+
+using namespace bipednav;
+using navigation::NavigatorParams;
+
+namespace {
+
+RobotProfile robot_named(const std::string& name) {
+  return io::load_robot_profile(std::filesystem::path(navigation::config_dir()) / (name + ".yaml"));
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) out.push_back(line);
+  return out;
+}
+
+// read_navigator_params on YAML text; the error message when it throws `E` ("" when it did not).
+template <class E>
+std::string error_of(const std::string& yaml) {
+  NavigatorParams p = NavigatorParams::for_robot(robot_named("turtlebot3"));
+  try {
+    io::ParamReader r = io::ParamReader::from_string(yaml, "nav_params.yaml");
+    navigation::read_navigator_params(r, p);
+  } catch (const E& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+// The dump of one robot's parameters, read onto the other robot's defaults, gives back every value:
+// the robot-dependent fields of for_robot() (radii, limits, planner, braking, LOAM's prior) included.
+TEST(NavigatorParamsYaml, DumpReadBackGivesTheSameValuesForBothRobots) {
+  const std::vector<std::string> robots{"turtlebot3", "digit"};
+  for (std::size_t i = 0; i < robots.size(); ++i) {
+    const NavigatorParams want = NavigatorParams::for_robot(robot_named(robots[i]));
+    const std::string text = navigation::navigator_params_yaml(want);
+    NavigatorParams got = NavigatorParams::for_robot(robot_named(robots[1 - i]));
+    ASSERT_NE(navigation::navigator_params_yaml(got), text) << "the two robots' defaults differ";
+    io::ParamReader r = io::ParamReader::from_string(text, robots[i] + ".yaml");
+    navigation::read_navigator_params(r, got);
+    EXPECT_EQ(navigation::navigator_params_yaml(got), text) << robots[i];
+    EXPECT_EQ(got.local_map.inscribed_radius_m, want.local_map.inscribed_radius_m);
+    EXPECT_EQ(got.local_map.inflation_radius_m, want.local_map.inflation_radius_m);
+    EXPECT_EQ(got.local_map.height_aware_clearing, want.local_map.height_aware_clearing);
+    EXPECT_EQ(got.local_map.mark_decay_s, want.local_map.mark_decay_s);
+    EXPECT_EQ(got.global_map.inflation_radius_m, want.global_map.inflation_radius_m);
+    EXPECT_EQ(got.perception.obstacle_height_margin_m, want.perception.obstacle_height_margin_m);
+    EXPECT_EQ(got.perception.depth_voxel.leaf_size_m, want.perception.depth_voxel.leaf_size_m);
+    EXPECT_EQ(got.perception.prior_ground, want.perception.prior_ground);
+    EXPECT_EQ(got.localization.max_odometry_speed_mps, want.localization.max_odometry_speed_mps);
+    EXPECT_EQ(got.localization.loam.reference_from_prior_change, want.localization.loam.reference_from_prior_change);
+    EXPECT_EQ(got.server.local.teb.limits.max_vel_x_mps, want.server.local.teb.limits.max_vel_x_mps);
+    EXPECT_EQ(got.server.local.teb.limits.min_obstacle_dist_m, want.server.local.teb.limits.min_obstacle_dist_m);
+    EXPECT_EQ(got.server.local.tracker.max_vel_theta_radps, want.server.local.tracker.max_vel_theta_radps);
+    EXPECT_EQ(got.server.local.avoidance.robot_radius_m, want.server.local.avoidance.robot_radius_m);
+    EXPECT_EQ(got.server.progress.movement_time_allowance_s, want.server.progress.movement_time_allowance_s);
+    EXPECT_EQ(got.server.local_planner, want.server.local_planner);
+    EXPECT_EQ(got.brake_from_last_command, want.brake_from_last_command);
+    EXPECT_EQ(got.behavior_tree, want.behavior_tree);
+  }
+}
+
+// tests/data/navigator_params/override.yaml names six fields: exactly those six lines of the dump change.
+TEST(NavigatorParamsYaml, AFileChangesExactlyTheFieldsItNames) {
+  BIPEDNAV_REQUIRE_DATA(file, "navigator_params/override.yaml");
+  const NavigatorParams before = NavigatorParams::for_robot(robot_named("digit"));
+  NavigatorParams p = before;
+  navigation::apply_navigator_params_file(file, p);
+  EXPECT_EQ(p.control_rate_hz, 20.0);
+  EXPECT_EQ(p.local_map.inflation_radius_m, 0.9);
+  EXPECT_EQ(p.perception.depth_voxel.leaf_size_m, Eigen::Vector3d(0.03, 0.03, 0.04));
+  EXPECT_FALSE(p.moving_obstacles.coast_in_blind_zone);
+  EXPECT_EQ(p.server.local_planner, "teb");  // Digit's default is the tracker
+  EXPECT_TRUE(p.server.local.teb.optim.dynamic_obstacles);
+
+  const auto a = lines_of(navigation::navigator_params_yaml(before)),
+             b = lines_of(navigation::navigator_params_yaml(p));
+  ASSERT_EQ(a.size(), b.size());
+  std::set<std::string> changed;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (a[i] != b[i]) changed.insert(b[i]);
+  const std::set<std::string> expected{
+      "control_rate_hz: 20.0",        "  inflation_radius_m: 0.9", "    leaf_size_m: [0.03, 0.03, 0.04]",
+      "  coast_in_blind_zone: false", "  local_planner: teb",      "        dynamic_obstacles: true"};
+  EXPECT_EQ(changed, expected);
+}
+
+TEST(NavigatorParamsYaml, AnUnknownKeyNamesTheFileAndTheFieldPath) {
+  const std::string msg =
+      error_of<FileError>("server:\n  local:\n    teb:\n      optim:\n        dynamic_obstacle: true\n");
+  EXPECT_NE(msg.find("nav_params.yaml"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("server.local.teb.optim.dynamic_obstacle"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("unknown parameter"), std::string::npos) << msg;
+  const std::string top = error_of<FileError>("control_rate: 20.0\n");
+  EXPECT_NE(top.find("nav_params.yaml:control_rate: unknown parameter"), std::string::npos) << top;
+  // Fields left out of the file format are unknown keys too.
+  EXPECT_NE(
+      error_of<FileError>("localization: {loam: {output_deskewed: true}}").find("localization.loam.output_deskewed"),
+      std::string::npos);
+}
+
+TEST(NavigatorParamsYaml, AWrongTypeNamesTheFieldAndTheExpectedType) {
+  const std::string msg = error_of<FileError>("local_map:\n  inflation_radius_m: wide\n");
+  EXPECT_NE(msg.find("nav_params.yaml:line 2: local_map.inflation_radius_m: expected a value of type number"),
+            std::string::npos)
+      << msg;
+  EXPECT_NE(error_of<FileError>("moving_obstacles: {enabled: 3}")
+                .find("moving_obstacles.enabled: expected a value of type bool"),
+            std::string::npos);
+  EXPECT_NE(error_of<FileError>("server: {local: {teb: {optim: {no_inner_iterations: 2.5}}}}")
+                .find("server.local.teb.optim.no_inner_iterations: expected a value of type integer"),
+            std::string::npos);
+  EXPECT_NE(error_of<FileError>("server: {goal: 0.3}").find("server.goal: expected a mapping"), std::string::npos);
+  EXPECT_NE(error_of<FileError>("perception: {prior_ground: [0, 0, 1]}")
+                .find("perception.prior_ground: expected a list of 4 numbers"),
+            std::string::npos);
+}
+
+// Values of the right type but out of range: validate() after the overlay names the field, the
+// error the file.
+TEST(NavigatorParamsYaml, ValuesOutOfRangeAreRejectedByValidate) {
+  const std::string msg = error_of<FileError>("local_map: {inflation_radius_m: -1.0}");
+  EXPECT_NE(msg.find("nav_params.yaml: invalid parameter 'inflation_radius_m'"), std::string::npos) << msg;
+  EXPECT_NE(error_of<FileError>("control_rate_hz: .nan").find("invalid parameter 'control_rate_hz'"),
+            std::string::npos);
+  EXPECT_NE(error_of<FileError>("server: {local_planner: dwa}").find("invalid parameter 'local_planner'"),
+            std::string::npos);
+  EXPECT_NE(error_of<FileError>("localization: {method: gps}").find("invalid parameter 'localization.method'"),
+            std::string::npos);
+  EXPECT_EQ(error_of<Error>("control_rate_hz: 20\n"), "");  // an integer is a number
+}
