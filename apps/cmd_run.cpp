@@ -1,4 +1,5 @@
-// `bipednav run`: the closed loop in the simulator, and `bipednav bench scenarios`.
+// `bipednav run`: the closed loop in the simulator, `bipednav bench scenarios` and `bipednav params`
+// (the effective navigation parameters as a file for --params).
 #include <atomic>
 #include <cmath>
 #include <cstdio>
@@ -11,6 +12,7 @@
 #include "apps/cmd_run_footsteps.hpp"
 #include "apps/commands.hpp"
 #include "bipednav/common/progress.hpp"
+#include "bipednav/navigation/navigator_params_yaml.hpp"
 #include "bipednav/runner/replay_recorder.hpp"
 #include "bipednav/runner/run_figure.hpp"
 #include "bipednav/runner/scenario_runner.hpp"
@@ -137,8 +139,11 @@ struct RunArgs {
 void run_command(const RunArgs& a) {
   const sim::Scenario s = a.world.empty() ? sim::load_scenario(resolve_scenario(a.scenario))
                                           : scenario_from_world(a.world, a.options.robot, a.start, a.goal);
-  if (runs_by_footsteps(s, a.options.robot))  // humanoids walk by footsteps (apps/cmd_run_footsteps.cpp)
+  if (runs_by_footsteps(s, a.options.robot)) {  // humanoids walk by footsteps (apps/cmd_run_footsteps.cpp)
+    if (!a.options.params_file.empty())
+      throw Error("--params: the footstep navigator (humanoids) reads no params file");
     return run_footsteps_command(s, a.options.robot, a.out, a.seed, a.time_limit_s);
+  }
   runner::RunOptions o = a.options;
   if (a.seed) o.seed = a.seed;
   if (a.time_limit_s > 0) o.time_limit_s = a.time_limit_s;
@@ -186,6 +191,7 @@ struct BenchScenarioArgs {
   std::vector<std::string> scenarios{"hexagon_static",   "hexagon_dynamic",   "three_rooms",
                                      "digit_lab_static", "digit_lab_dynamic", "turtlebot3_world"};
   bool json = false;
+  std::string params;  // navigation parameters file (RunOptions::params_file)
 };
 
 // One closed-loop run of the bench.
@@ -202,6 +208,10 @@ void bench_scenarios(const BenchScenarioArgs& a) {
   require(!a.scenarios.empty() && !a.robots.empty(), "--scenarios/--robots", "not empty");
   std::vector<sim::Scenario> loaded;
   for (const auto& name : a.scenarios) loaded.push_back(sim::load_scenario(resolve_scenario(name)));
+  runner::RunOptions base;
+  base.params_file = a.params;
+  // A bad parameters file is reported once here, not as every run's error.
+  for (const auto& robot : a.robots) runner::navigator_params(runner::load_robot(robot), base);
   std::vector<BenchRun> runs;
   for (std::size_t k = 0; k < loaded.size(); ++k)
     for (const auto& robot : a.robots)
@@ -220,7 +230,7 @@ void bench_scenarios(const BenchScenarioArgs& a) {
   auto worker = [&] {
     for (std::size_t i = next++; i < runs.size(); i = next++) {
       BenchRun& b = runs[i];
-      runner::RunOptions o;
+      runner::RunOptions o = base;
       o.robot = b.robot;
       o.seed = static_cast<std::uint64_t>(b.seed);
       try {
@@ -288,6 +298,19 @@ void bench_scenarios(const BenchScenarioArgs& a) {
   }
 }
 
+struct ParamsArgs {
+  std::string robot = "turtlebot3";
+  std::string params;
+};
+
+void print_params(const ParamsArgs& a) {
+  runner::RunOptions o;
+  o.params_file = a.params;
+  const std::string yaml = navigation::navigator_params_yaml(runner::navigator_params(runner::load_robot(a.robot), o));
+  std::printf("# bipednav navigation parameters for robot %s%s: every key is optional; read with --params FILE\n%s",
+              a.robot.c_str(), a.params.empty() ? "" : (" with " + a.params).c_str(), yaml.c_str());
+}
+
 }  // namespace
 
 void add_run_commands(CLI::App& app, CLI::App& bench) {
@@ -301,6 +324,9 @@ void add_run_commands(CLI::App& app, CLI::App& bench) {
   run->add_option("--localization", args->options.localization, "loam or odometry");
   run->add_option("--local-planner", args->options.local_planner, "teb or tracker");
   run->add_option("--global-planner", args->options.global_planner, "dstar_lite or astar");
+  run->add_option("--params", args->options.params_file,
+                  "Navigation parameters YAML overlaid on the robot's defaults (`bipednav params` prints the layout); "
+                  "--localization/--local-planner/--global-planner and the scenario's goal tolerances win");
   run->add_option("--world", args->world, "A Gazebo .world file instead of a scenario");
   run->add_option("--start", args->start, "With --world: start pose x,y,yaw")->capture_default_str();
   run->add_option("--goal", args->goal, "With --world: goal pose x,y,yaw");
@@ -328,7 +354,15 @@ void add_run_commands(CLI::App& app, CLI::App& bench) {
       ->capture_default_str()
       ->check(CLI::Range(1, 64));
   sc->add_flag("--json", b->json, "Print one JSON object (with the failed seeds of each pair)");
+  sc->add_option("--params", b->params, "Navigation parameters YAML for every run (as `run --params`)");
   sc->callback([b] { bench_scenarios(*b); });
+
+  auto pa = std::make_shared<ParamsArgs>();
+  CLI::App* params = app.add_subcommand(
+      "params", "Print the effective navigation parameters as YAML (the layout of --params; like ros2 param dump)");
+  params->add_option("--robot", pa->robot, "Robot profile")->capture_default_str();
+  params->add_option("--params", pa->params, "A parameters file to overlay first (prints the result)");
+  params->callback([pa] { print_params(*pa); });
 }
 
 }  // namespace bipednav::app

@@ -13,6 +13,6 @@ void add_plan_commands(CLI::App& app, CLI::App& bench);          // plan grid/mo
 void add_local_commands(CLI::App& app, CLI::App& bench);         // local, bench local
 void add_localization_commands(CLI::App& app, CLI::App& bench);  // register, odometry, bench localization
 void add_footstep_commands(CLI::App& app, CLI::App& bench);      // footsteps, bench footsteps
-void add_run_commands(CLI::App& app, CLI::App& bench);           // run, bench scenarios
+void add_run_commands(CLI::App& app, CLI::App& bench);           // run, params, bench scenarios
 
 }  // namespace bipednav::app

@@ -97,10 +97,7 @@ BagRunSummary run_scenario_to_bag(const sim::Scenario& scenario, const runner::R
   sim::SimulationParams sp;
   sp.seed = o.seed.value_or(scenario.seed);
   sim::Simulation sim(scenario.world, robot, scenario.start, sp);
-  auto params = navigation::NavigatorParams::for_robot(robot);
-  if (!o.localization.empty()) params.localization.method = o.localization;
-  if (!o.local_planner.empty()) params.server.local_planner = o.local_planner;
-  if (!o.global_planner.empty()) params.server.global_planner = o.global_planner;
+  auto params = runner::navigator_params(robot, o);
   params.server.goal.xy_tolerance_m = scenario.goal_tolerance_m;
   params.server.goal.yaw_tolerance_rad = scenario.goal_tolerance_rad;
   navigation::Navigator nav(params, robot, runner::global_geometry_for(scenario, params.global_map.resolution_m),

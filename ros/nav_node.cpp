@@ -11,6 +11,7 @@
 #include <optional>
 
 #include "bipednav/navigation/navigator.hpp"
+#include "bipednav/navigation/navigator_params_yaml.hpp"
 #include "bipednav/runner/scenario_runner.hpp"
 #include "ros/conversions.hpp"
 
@@ -89,6 +90,10 @@ void NavNode::load(ros::NodeHandle& pnh) {
   robot_ = runner::load_robot(p_.robot, p_.config_dir);
   nav_params_ = navigation::NavigatorParams::for_robot(robot_);
   auto& n = nav_params_;
+  // A navigation parameters file (`bipednav params --robot R` prints one); the single ROS params
+  // below still override it.
+  const std::string params_file = param(pnh, "params_file", std::string());
+  if (!params_file.empty()) navigation::apply_navigator_params_file(params_file, n);
   n.server.global_planner = param(pnh, "global_planner", n.server.global_planner);
   n.server.local_planner = param(pnh, "local_planner", n.server.local_planner);
   n.localization.method = param(pnh, "localization", n.localization.method);

@@ -7,6 +7,7 @@
 #include "bipednav/common/cpu_time.hpp"
 #include "bipednav/common/progress.hpp"
 #include "bipednav/io/robot_profile_yaml.hpp"
+#include "bipednav/navigation/navigator_params_yaml.hpp"
 
 namespace bipednav::runner {
 
@@ -27,15 +28,16 @@ mapping::GridGeometry global_geometry_for(const sim::Scenario& s, double res, do
   return g;
 }
 
-namespace {
-
 navigation::NavigatorParams navigator_params(const RobotProfile& robot, const RunOptions& o) {
   auto p = navigation::NavigatorParams::for_robot(robot);
+  if (!o.params_file.empty()) navigation::apply_navigator_params_file(o.params_file, p);
   if (!o.localization.empty()) p.localization.method = o.localization;
   if (!o.local_planner.empty()) p.server.local_planner = o.local_planner;
   if (!o.global_planner.empty()) p.server.global_planner = o.global_planner;
   return p;
 }
+
+namespace {
 
 Snapshot snapshot(double t, const navigation::Navigator& nav, const sim::Simulation& sim) {
   return {t,

@@ -27,6 +27,9 @@ struct RunOptions {
   std::size_t max_snapshots = 3;       // figure panels at replanning moments
   double snapshot_spacing_s = 5.0;     // ... at least this far apart
   std::vector<sim::Fault> faults;      // injected in addition to the scenario's own
+  // A navigation parameters file (navigator_params_yaml.hpp) overlaid on the robot's defaults before
+  // localization, local_planner and global_planner (empty: none). The scenario's goal tolerances win.
+  std::filesystem::path params_file;
   // Called after every step with the simulator, its sensor frame, the navigator and the command
   // (e.g. a rosbag recorder).
   std::function<void(const sim::Simulation&, const SensorFrame&, const navigation::Navigator&, const Twist&)> on_step;
@@ -87,5 +90,8 @@ mapping::GridGeometry global_geometry_for(const sim::Scenario& scenario, double 
 // handed over at their times; the run ends when the last goal succeeded or failed, or at the time limit. Success = the
 // last goal reached (by the navigator, and within tolerance by the true pose) with zero collisions.
 RunResult run_scenario(const sim::Scenario& scenario, const RunOptions& options);
+// The navigator's parameters for a run of `robot`: its defaults, options.params_file, then the
+// localization / planner options (without the scenario's goal tolerances).
+navigation::NavigatorParams navigator_params(const RobotProfile& robot, const RunOptions& options);
 
 }  // namespace bipednav::runner

@@ -1,0 +1,27 @@
+// `run --params FILE`: the file overlays the robot's defaults, the single options win over it.
+#include <gtest/gtest.h>
+
+#include "bipednav/runner/scenario_runner.hpp"
+#include "test_data.hpp"
+
+using namespace bipednav;
+
+TEST(RunParamsFile, OverlaysTheRobotsDefaultsAndTheOptionsWin) {
+  BIPEDNAV_REQUIRE_DATA(file, "navigator_params/override.yaml");
+  const RobotProfile robot = runner::load_robot("digit");
+  runner::RunOptions o;
+  const navigation::NavigatorParams defaults = runner::navigator_params(robot, o);
+  EXPECT_EQ(defaults.server.local_planner, "tracker");
+  o.params_file = file;
+  const navigation::NavigatorParams from_file = runner::navigator_params(robot, o);
+  EXPECT_EQ(from_file.server.local_planner, "teb");
+  EXPECT_TRUE(from_file.server.local.teb.optim.dynamic_obstacles);
+  EXPECT_EQ(from_file.control_rate_hz, 20.0);
+  EXPECT_EQ(from_file.server.local.teb.limits.max_vel_x_mps, defaults.server.local.teb.limits.max_vel_x_mps);
+  o.local_planner = "tracker";  // --local-planner
+  const navigation::NavigatorParams with_option = runner::navigator_params(robot, o);
+  EXPECT_EQ(with_option.server.local_planner, "tracker");
+  EXPECT_EQ(with_option.control_rate_hz, 20.0);
+  o.params_file = file.parent_path() / "no_such_file.yaml";
+  EXPECT_THROW(runner::navigator_params(robot, o), FileError);
+}
