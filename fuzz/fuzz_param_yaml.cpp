@@ -1,7 +1,8 @@
 // libFuzzer target: YAML parameters through io::ParamReader into a component parameter struct
 // (io::HeightmapImageParams, validate()d) plus every reader operation: scalars of each type,
 // lists, a nested mapping, a list of mappings, required keys and the unknown-key check; and the
-// navigation parameters file (navigation::read_navigator_params) under the key `navigator`.
+// navigation parameters file (navigation::read_navigator_params) under the key `navigator`, and the
+// footstep navigator's (FootstepNavigatorParams) under `footstep_navigator`.
 #include <string>
 #include <vector>
 
@@ -48,6 +49,12 @@ void read_all(bipednav::io::ParamReader& r) {
     bipednav::io::ParamReader nav = r.child("navigator");
     bipednav::navigation::NavigatorParams p =
         bipednav::navigation::NavigatorParams::for_robot(bipednav::RobotProfile{});
+    bipednav::navigation::read_navigator_params(nav, p);
+    (void)bipednav::navigation::navigator_params_yaml(p);
+  }
+  if (r.has("footstep_navigator")) {
+    bipednav::io::ParamReader nav = r.child("footstep_navigator");
+    bipednav::navigation::FootstepNavigatorParams p;
     bipednav::navigation::read_navigator_params(nav, p);
     (void)bipednav::navigation::navigator_params_yaml(p);
   }
