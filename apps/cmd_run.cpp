@@ -13,6 +13,7 @@
 #include "apps/commands.hpp"
 #include "bipednav/common/progress.hpp"
 #include "bipednav/navigation/navigator_params_yaml.hpp"
+#include "bipednav/runner/footstep_runner.hpp"
 #include "bipednav/runner/replay_recorder.hpp"
 #include "bipednav/runner/run_figure.hpp"
 #include "bipednav/runner/scenario_runner.hpp"
@@ -139,11 +140,8 @@ struct RunArgs {
 void run_command(const RunArgs& a) {
   const sim::Scenario s = a.world.empty() ? sim::load_scenario(resolve_scenario(a.scenario))
                                           : scenario_from_world(a.world, a.options.robot, a.start, a.goal);
-  if (runs_by_footsteps(s, a.options.robot)) {  // humanoids walk by footsteps (apps/cmd_run_footsteps.cpp)
-    if (!a.options.params_file.empty())
-      throw Error("--params: the footstep navigator (humanoids) reads no params file");
-    return run_footsteps_command(s, a.options.robot, a.out, a.seed, a.time_limit_s);
-  }
+  if (runs_by_footsteps(s, a.options.robot))  // humanoids walk by footsteps (apps/cmd_run_footsteps.cpp)
+    return run_footsteps_command(s, a.options.robot, a.out, a.seed, a.time_limit_s, a.options.params_file);
   runner::RunOptions o = a.options;
   if (a.seed) o.seed = a.seed;
   if (a.time_limit_s > 0) o.time_limit_s = a.time_limit_s;
@@ -303,12 +301,18 @@ struct ParamsArgs {
   std::string params;
 };
 
+// A humanoid's (kind humanoid) are the footstep navigator's, in its own layout.
 void print_params(const ParamsArgs& a) {
   runner::RunOptions o;
   o.params_file = a.params;
-  const std::string yaml = navigation::navigator_params_yaml(runner::navigator_params(runner::load_robot(a.robot), o));
-  std::printf("# bipednav navigation parameters for robot %s%s: every key is optional; read with --params FILE\n%s",
-              a.robot.c_str(), a.params.empty() ? "" : (" with " + a.params).c_str(), yaml.c_str());
+  const RobotProfile robot = runner::load_robot(a.robot);
+  const bool footsteps = runner::is_footstep_robot(robot);
+  const std::string yaml = footsteps
+                               ? navigation::navigator_params_yaml(runner::footstep_navigator_params(o.params_file))
+                               : navigation::navigator_params_yaml(runner::navigator_params(robot, o));
+  std::printf("# bipednav %snavigation parameters for robot %s%s: every key is optional; read with --params FILE\n%s",
+              footsteps ? "footstep " : "", a.robot.c_str(), a.params.empty() ? "" : (" with " + a.params).c_str(),
+              yaml.c_str());
 }
 
 }  // namespace
@@ -325,7 +329,8 @@ void add_run_commands(CLI::App& app, CLI::App& bench) {
   run->add_option("--local-planner", args->options.local_planner, "teb or tracker");
   run->add_option("--global-planner", args->options.global_planner, "dstar_lite or astar");
   run->add_option("--params", args->options.params_file,
-                  "Navigation parameters YAML overlaid on the robot's defaults (`bipednav params` prints the layout); "
+                  "Navigation parameters YAML overlaid on the robot's defaults (`bipednav params` prints the layout; "
+                  "a humanoid's is the footstep navigator's); "
                   "--localization/--local-planner/--global-planner and the scenario's goal tolerances win");
   run->add_option("--world", args->world, "A Gazebo .world file instead of a scenario");
   run->add_option("--start", args->start, "With --world: start pose x,y,yaw")->capture_default_str();
@@ -360,7 +365,8 @@ void add_run_commands(CLI::App& app, CLI::App& bench) {
   auto pa = std::make_shared<ParamsArgs>();
   CLI::App* params = app.add_subcommand(
       "params", "Print the effective navigation parameters as YAML (the layout of --params; like ros2 param dump)");
-  params->add_option("--robot", pa->robot, "Robot profile")->capture_default_str();
+  params->add_option("--robot", pa->robot, "Robot profile (a humanoid: the footstep navigator's parameters)")
+      ->capture_default_str();
   params->add_option("--params", pa->params, "A parameters file to overlay first (prints the result)");
   params->callback([pa] { print_params(*pa); });
 }

@@ -57,9 +57,10 @@ nlohmann::json footstep_json(const runner::FootstepRunResult& f) {
 }  // namespace
 
 void run_footsteps_command(sim::Scenario scenario, const std::string& robot_override, const std::filesystem::path& out,
-                           std::uint64_t seed, double time_limit_s) {
+                           std::uint64_t seed, double time_limit_s, const std::filesystem::path& params_file) {
   if (!robot_override.empty()) scenario.robot = robot_override;
   runner::FootstepRunOptions o;
+  o.navigator = runner::footstep_navigator_params(params_file);
   if (seed) o.seed = seed;
   if (time_limit_s > 0) o.time_limit_s = time_limit_s;
   o.progress = true;

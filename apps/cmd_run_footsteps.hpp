@@ -13,8 +13,9 @@ namespace bipednav::app {
 bool runs_by_footsteps(const sim::Scenario& scenario, const std::string& robot_override);
 
 // `bipednav run` for a humanoid: the footstep closed loop (runner/footstep_runner.hpp), writing
-// run.json and run.png to `out`. seed 0 / time_limit_s 0 keep the scenario's.
+// run.json and run.png to `out`. seed 0 / time_limit_s 0 keep the scenario's; `params_file` (empty:
+// none) overlays the footstep navigator's defaults (runner::footstep_navigator_params).
 void run_footsteps_command(sim::Scenario scenario, const std::string& robot_override, const std::filesystem::path& out,
-                           std::uint64_t seed, double time_limit_s);
+                           std::uint64_t seed, double time_limit_s, const std::filesystem::path& params_file = {});
 
 }  // namespace bipednav::app

@@ -6,6 +6,7 @@
 
 #include "bipednav/common/clock.hpp"
 #include "bipednav/common/progress.hpp"
+#include "bipednav/navigation/navigator_params_yaml.hpp"
 #include "bipednav/runner/footstep_drawing.hpp"
 #include "bipednav/sim/raycaster.hpp"
 #include "bipednav/sim/terrain_truth.hpp"
@@ -27,6 +28,12 @@ void FootstepRunOptions::validate() const {
 }
 
 bool is_footstep_robot(const RobotProfile& robot) { return robot.kind == "humanoid"; }
+
+navigation::FootstepNavigatorParams footstep_navigator_params(const std::filesystem::path& params_file) {
+  navigation::FootstepNavigatorParams p;
+  if (!params_file.empty()) navigation::apply_navigator_params_file(params_file, p);
+  return p;
+}
 
 namespace {
 

@@ -1,6 +1,9 @@
-// `run --params FILE`: the file overlays the robot's defaults, the single options win over it.
+// `run --params FILE`: the file overlays the robot's defaults, the single options win over it; a
+// humanoid's file overlays the footstep navigator's.
 #include <gtest/gtest.h>
 
+#include "bipednav/navigation/navigator_params_yaml.hpp"
+#include "bipednav/runner/footstep_runner.hpp"
 #include "bipednav/runner/scenario_runner.hpp"
 #include "test_data.hpp"
 
@@ -24,4 +27,17 @@ TEST(RunParamsFile, OverlaysTheRobotsDefaultsAndTheOptionsWin) {
   EXPECT_EQ(with_option.control_rate_hz, 20.0);
   o.params_file = file.parent_path() / "no_such_file.yaml";
   EXPECT_THROW(runner::navigator_params(robot, o), FileError);
+}
+
+// A humanoid's `run --params FILE`: the file overlays the footstep navigator's defaults.
+TEST(RunParamsFile, OverlaysTheFootstepNavigatorsDefaults) {
+  BIPEDNAV_REQUIRE_DATA(file, "navigator_params/footstep_override.yaml");
+  const navigation::FootstepNavigatorParams defaults;
+  EXPECT_EQ(navigation::navigator_params_yaml(runner::footstep_navigator_params({})),
+            navigation::navigator_params_yaml(defaults));
+  const navigation::FootstepNavigatorParams p = runner::footstep_navigator_params(file);
+  EXPECT_EQ(p.replan_deviation_m, 0.05);
+  EXPECT_EQ(p.planner.search.initial_epsilon, 4.0);
+  EXPECT_EQ(p.planner.search.target_epsilon, defaults.planner.search.target_epsilon);
+  EXPECT_THROW(runner::footstep_navigator_params(file.parent_path() / "no_such_file.yaml"), FileError);
 }
