@@ -141,7 +141,7 @@ void run_command(const RunArgs& a) {
   const sim::Scenario s = a.world.empty() ? sim::load_scenario(resolve_scenario(a.scenario))
                                           : scenario_from_world(a.world, a.options.robot, a.start, a.goal);
   if (runs_by_footsteps(s, a.options.robot))  // humanoids walk by footsteps (apps/cmd_run_footsteps.cpp)
-    return run_footsteps_command(s, a.options.robot, a.out, a.seed, a.time_limit_s, a.options.params_file);
+    return run_footsteps_command(s, a.options.robot, a.out, a.seed, a.time_limit_s, a.options.params_file, a.replay);
   runner::RunOptions o = a.options;
   if (a.seed) o.seed = a.seed;
   if (a.time_limit_s > 0) o.time_limit_s = a.time_limit_s;

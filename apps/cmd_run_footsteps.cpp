@@ -4,8 +4,10 @@
 #include <cstdio>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <nlohmann/json.hpp>
 
+#include "bipednav/runner/footstep_replay.hpp"
 #include "bipednav/runner/footstep_runner.hpp"
 
 namespace bipednav::app {
@@ -57,13 +59,19 @@ nlohmann::json footstep_json(const runner::FootstepRunResult& f) {
 }  // namespace
 
 void run_footsteps_command(sim::Scenario scenario, const std::string& robot_override, const std::filesystem::path& out,
-                           std::uint64_t seed, double time_limit_s, const std::filesystem::path& params_file) {
+                           std::uint64_t seed, double time_limit_s, const std::filesystem::path& params_file,
+                           const std::filesystem::path& replay) {
   if (!robot_override.empty()) scenario.robot = robot_override;
   runner::FootstepRunOptions o;
   o.navigator = runner::footstep_navigator_params(params_file);
   if (seed) o.seed = seed;
   if (time_limit_s > 0) o.time_limit_s = time_limit_s;
   o.progress = true;
+  std::unique_ptr<runner::FootstepReplayRecorder> recorder;
+  if (!replay.empty()) {
+    recorder = std::make_unique<runner::FootstepReplayRecorder>(scenario);
+    recorder->attach(o);
+  }
   const runner::FootstepRunResult f = runner::run_footstep_scenario(scenario, o);
   std::filesystem::create_directories(out);
   std::ofstream(out / "run.json") << footstep_json(f).dump(2) << "\n";
@@ -77,6 +85,10 @@ void run_footsteps_command(sim::Scenario scenario, const std::string& robot_over
   std::printf("  goal error %.3f m / %.3f rad, localization error %.3f m, replans %zu, real-time factor %.1fx\n",
               r.goal_error_m, r.goal_error_rad, r.localization_error_m, r.replans, r.real_time_factor);
   std::printf("  wrote %s and %s\n", (out / "run.json").c_str(), (out / "run.png").c_str());
+  if (recorder) {
+    viz::write_replay_html(replay, recorder->finish(f));
+    std::printf("  wrote %s (%zu frames)\n", replay.c_str(), recorder->frames().size());
+  }
 }
 
 }  // namespace bipednav::app

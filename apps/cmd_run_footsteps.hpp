@@ -16,6 +16,7 @@ bool runs_by_footsteps(const sim::Scenario& scenario, const std::string& robot_o
 // run.json and run.png to `out`. seed 0 / time_limit_s 0 keep the scenario's; `params_file` (empty:
 // none) overlays the footstep navigator's defaults (runner::footstep_navigator_params).
 void run_footsteps_command(sim::Scenario scenario, const std::string& robot_override, const std::filesystem::path& out,
-                           std::uint64_t seed, double time_limit_s, const std::filesystem::path& params_file = {});
+                           std::uint64_t seed, double time_limit_s, const std::filesystem::path& params_file = {},
+                           const std::filesystem::path& replay = {});
 
 }  // namespace bipednav::app

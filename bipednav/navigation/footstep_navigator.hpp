@@ -77,6 +77,8 @@ class FootstepNavigator {
   SE3 T_map_odom() const { return se3_from_pose2(pose2_from_se3(odometry_.correction())); }
   const mapping::Heightmap& map() const { return fusion_.map(); }
   const footstep::FootstepPlan& plan() const { return plan_; }
+  // plan().steps[plan_cursor()] is the stance foot (after next() returned a step: its target).
+  std::size_t plan_cursor() const { return cursor_; }
   std::size_t plans() const { return plans_; }
   std::size_t corrections() const { return corrections_; }
   std::size_t recoveries() const { return recoveries_; }  // corrective steps taken

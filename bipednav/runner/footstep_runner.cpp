@@ -105,6 +105,7 @@ struct Loop {
       const navigation::StepDecision d = nav.next(walker.odom_stance());
       if (d.replanned && nav.plan().result.ok())
         (out.first_plan.steps.empty() ? out.first_plan : out.last_plan) = nav.plan();
+      if (o.on_decision) o.on_decision(walker, nav, d);
       if (d.done) return d.result;
       const footstep::Footstep stance = nav.to_map(walker.odom_stance());
       const sim::StepExecution e =

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -29,6 +30,10 @@ struct FootstepRunOptions {
   double map_resolution_m = 0.01;     // the navigator's heightmap
   double map_margin_m = 0.0;          // around the scenario's bounds
   bool progress = false;
+  // Called at every step decision (after the head views and the plan, before the step is walked),
+  // the final one included; the HTML replay records through it (footstep_replay.hpp).
+  std::function<void(const sim::HumanoidWalker&, const navigation::FootstepNavigator&, const navigation::StepDecision&)>
+      on_decision;
 
   void validate() const;
 };

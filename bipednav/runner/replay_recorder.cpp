@@ -41,18 +41,30 @@ viz::ReplayGrid replay_grid(double t_s, const mapping::Costmap2D& map) {
   return {t_s, g.width, g.height, g.resolution_m, g.origin_x_m, g.origin_y_m, map.data()};
 }
 
-ReplayRecorder::ReplayRecorder(const sim::Scenario& scenario, const ReplayRecorderParams& params) : params_(params) {
-  params_.validate();
-  data_.title = scenario.name + (scenario.description.empty() ? "" : ": " + scenario.description);
+viz::ReplayData replay_scene(const sim::Scenario& scenario) {
+  viz::ReplayData data;
+  data.title = scenario.name + (scenario.description.empty() ? "" : ": " + scenario.description);
   for (const auto& geometry : scenario.world.statics)
-    for (auto& outline : sim::footprint(geometry, SE3::Identity())) data_.statics.push_back(std::move(outline));
+    for (auto& outline : sim::footprint(geometry, SE3::Identity())) data.statics.push_back(std::move(outline));
   for (const auto& actor : scenario.world.actors) {
     viz::ReplayActor a{actor.name, {}};
     for (const auto& part : actor.parts)
       for (auto& outline : sim::footprint(part, SE3::Identity())) a.outlines.push_back(std::move(outline));
-    data_.actors.push_back(std::move(a));
+    data.actors.push_back(std::move(a));
   }
-  for (const auto& g : scenario.goals) data_.goals.push_back({g.time_s, g.pose});
+  for (const auto& g : scenario.goals) data.goals.push_back({g.time_s, g.pose});
+  return data;
+}
+
+viz::ReplaySummary replay_summary(const RunResult& r) {
+  return {r.scenario,        r.robot,   r.success,       std::string(outcome_name(r.outcome.outcome)),
+          r.outcome.message, r.time_s,  r.path_length_m, r.min_clearance_m,
+          r.collisions,      r.replans, r.recoveries};
+}
+
+ReplayRecorder::ReplayRecorder(const sim::Scenario& scenario, const ReplayRecorderParams& params)
+    : params_(params), data_(replay_scene(scenario)) {
+  params_.validate();
 }
 
 void ReplayRecorder::attach(RunOptions& options) {
@@ -158,9 +170,7 @@ void ReplayRecorder::record(const sim::Simulation& sim, const SensorFrame& frame
 
 viz::ReplayData ReplayRecorder::finish(const RunResult& r) const {
   viz::ReplayData out = data_;
-  out.summary = {r.scenario,        r.robot,   r.success,       std::string(outcome_name(r.outcome.outcome)),
-                 r.outcome.message, r.time_s,  r.path_length_m, r.min_clearance_m,
-                 r.collisions,      r.replans, r.recoveries};
+  out.summary = replay_summary(r);
   return out;
 }
 

@@ -55,6 +55,11 @@ class ReplayRecorder {
   std::string last_state_, last_node_;
 };
 
+// A replay's scene from the scenario: title, static outlines, actors and goals (no frames).
+viz::ReplayData replay_scene(const sim::Scenario& scenario);
+// The run's summary line.
+viz::ReplaySummary replay_summary(const RunResult& result);
+
 // The costmap as a replay grid (at time t_s).
 viz::ReplayGrid replay_grid(double t_s, const mapping::Costmap2D& map);
 

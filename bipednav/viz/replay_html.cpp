@@ -98,6 +98,39 @@ json summary_json(const ReplaySummary& s, const Rounder& r) {
           {"recoveries", s.recoveries}};
 }
 
+// A foot as [left (1) / right (0), x, y, yaw, action kind].
+json foot_json(const ReplayFoot& f, const Rounder& r) {
+  return json::array({f.left ? 1 : 0, r(f.pose.x), r(f.pose.y), round_angle(f.pose.theta), f.action});
+}
+
+json feet_json(const std::vector<ReplayFoot>& feet, const Rounder& r) {
+  json out = json::array();
+  for (const auto& f : feet) out.push_back(foot_json(f, r));
+  return out;
+}
+
+bool same_feet(const std::vector<ReplayFoot>& a, const std::vector<ReplayFoot>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (a[i].left != b[i].left || a[i].pose.x != b[i].pose.x || a[i].pose.y != b[i].pose.y ||
+        a[i].pose.theta != b[i].pose.theta || a[i].action != b[i].action)
+      return false;
+  return true;
+}
+
+json footsteps_json(const ReplayFootsteps& f, const Rounder& r) {
+  json taken = json::array();
+  for (const auto& foot : f.taken) {
+    json j = foot_json(foot, r);
+    j.insert(j.begin(), std::round(foot.t_s * 1000.0) / 1000.0);
+    taken.push_back(std::move(j));
+  }
+  return {{"foot", json::array({f.foot_length_m, f.foot_width_m})},
+          {"taken", std::move(taken)},
+          {"height_lo", f.height_lo_m},
+          {"height_hi", f.height_hi_m}};
+}
+
 bool same_path(const Path& a, const Path& b) {
   if (a.poses.size() != b.poses.size()) return false;
   for (std::size_t i = 0; i < a.poses.size(); ++i)
@@ -126,6 +159,10 @@ json frames_json(const ReplayData& data, const Rounder& r) {
     j["actors"] = std::move(actors);
     if (!last || !same_path(last->global_path, f.global_path)) j["gp"] = path_json(f.global_path, r);
     if (!last || !same_path(last->local_trajectory, f.local_trajectory)) j["lt"] = path_json(f.local_trajectory, r);
+    if (data.footsteps) {
+      if (!last || !same_feet(last->plan, f.plan)) j["plan"] = feet_json(f.plan, r);
+      if (f.replanned) j["replan"] = true;
+    }
     for (auto [key, points, previous] :
          {std::tuple{"lidar", &f.lidar, &last_lidar}, {"depth", &f.depth, &last_depth}}) {
       std::string packed = points_packed(*points, r);
@@ -171,6 +208,10 @@ std::string replay_json(const ReplayData& data, const ReplayHtmlParams& params) 
   j["frames"] = frames_json(data, r);
   j["global_maps"] = grids_json(data.global_maps);
   j["local_maps"] = grids_json(data.local_maps);
+  if (data.footsteps) {
+    j["footsteps"] = footsteps_json(*data.footsteps, r);
+    j["height_maps"] = grids_json(data.footsteps->height_maps);
+  }
   return j.dump();
 }
 

@@ -35,6 +35,24 @@ struct ReplayGoal {
   Pose2 pose;
 };
 
+// A placed or planned foot of a humanoid footstep run: its sole centre and the kind of the action
+// that puts it there (planar, t_step, step_over, step_onto, step_down; empty for the start feet).
+struct ReplayFoot {
+  double t_s = 0.0;  // when it landed (taken feet)
+  bool left = true;
+  Pose2 pose;
+  std::string action;
+};
+
+// The footstep layer of a humanoid run: the feet taken, the navigator's heightmap as it fills in.
+struct ReplayFootsteps {
+  double foot_length_m = 0.16, foot_width_m = 0.09;
+  std::vector<ReplayFoot> taken;  // sorted by time: the start feet, then every landed foot
+  // Heights quantised to cells 0..254 from height_lo_m to height_hi_m, 255 unobserved.
+  std::vector<ReplayGrid> height_maps;
+  double height_lo_m = 0.0, height_hi_m = 0.0;
+};
+
 // One sampled moment of the run.
 struct ReplayFrame {
   double t_s = 0.0;
@@ -47,6 +65,9 @@ struct ReplayFrame {
   std::string active_node;                    // the behavior tree's running leaf
   std::string state;                          // IDLE, ACTIVE, SUCCEEDED, FAILED
   std::string outcome;                        // the move_base outcome once finished
+  // Footstep runs: the plan's remaining feet (from the next landing) and whether it was just made.
+  std::vector<ReplayFoot> plan;
+  bool replanned = false;
 };
 
 struct ReplaySummary {
@@ -69,6 +90,7 @@ struct ReplayData {
   std::vector<ReplayGoal> goals;
   std::vector<ReplayFrame> frames;  // sorted by time
   std::vector<ReplayGrid> global_maps, local_maps;
+  std::optional<ReplayFootsteps> footsteps;  // humanoid footstep runs only
 };
 
 struct ReplayHtmlParams {

@@ -1,6 +1,7 @@
 // Opens an HTML replay in headless Chromium and checks it: it renders without console errors,
 // page errors or network requests, every layer toggle redraws cleanly, play advances the
-// timeline, and moving the timeline slider moves the robot's drawn position.
+// timeline, and moving the timeline slider moves the robot's drawn position; in a footstep
+// (humanoid) replay the taken feet drawn grow from the two start feet to all of them.
 // Usage: node replay_test.mjs REPLAY.html [SCREENSHOT.png]   (CHROMIUM=path overrides /usr/bin/chromium)
 import { chromium } from "playwright-core";
 import { pathToFileURL } from "node:url";
@@ -41,6 +42,21 @@ try {
   check(moved > 10, `moving the slider moves the drawn robot by ${moved.toFixed(1)} px`);
   const attr = await page.getAttribute("#world", "data-robot-x");
   check(Math.abs(Number(attr) - b[0]) < 0.2, "the canvas exposes the robot's drawn position");
+
+  // Footstep (humanoid) replays: the footstep layers are listed and the taken feet grow with time.
+  const taken = await page.evaluate(() => {
+    const fs = JSON.parse(document.getElementById("replay-data").textContent).footsteps;
+    return fs ? fs.taken.length : null;
+  });
+  if (taken !== null) {
+    check((await page.locator("#layer-footTaken").count()) === 1, "the footstep layers are listed");
+    check((await page.locator("#layer-lidar").count()) === 0, "the wheeled-only layers are not");
+    const last = await page.evaluate(() => window.replay.feetTaken);
+    await seek(0);
+    const first = await page.evaluate(() => window.replay.feetTaken);
+    check(first === 2 && last === taken, `feet drawn: ${first} at the start, ${last} of ${taken} at the end`);
+    await seek(frames - 1);
+  }
 
   const inked = await page.evaluate(() => {
     const c = document.getElementById("world");

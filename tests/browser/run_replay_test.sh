@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# CTest browser_replay: records a short run (hexagon_static, 20 s) as an HTML replay with the
-# built `bipednav` and checks it in headless Chromium through playwright-core (replay_test.mjs).
+# CTest browser_replay: records a short run (hexagon_static, 20 s) and a humanoid footstep run
+# (nao_stairs) as HTML replays with the built `bipednav` and checks them in headless Chromium
+# through playwright-core (replay_test.mjs).
 # Usage: run_replay_test.sh BIPEDNAV_EXE WORK_DIR
 # Exits 77 (CTest SKIP_RETURN_CODE) when chromium, node or npm is missing
 # (scripts/install-deps --browser installs them) or the npm packages cannot be installed.
@@ -25,3 +26,6 @@ fi
 
 "$exe" run hexagon_static --time-limit 20 --out "$work/run" --replay "$work/replay.html"
 CHROMIUM=$chromium node "$work/replay_test.mjs" "$work/replay.html" "$work/replay.png"
+# The humanoid footstep loop's replay (nao_stairs: ~35 s walked, a few seconds to compute).
+"$exe" run nao_stairs --out "$work/run_footsteps" --replay "$work/replay_footsteps.html"
+CHROMIUM=$chromium node "$work/replay_test.mjs" "$work/replay_footsteps.html" "$work/replay_footsteps.png"

@@ -123,6 +123,45 @@ TEST(ReplayHtml, JsonHasFramesPathsOnlyWhenChangedAndPackedPayloads) {
   EXPECT_EQ(unpack_bytes(g["cells"].get<std::string>()), (std::vector<std::uint8_t>{0, 254, 255, 253, 10, 0}));
 }
 
+TEST(ReplayHtml, FootstepLayerOnlyForFootstepRuns) {
+  const nlohmann::json wheeled = embedded_json(replay_html(two_frame_replay()));
+  EXPECT_FALSE(wheeled.contains("footsteps"));
+  EXPECT_FALSE(wheeled.contains("height_maps"));
+  EXPECT_FALSE(wheeled["frames"][0].contains("plan"));
+
+  ReplayData d = two_frame_replay();
+  ReplayFootsteps fs;
+  fs.foot_length_m = 0.16;
+  fs.taken = {
+      {0.0, true, {0.0, 0.05, 0.0}, ""}, {0.0, false, {0.0, -0.05, 0.0}, ""}, {0.6, true, {0.1, 0.05, 0.0}, "planar"}};
+  fs.height_maps = {{0.0, 3, 2, 0.01, -1.0, -2.0, {0, 254, 255, 255, 10, 0}}};
+  fs.height_lo_m = -0.01;
+  fs.height_hi_m = 0.5;
+  d.footsteps = fs;
+  const std::vector<ReplayFoot> plan = {{0.0, false, {0.2, -0.05, 0.0}, "step_onto"},
+                                        {0.0, true, {0.3, 0.05, 0.1}, "planar"}};
+  d.frames[0].plan = plan;
+  d.frames[0].replanned = true;
+  d.frames[1].plan = plan;  // unchanged: not repeated
+  d.frames[2].plan = {plan[1]};
+  const nlohmann::json j = embedded_json(replay_html(d));
+  ASSERT_TRUE(j.contains("footsteps"));
+  EXPECT_DOUBLE_EQ(j["footsteps"]["foot"][0].get<double>(), 0.16);
+  ASSERT_EQ(j["footsteps"]["taken"].size(), 3u);
+  EXPECT_EQ(j["footsteps"]["taken"][2], nlohmann::json::parse(R"([0.6, 1, 0.1, 0.05, 0.0, "planar"])"));
+  EXPECT_DOUBLE_EQ(j["footsteps"]["height_hi"].get<double>(), 0.5);
+  ASSERT_EQ(j["height_maps"].size(), 1u);
+  EXPECT_EQ(unpack_bytes(j["height_maps"][0]["cells"].get<std::string>()),
+            (std::vector<std::uint8_t>{0, 254, 255, 255, 10, 0}));
+  const auto& frames = j["frames"];
+  EXPECT_EQ(frames[0]["plan"],
+            nlohmann::json::parse(R"([[0, 0.2, -0.05, 0.0, "step_onto"], [1, 0.3, 0.05, 0.1, "planar"]])"));
+  EXPECT_TRUE(frames[0].value("replan", false));
+  EXPECT_FALSE(frames[1].contains("plan"));
+  EXPECT_FALSE(frames[1].contains("replan"));
+  EXPECT_EQ(frames[2]["plan"].size(), 1u);
+}
+
 TEST(ReplayHtml, RejectsInconsistentData) {
   ReplayData d = two_frame_replay();
   d.global_maps[0].cells.pop_back();
