@@ -499,11 +499,22 @@ void step(Rollout& r, const Twist& target, const CommandLimits& lim, double dt) 
 struct RolloutCheck {
   double ttc_s = kInf;
   double min_gap_m = kInf;
+  // The time after which the rollout is in no swept corridor (0: never in one, infinity: still in
+  // one at the horizon); only computed on request.
+  double corridor_exit_s = 0.0;
 };
+
+// The distance from p to the segment [a, b].
+double point_segment_distance(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  const Eigen::Vector2d ab = b - a;
+  const double len2 = ab.squaredNorm();
+  const double s = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+  return (p - (a + s * ab)).norm();
+}
 
 RolloutCheck rollout_check(const Pose2& pose, const Twist& current, const Twist& target,
                            const std::vector<TrackedObstacle>& moving, const CommandLimits& lim, double now_s,
-                           const DynamicAvoidanceParams& p, std::vector<Pose2>* arc) {
+                           const DynamicAvoidanceParams& p, std::vector<Pose2>* arc, bool corridors = false) {
   Rollout r{pose, current};
   std::vector<double> prev(moving.size());
   for (std::size_t i = 0; i < moving.size(); ++i) prev[i] = (moving[i].predict(now_s) - pose.position()).norm();
@@ -520,6 +531,10 @@ RolloutCheck rollout_check(const Pose2& pose, const Twist& current, const Twist&
       out.min_gap_m = std::min(out.min_gap_m, d - reach);
       if (!std::isfinite(out.ttc_s) && d < reach && d < prev[i] - 1e-6) out.ttc_s = t;
       prev[i] = d;
+      // Inside the obstacle's corridor: within reach of its predicted path over the next horizon.
+      if (corridors && point_segment_distance(r.pose.position(), moving[i].predict(now_s + t),
+                                              moving[i].predict(now_s + t + p.horizon_s)) < reach)
+        out.corridor_exit_s = k == n ? kInf : t + p.sim_step_s;
     }
   }
   return out;
@@ -561,18 +576,23 @@ YieldDecision yield_to_moving_obstacles(const Twist& cmd, const Pose2& pose, con
   };
   // A collision-free candidate (against the predictions and the costmap) closest to the command;
   // when there is none, the one that keeps the largest gap to the moving obstacles.
+  // With exit_swept_corridor, among the ones run into, the one leaving the corridors soonest first.
   const Twist* best = nullptr;
   bool best_free = false;
-  double best_dev = kInf, best_gap = -kInf;
+  double best_dev = kInf, best_gap = -kInf, best_exit = kInf;
   std::vector<Pose2> arc;
   for (const auto& c : cand) {
-    const RolloutCheck rc = rollout_check(pose, cur, c, moving, lim, now_s, p, &arc);
+    const RolloutCheck rc = rollout_check(pose, cur, c, moving, lim, now_s, p, &arc, p.exit_swept_corridor);
     if (!poses_feasible(arc, costmap)) continue;
     const bool free = !std::isfinite(rc.ttc_s);
     const double dev = deviation(c);
+    const bool sooner = rc.corridor_exit_s < best_exit - 1e-9;
+    const bool as_soon = !sooner && !(rc.corridor_exit_s > best_exit + 1e-9);
+    const bool better_blocked =
+        p.exit_swept_corridor ? sooner || (as_soon && rc.min_gap_m > best_gap) : rc.min_gap_m > best_gap;
     const bool better = best == nullptr || (free && !best_free) || (free && best_free && dev < best_dev) ||
-                        (!free && !best_free && rc.min_gap_m > best_gap);
-    if (better) best = &c, best_free = free, best_dev = dev, best_gap = rc.min_gap_m;
+                        (!free && !best_free && better_blocked);
+    if (better) best = &c, best_free = free, best_dev = dev, best_gap = rc.min_gap_m, best_exit = rc.corridor_exit_s;
   }
   out.modified = true;
   if (best == nullptr) {

@@ -274,6 +274,56 @@ TEST(MovingObstacles, WhenEverythingCollidesTheCommandKeepingTheLargestGapWins) 
   EXPECT_LT(y.cmd.linear_x, 0.0);
 }
 
+namespace {
+
+// Where a command takes the robot from rest after t_s, within the acceleration limits (as the
+// yield's rollouts: unicycle, velocity stepped towards the command every 0.1 s).
+Pose2 roll_out(Pose2 pose, const Twist& target, const CommandLimits& lim, double t_s) {
+  Twist v;
+  for (double t = 0.0; t < t_s - 1e-9; t += 0.1) {
+    v.linear_x += std::clamp(target.linear_x - v.linear_x, -0.1 * lim.acc_lim_x_mps2, 0.1 * lim.acc_lim_x_mps2);
+    v.angular_z +=
+        std::clamp(target.angular_z - v.angular_z, -0.1 * lim.acc_lim_theta_radps2, 0.1 * lim.acc_lim_theta_radps2);
+    pose = pose * Pose2{0.1 * v.linear_x, 0.0, 0.1 * v.angular_z};
+  }
+  return pose;
+}
+
+}  // namespace
+
+TEST(MovingObstacles, InAMoversLaneExitSweptCorridorLeavesTheLane) {
+  // Digit (radius 0.35 m, Digit's limits) standing in a 0.5 m cube's lane (x = 0), turned 0.6 rad
+  // towards it, the cube 0.9 m away coming down the lane at 0.25 m/s (three_rooms/digit, cube_2
+  // just after the robot crossed ahead of it): every candidate is run into. The largest gap is
+  // backing off down the lane ahead of the cube; leaving the corridor soonest is walking on
+  // forward, turning away from the cube, out of the lane.
+  const auto map = test::empty_costmap(0.0, 0.0, 8.0);
+  const CommandLimits lim{0.5, 0.25, 0.6, 0.5, 1.0};
+  TrackedObstacle cube;
+  cube.position = {0.0, 0.9};
+  cube.velocity = {0.0, -0.25};
+  cube.radius_m = 0.35;
+  DynamicAvoidanceParams p;
+  p.robot_radius_m = 0.35;
+  // The corridor's half-width at the end of the horizon.
+  const double reach = p.robot_radius_m + cube.radius_m + p.safety_margin_m + p.prediction_growth_mps * p.horizon_s;
+  const Pose2 pose{0.0, 0.0, 0.6};
+  const Twist cmd{0.1, 0.0, -0.3};
+  ASSERT_FALSE(p.exit_swept_corridor);
+  const auto gap = yield_to_moving_obstacles(cmd, pose, {}, {cube}, map, lim, 0.1, 0.0, p);
+  ASSERT_TRUE(gap.modified);
+  EXPECT_LT(gap.ttc_s, 0.5);  // nothing is free
+  EXPECT_LT(gap.target.linear_x, 0.0);
+  EXPECT_LT(std::abs(roll_out(pose, gap.target, lim, p.horizon_s).x), reach);
+  p.exit_swept_corridor = true;
+  const auto exit = yield_to_moving_obstacles(cmd, pose, {}, {cube}, map, lim, 0.1, 0.0, p);
+  ASSERT_TRUE(exit.modified);
+  EXPECT_LT(exit.ttc_s, 0.5);
+  EXPECT_GT(exit.target.linear_x, 0.0);
+  EXPECT_LT(exit.target.angular_z, 0.0);
+  EXPECT_GT(roll_out(pose, exit.target, lim, p.horizon_s).x, reach);
+}
+
 TEST(MovingObstacles, OfSeveralSafeCommandsTheClosestToThePlannersIsKept) {
   // A box crossing 1.2 m ahead from the right: slowing down or veering lets it pass; stopping
   // and backing off are safe too but further from the command.
