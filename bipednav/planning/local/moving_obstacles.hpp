@@ -107,7 +107,12 @@ struct MovingObstacleParams {
   // velocity does not follow the centroid of an object's far side receding as the object passes
   // under the LiDAR's lowest ring: three_rooms/digit seed 5, a cube moving at 0.25 m/s in -y was
   // estimated at (+0.32, +0.18) m/s from its shrinking blob and lost). Uses the largest radius
-  // whether or not keep_largest_radius is set. Off: not measured over the seeds yet.
+  // whether or not keep_largest_radius is set. Off: on, three_rooms/digit seeds 1-10 (5c21777) 7/10
+  // (1, 5, 9 touch cube_1, cube_2, cube_3) against 7/10 off (3, 5, 10 touch cube_2: at 3 and 10 the
+  // track of cube_2 is kept), seeds 11-20 7/10 (13, 16, 20 touch cube_1) against 6/10 (11 cube_1;
+  // 17, 18, 20 cube_2): cube_2 contacts 1 of 20 against 6, cube_1 contacts 4 against 1 (not
+  // examined); digit_lab_dynamic/digit 10/10 as off; with keep_largest_radius too,
+  // three_rooms/digit 7/10 (6, 8, 10), digit_lab_dynamic/digit 10/10; TurtleBot3 not measured.
   bool partial_view_noise = false;
   double structure_age_s = 4.0;
   double structure_margin_m = 0.2;
