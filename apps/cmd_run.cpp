@@ -137,11 +137,31 @@ struct RunArgs {
   double time_limit_s = 0.0;
 };
 
+// The footstep loop has its own localization (GICP-corrected odometry) and planner (ARA* footsteps),
+// no LiDAR stack to fault and no 10 Hz command trace or rosbag: these options would be ignored.
+void reject_wheeled_only_options(const RunArgs& a) {
+  std::string unused;
+  const auto check = [&](bool set, const char* name) {
+    if (set) unused += std::string(unused.empty() ? "" : ", ") + name;
+  };
+  check(!a.options.localization.empty(), "--localization");
+  check(!a.options.local_planner.empty(), "--local-planner");
+  check(!a.options.global_planner.empty(), "--global-planner");
+  check(!a.faults.empty(), "--fault");
+  check(!a.bag.empty(), "--bag");
+  check(!a.trace.empty(), "--trace");
+  if (!unused.empty())
+    throw Error("a humanoid's footstep run does not take " + unused +
+                " (it has its own localization and footstep planner; --params sets them)");
+}
+
 void run_command(const RunArgs& a) {
   const sim::Scenario s = a.world.empty() ? sim::load_scenario(resolve_scenario(a.scenario))
                                           : scenario_from_world(a.world, a.options.robot, a.start, a.goal);
-  if (runs_by_footsteps(s, a.options.robot))  // humanoids walk by footsteps (apps/cmd_run_footsteps.cpp)
+  if (runs_by_footsteps(s, a.options.robot)) {  // humanoids walk by footsteps (apps/cmd_run_footsteps.cpp)
+    reject_wheeled_only_options(a);
     return run_footsteps_command(s, a.options.robot, a.out, a.seed, a.time_limit_s, a.options.params_file, a.replay);
+  }
   runner::RunOptions o = a.options;
   if (a.seed) o.seed = a.seed;
   if (a.time_limit_s > 0) o.time_limit_s = a.time_limit_s;
