@@ -294,9 +294,9 @@ BandCost evaluate_band(const TebBand& band, const TebProblemInput& input, const 
     const auto times = band_pose_times(band.dt_s, params.dynamic_obstacle_max_prediction_s);
     for (std::size_t k = 1; k + 1 < s.size(); ++k) {
       for (const auto& o : moving) {
-        const double d = (s[k].position() - o.at(times[k])).norm();
+        const double d = o.distance(s[k].position(), times[k]);
         c.min_dynamic_dist_m = std::min(c.min_dynamic_dist_m, d - o.radius_m);
-        c.dynamic_obstacle += w.dynamic_obstacle * sq(penalty_below(d, o.clearance_m, eps));
+        c.dynamic_obstacle += w.dynamic_obstacle * sq(penalty_below(d, o.bound(times[k]), eps));
       }
     }
   }

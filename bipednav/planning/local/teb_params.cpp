@@ -45,6 +45,8 @@ void TebOptimizerParams::validate() const {
   require(pos(obstacle_influence_dist_m), "obstacle_influence_dist_m", "> 0");
   require(nonneg(dynamic_obstacle_dist_m), "dynamic_obstacle_dist_m", ">= 0");
   require(nonneg(dynamic_obstacle_max_prediction_s), "dynamic_obstacle_max_prediction_s", ">= 0");
+  require(nonneg(dynamic_obstacle_growth_mps), "dynamic_obstacle_growth_mps", ">= 0");
+  require(nonneg(dynamic_obstacle_lead_s), "dynamic_obstacle_lead_s", ">= 0");
   require(linear_solver == "banded_lm" || linear_solver == "sparse_normal_cholesky" ||
               linear_solver == "dense_normal_cholesky" || linear_solver == "dense_qr" || linear_solver == "dense_schur",
           "linear_solver", "banded_lm, sparse_normal_cholesky, dense_normal_cholesky, dense_qr or dense_schur");

@@ -1,5 +1,6 @@
 #include "bipednav/planning/local/teb_planner.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "bipednav/common/angles.hpp"
@@ -58,12 +59,15 @@ LocalPlanResult TebPlanner::compute(const Pose2& T_map_base, const Twist& curren
 std::vector<TebMovingObstacle> TebPlanner::band_moving(double now_s) const {
   std::vector<TebMovingObstacle> out;
   if (!params_.optim.dynamic_obstacles || !moving_ || !moving_->params().enabled || !std::isfinite(now_s)) return out;
+  const auto& op = params_.optim;
   for (const auto& t : moving_->moving(now_s)) {
     TebMovingObstacle o;
     o.position = t.predict(now_s);
     o.velocity = t.velocity;
-    o.radius_m = t.radius_m;
-    o.clearance_m = avoidance_.robot_radius_m + t.radius_m + params_.optim.dynamic_obstacle_dist_m;
+    o.radius_m = op.dynamic_obstacle_largest_radius ? std::max(t.radius_m, t.max_radius_m) : t.radius_m;
+    o.clearance_m = avoidance_.robot_radius_m + o.radius_m + op.dynamic_obstacle_dist_m;
+    o.growth_mps = op.dynamic_obstacle_growth_mps;
+    o.lead_s = op.dynamic_obstacle_lead_s;
     if (o.usable()) out.push_back(o);  // a track with a non-finite state is left out
   }
   return out;

@@ -28,12 +28,13 @@ class TebPlanner : public LocalPlanner {
   // The obstacles and candidates of the last compute() (for display and tests).
   const std::vector<Obstacle>& obstacles() const { return obstacles_; }
   const std::vector<BandCandidate>& candidates() const { return homotopy_.candidates(); }
+  // The tracker's moving obstacles at now_s for the band (TebOptimizerParams::dynamic_obstacles; empty
+  // without it).
+  std::vector<TebMovingObstacle> band_moving(double now_s) const;
 
  private:
   LocalPlanResult plan(const Pose2& T_map_base, const Twist& current_velocity, const Path& global_plan,
                        const mapping::Costmap2D& local_costmap, double now_s);
-  // The tracker's moving obstacles at now_s for the band (TebOptimizerParams::dynamic_obstacles).
-  std::vector<TebMovingObstacle> band_moving(double now_s) const;
   LocalPlanResult finish(LocalPlanResult r, const Twist& desired, const Twist& current);
   CommandLimits command_limits() const;
 

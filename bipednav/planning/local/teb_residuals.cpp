@@ -176,12 +176,18 @@ void start_acc_jacobian(const TebResidualContext& c, const Twist& v0, const Inte
 double dynamic_obstacle_jacobian(const TebResidualContext& c, const TebMovingObstacle& o, double t_s, double x,
                                  double y, double* J) {
   double g[2];
-  const double d = point_distance_gradient(x, y, o.at(t_s), g);
+  const double d = o.lead_s > 0.0 ? segment_distance_gradient(x, y, o.at(t_s), o.lead_end(t_s), g)
+                                  : point_distance_gradient(x, y, o.at(t_s), g);
   const double w = std::sqrt(c.w->dynamic_obstacle);
-  const double active = d < o.clearance_m + c.params->penalty_epsilon ? 1.0 : 0.0;
+  const double bound = o.bound(t_s);
+  const double active = d < bound + c.params->penalty_epsilon ? 1.0 : 0.0;
   J[0] = -w * g[0] * active;
   J[1] = -w * g[1] * active;
-  return w * penalty_below(d, o.clearance_m, c.params->penalty_epsilon);
+  return w * penalty_below(d, bound, c.params->penalty_epsilon);
+}
+
+double TebMovingObstacle::distance(const Eigen::Vector2d& p, double t_s) const {
+  return lead_s > 0.0 ? distance_to_segment(p.x(), p.y(), at(t_s), lead_end(t_s)) : (p - at(t_s)).norm();
 }
 
 double obstacle_distance_gradient(const Obstacle& o, double x, double y, double* grad) {

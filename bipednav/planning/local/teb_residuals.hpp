@@ -25,18 +25,29 @@ struct TebWeights {
 
 // A moving obstacle as the band sees it (TebOptimizerParams::dynamic_obstacles): its predicted centre
 // at the band's start time, its velocity, its radius and the distance the robot's centre keeps from its
-// centre (robot radius + radius + margin).
+// centre (robot radius + radius + margin), growing by growth_mps per second of prediction. With lead_s > 0
+// the obstacle at time t is the segment from its prediction at t to lead_s further along its velocity
+// (the stretch it sweeps next), so a band passing in front of it keeps the bound from where it will be.
 struct TebMovingObstacle {
   Eigen::Vector2d position = Eigen::Vector2d::Zero();
   Eigen::Vector2d velocity = Eigen::Vector2d::Zero();
   double radius_m = 0.0;
   double clearance_m = 0.0;
+  double growth_mps = 0.0;
+  double lead_s = 0.0;
 
   // Constant-velocity prediction t_s after the band's start.
   Eigen::Vector2d at(double t_s) const { return position + velocity * t_s; }
+  // The end of the swept segment at t_s (at(t_s) without lead_s).
+  Eigen::Vector2d lead_end(double t_s) const { return at(t_s + lead_s); }
+  // The distance the robot's centre keeps from the (swept) prediction at t_s.
+  double bound(double t_s) const { return clearance_m + growth_mps * t_s; }
+  // Distance of p from the (swept) prediction at t_s.
+  double distance(const Eigen::Vector2d& p, double t_s) const;
   bool usable() const {
     return position.allFinite() && velocity.allFinite() && std::isfinite(radius_m) && std::isfinite(clearance_m) &&
-           clearance_m >= 0.0;
+           clearance_m >= 0.0 && std::isfinite(growth_mps) && growth_mps >= 0.0 && std::isfinite(lead_s) &&
+           lead_s >= 0.0;
   }
 };
 
@@ -100,12 +111,13 @@ T obstacle_residual(const TebResidualContext& c, const Obstacle& o, const T* p) 
 }
 
 // One pose at time t_s after the band's start against one moving obstacle's prediction (mirrors
-// obstacle_residual, bound clearance_m). 1 residual.
+// obstacle_residual, bound o.bound(t_s)). 1 residual.
 template <typename T>
 T dynamic_obstacle_residual(const TebResidualContext& c, const TebMovingObstacle& o, double t_s, const T* p) {
   using std::sqrt;
-  const T d = distance_to_point(p[0], p[1], o.at(t_s));
-  return sqrt(c.w->dynamic_obstacle) * penalty_below(d, o.clearance_m, c.params->penalty_epsilon);
+  const T d = o.lead_s > 0.0 ? distance_to_segment(p[0], p[1], o.at(t_s), o.lead_end(t_s))
+                             : distance_to_point(p[0], p[1], o.at(t_s));
+  return sqrt(c.w->dynamic_obstacle) * penalty_below(d, o.bound(t_s), c.params->penalty_epsilon);
 }
 
 // Via-point attraction. 2 residuals.
