@@ -112,7 +112,9 @@ struct MovingObstacleParams {
   // track of cube_2 is kept), seeds 11-20 7/10 (13, 16, 20 touch cube_1) against 6/10 (11 cube_1;
   // 17, 18, 20 cube_2): cube_2 contacts 1 of 20 against 6, cube_1 contacts 4 against 1 (not
   // examined); digit_lab_dynamic/digit 10/10 as off; with keep_largest_radius too,
-  // three_rooms/digit 7/10 (6, 8, 10), digit_lab_dynamic/digit 10/10; TurtleBot3 not measured.
+  // three_rooms/digit 7/10 (6, 8, 10), digit_lab_dynamic/digit 10/10. TurtleBot3 seeds 1-10 on:
+  // three_rooms 9/10 (6 touches), digit_lab_dynamic 10/10, hexagon_dynamic 7/10 (2, 7 PAT_EXCEEDED,
+  // 8 touches) against 10, 10, 8 off.
   bool partial_view_noise = false;
   double structure_age_s = 4.0;
   double structure_margin_m = 0.2;
