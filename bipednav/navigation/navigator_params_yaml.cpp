@@ -286,6 +286,9 @@ void visit_fields(V& v, planning::local::TebOptimizerParams& p) {
   v("weight_dynamic_obstacle", p.weight_dynamic_obstacle);
   v("dynamic_obstacle_dist_m", p.dynamic_obstacle_dist_m);
   v("dynamic_obstacle_max_prediction_s", p.dynamic_obstacle_max_prediction_s);
+  v("dynamic_obstacle_growth_mps", p.dynamic_obstacle_growth_mps);
+  v("dynamic_obstacle_lead_s", p.dynamic_obstacle_lead_s);
+  v("dynamic_obstacle_largest_radius", p.dynamic_obstacle_largest_radius);
   v("linear_solver", p.linear_solver);
 }
 
