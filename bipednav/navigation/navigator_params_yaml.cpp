@@ -437,6 +437,7 @@ void visit_fields(V& v, footstep::FootstepPlannerParams& p) {
   v("goal_tolerance_m", p.goal_tolerance_m);
   v("goal_tolerance_rad", p.goal_tolerance_rad);
   v("landing_margin_m", p.landing_margin_m);
+  v("occlusion_rise_m", p.occlusion_rise_m);
   v.group("search", p.search);
 }
 

@@ -226,13 +226,21 @@ bool FootstepGraph::landing_height(int ix, int iy, int itheta, float stance_z, f
 
 bool FootstepGraph::whole_body_free(const StateKey& s, float z, int action) const {
   // Eq. 5: every IHM cell must stay above the terrain once aligned at the stance height.
+  // The body band (torso, arms) must also keep off occluded cells (TerrainGrid::occluded): the
+  // walker meets the true wall behind a face the map holds only the lower part of.
+  const float body_band = static_cast<float>(lattice_.actions().body.torso_bottom_m) - 1e-4f;
   for (const IhmLayer& layer : lattice_.ihm(s.stance, action, s.itheta).layers) {
-    const auto quick =
-        terrain_.range(s.ix + layer.min_dx, s.iy + layer.min_dy, s.ix + layer.max_dx, s.iy + layer.max_dy);
-    if (quick.max_h < layer.min_height_m + z) continue;
+    const int x0 = s.ix + layer.min_dx, y0 = s.iy + layer.min_dy, x1 = s.ix + layer.max_dx, y1 = s.iy + layer.max_dy;
+    const auto quick = terrain_.range(x0, y0, x1, y1);
+    const bool occlusion = layer.min_height_m >= body_band && terrain_.any_occluded(x0, y0, x1, y1);
+    if (quick.max_h < layer.min_height_m + z && !occlusion) continue;
     for (const IhmCell& c : layer.cells) {
       const int x = s.ix + c.dx, y = s.iy + c.dy;
-      if (!terrain_.in_bounds(x, y) || !terrain_.known(x, y)) continue;
+      if (!terrain_.in_bounds(x, y)) continue;
+      if (!terrain_.known(x, y)) {
+        if (occlusion && terrain_.occluded(x, y)) return false;
+        continue;
+      }
       if (!(c.min_height_m + z > terrain_.max_h(x, y))) return false;
     }
   }

@@ -11,6 +11,7 @@ void FootstepPlannerParams::validate() const {
   require(heuristic == "dijkstra" || heuristic == "euclidean", "heuristic", "dijkstra or euclidean");
   require(goal_tolerance_m > 0.0, "goal_tolerance_m", "> 0");
   require(goal_tolerance_rad > 0.0, "goal_tolerance_rad", "> 0");
+  require(std::isfinite(occlusion_rise_m) && occlusion_rise_m >= 0.0, "occlusion_rise_m", ">= 0 m (0: off)");
   require(std::isfinite(landing_margin_m) && landing_margin_m >= 0.0 && landing_margin_m <= 0.1, "landing_margin_m",
           "in [0, 0.1] m");
   search.validate();
@@ -64,7 +65,7 @@ FootstepPlan FootstepPlanner::plan(const mapping::Heightmap& map, const Footstep
     return out;
   }
   const SearchClock setup_clock(params_.search.clock);
-  const TerrainGrid terrain(map, params_.lattice_resolution_m);
+  const TerrainGrid terrain(map, params_.lattice_resolution_m, params_.occlusion_rise_m);
   const auto& g = terrain.geometry();
   if (!g.world_to_cell(start.pose.x, start.pose.y)) {
     out.result = {Outcome::PLAN_OUT_OF_MAP, "start foot is outside the heightmap"};
@@ -104,7 +105,7 @@ FootstepPlan FootstepPlanner::plan(const mapping::Heightmap& map, const Footstep
 
 bool FootstepPlanner::still_valid(const mapping::Heightmap& map, const FootstepPlan& plan) const {
   if (plan.steps.size() < 2) return !plan.steps.empty();
-  const TerrainGrid terrain(map, params_.lattice_resolution_m);
+  const TerrainGrid terrain(map, params_.lattice_resolution_m, params_.occlusion_rise_m);
   const EuclideanHeuristic none(plan.steps.back().pose, 1.0, 1.0);
   FootstepGraph graph(*lattice_, terrain, none, {plan.steps.back().pose, 1.0, 1.0}, plan.steps.front());
   std::int32_t s = graph.start_state();
@@ -123,7 +124,7 @@ std::vector<std::pair<std::string, Footstep>> FootstepPlanner::safe_steps(const 
                                                                           const Footstep& from) const {
   std::vector<std::pair<std::string, Footstep>> out;
   if (!from.pose.is_finite() || !std::isfinite(from.z_m)) return out;
-  const TerrainGrid terrain(map, params_.lattice_resolution_m);
+  const TerrainGrid terrain(map, params_.lattice_resolution_m, params_.occlusion_rise_m);
   if (!terrain.geometry().world_to_cell(from.pose.x, from.pose.y)) return out;
   const EuclideanHeuristic none(from.pose, 1.0, 1.0);
   FootstepGraph graph(*lattice_, terrain, none, {from.pose, 1.0, 1.0}, from);

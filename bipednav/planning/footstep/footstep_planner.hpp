@@ -25,6 +25,10 @@ struct FootstepPlannerParams {
   // A landed sole keeps this far from rising edges (footstep_graph.hpp): the walker's landing
   // error. 0 (Table I, exact footholds); the closed loop sets it (footstep_navigator.hpp).
   double landing_margin_m = 0.0;
+  // > 0: the torso and arms keep off unknown cells behind a face rising more than this above its
+  // known neighbours (TerrainGrid::occluded), which the head camera may see only the lower part
+  // of. 0 (off): unknown cells are free to every body part.
+  double occlusion_rise_m = 0.0;
   AraStarParams search;  // initial epsilon 8, decreasing to 1 within the time limit
 
   void validate() const;

@@ -6,7 +6,7 @@
 
 namespace bipednav::footstep {
 
-TerrainGrid::TerrainGrid(const mapping::Heightmap& map, double cell_m) {
+TerrainGrid::TerrainGrid(const mapping::Heightmap& map, double cell_m, double occlusion_rise_m) {
   const auto& g = map.geometry();
   const double res = std::max(cell_m, g.resolution_m);
   geometry_.resolution_m = res;
@@ -37,6 +37,50 @@ TerrainGrid::TerrainGrid(const mapping::Heightmap& map, double cell_m) {
   for (std::size_t i = 0; i < n; ++i)
     if (count_[i] > 0) mean_[i] = static_cast<float>(sum[i] / count_[i]);
   build_sparse_table();
+  if (occlusion_rise_m > 0.0) mark_occluded(occlusion_rise_m);
+}
+
+void TerrainGrid::mark_occluded(double rise_m) {
+  const int w = geometry_.width, h = geometry_.height;
+  std::vector<std::uint8_t> shadow(geometry_.size(), 0);
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      if (!known(x, y)) continue;
+      // The lowest known 8-neighbour: does this cell rise above it (a face)?
+      float low = std::numeric_limits<float>::infinity();
+      bool next_to_unknown = false;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          if ((dx == 0 && dy == 0) || !in_bounds(x + dx, y + dy)) continue;
+          if (known(x + dx, y + dy))
+            low = std::min(low, min_h(x + dx, y + dy));
+          else
+            next_to_unknown = true;
+        }
+      if (!next_to_unknown || !(max_h(x, y) > low + rise_m)) continue;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx)
+          if (in_bounds(x + dx, y + dy) && !known(x + dx, y + dy)) shadow[idx(x + dx, y + dy)] = 1;
+    }
+  }
+  shadow_sum_.assign(static_cast<std::size_t>(w + 1) * (h + 1), 0);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      shadow_sum_[static_cast<std::size_t>(y + 1) * (w + 1) + (x + 1)] =
+          shadow[idx(x, y)] + shadow_sum_[static_cast<std::size_t>(y) * (w + 1) + (x + 1)] +
+          shadow_sum_[static_cast<std::size_t>(y + 1) * (w + 1) + x] -
+          shadow_sum_[static_cast<std::size_t>(y) * (w + 1) + x];
+}
+
+int TerrainGrid::shadow_count(int x0, int y0, int x1, int y1) const {
+  const int w = geometry_.width;
+  x0 = std::max(x0, 0);
+  y0 = std::max(y0, 0);
+  x1 = std::min(x1, w - 1);
+  y1 = std::min(y1, geometry_.height - 1);
+  if (x0 > x1 || y0 > y1) return 0;
+  const auto at = [&](int x, int y) { return shadow_sum_[static_cast<std::size_t>(y) * (w + 1) + x]; };
+  return at(x1 + 1, y1 + 1) - at(x0, y1 + 1) - at(x1 + 1, y0) + at(x0, y0);
 }
 
 void TerrainGrid::build_sparse_table() {
