@@ -226,6 +226,9 @@ void visit_fields(V& v, planning::local::MovingObstacleParams& p) {
   v("ignore_static_structure", p.ignore_static_structure);
   v("keep_largest_radius", p.keep_largest_radius);
   v("partial_view_noise", p.partial_view_noise);
+  v("radius_floor", p.radius_floor);
+  v("radius_floor_window_s", p.radius_floor_window_s);
+  v("reacquire_gate_m", p.reacquire_gate_m);
   v("structure_age_s", p.structure_age_s);
   v("structure_margin_m", p.structure_margin_m);
   v("structure_min_fraction", p.structure_min_fraction);

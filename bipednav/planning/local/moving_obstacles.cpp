@@ -71,6 +71,9 @@ void MovingObstacleParams::validate() const {
   require(std::isfinite(global_map_margin_m) && global_map_margin_m >= 0.0, "moving_obstacles.global_map_margin_m",
           ">= 0");
   require(positive(max_coast_s), "moving_obstacles.max_coast_s", "> 0");
+  require(std::isfinite(radius_floor_window_s) && radius_floor_window_s >= 0.0,
+          "moving_obstacles.radius_floor_window_s", ">= 0");
+  require(std::isfinite(reacquire_gate_m) && reacquire_gate_m >= 0.0, "moving_obstacles.reacquire_gate_m", ">= 0");
   require(std::isfinite(coast_max_growth_m) && coast_max_growth_m >= 0.0, "moving_obstacles.coast_max_growth_m",
           ">= 0");
   require(std::isfinite(structure_age_s) && structure_age_s >= 0.0, "moving_obstacles.structure_age_s", ">= 0");
@@ -326,6 +329,7 @@ void MovingObstacleTracker::set_static_structure(const mapping::Costmap2D& occup
 
 void MovingObstacleTracker::clear() {
   tracks_.clear();
+  lost_.clear();
   structure_.clear();
   last_stamp_s_ = -1e300;
 }
@@ -351,6 +355,19 @@ double position_sigma(const TrackedObstacle& t) { return std::sqrt(std::max(t.co
 double coast_growth(const TrackedObstacle& t, double max_growth_m) {
   if (!t.coasting) return 0.0;
   return std::clamp(position_sigma(t) - t.seen_sigma_m, 0.0, max_growth_m);
+}
+
+// radius_floor: adds a blob's radius to t's recent radii, forgets those older than window_s and
+// returns the largest left.
+double floor_radius(TrackedObstacle& t, double radius_m, double stamp_s, double window_s) {
+  auto& r = t.radii;
+  r.push_back({stamp_s, radius_m});
+  r.erase(r.begin(), std::find_if(r.begin(), r.end(), [&](const TrackedObstacle::RadiusSample& s) {
+            return s.stamp_s >= stamp_s - window_s;
+          }));
+  double out = 0.0;
+  for (const auto& s : r) out = std::max(out, s.radius_m);
+  return out;
 }
 
 }  // namespace
@@ -421,6 +438,8 @@ void MovingObstacleTracker::update_blobs(const std::vector<Blob>& blobs, double 
     if (speed > params_.max_speed_mps) t.velocity *= params_.max_speed_mps / speed;
     t.max_radius_m = std::max(t.max_radius_m, blobs[j].radius_m);
     t.radius_m = params_.keep_largest_radius ? t.max_radius_m : blobs[j].radius_m;
+    if (params_.radius_floor)
+      t.radius_m = std::max(t.radius_m, floor_radius(t, blobs[j].radius_m, stamp_s, params_.radius_floor_window_s));
     t.top_m = std::max(t.top_m, blobs[j].top_m);
     ++t.hits;
     update_motion(t, stamp_s);
@@ -441,13 +460,26 @@ void MovingObstacleTracker::update_blobs(const std::vector<Blob>& blobs, double 
       kept.push_back(t);
       continue;
     }
-    if (!can_coast || t.top_m <= 0.0 || unseen_s > params_.max_coast_s || !(t.coasting || is_moving(t))) continue;
+    const bool was_moving = t.coasting || is_moving(t);
+    if (params_.radius_floor && was_moving) {
+      // Dropped below (unless it coasts on): remembered for reacquisition.
+      const bool coasts = can_coast && t.top_m > 0.0 && unseen_s <= params_.max_coast_s &&
+                          !((t.position - robot->position()).norm() <= params_.max_range_m &&
+                            visibility_.sees(*robot, t.position, t.top_m));
+      if (!coasts) lost_.emplace_back(t, stamp_s);
+    }
+    if (!can_coast || t.top_m <= 0.0 || unseen_s > params_.max_coast_s || !was_moving) continue;
     const bool in_range = (t.position - robot->position()).norm() <= params_.max_range_m;
     if (in_range && visibility_.sees(*robot, t.position, t.top_m)) continue;
     t.coasting = true;
     kept.push_back(t);
   }
   tracks_ = std::move(kept);
+  if (params_.radius_floor) {
+    std::erase_if(lost_, [&](const std::pair<TrackedObstacle, double>& l) {
+      return stamp_s - l.first.last_seen_s > params_.max_coast_s;
+    });
+  }
   for (std::size_t j = 0; j < blobs.size(); ++j) {
     if (blob_used[j] || !blobs[j].centroid.allFinite()) continue;
     TrackedObstacle t;
@@ -462,6 +494,43 @@ void MovingObstacleTracker::update_blobs(const std::vector<Blob>& blobs, double 
     t.cov_x << r2, 0.0, 0.0, v0 * v0;
     t.cov_y = t.cov_x;
     t.seen_sigma_m = position_sigma(t);
+    if (params_.radius_floor) {
+      // The nearest lost track whose last seen or predicted position is within the gate (distance
+      // to the segment between them) continues.
+      std::size_t best = lost_.size();
+      double best_d = kInf;
+      for (std::size_t k = 0; k < lost_.size(); ++k) {
+        const TrackedObstacle& l = lost_[k].first;
+        const double dt = std::min(stamp_s - l.stamp_s, params_.max_prediction_s);
+        const Eigen::Vector2d a = l.predict(l.last_seen_s), b = l.position + l.velocity * dt;
+        const Eigen::Vector2d ab = b - a;
+        const double len2 = ab.squaredNorm();
+        const double s = len2 > 0.0 ? std::clamp((blobs[j].centroid - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+        const double d = (blobs[j].centroid - (a + s * ab)).norm();
+        if (d <= params_.reacquire_gate_m && d < best_d) best = k, best_d = d;
+      }
+      if (best < lost_.size()) {
+        const TrackedObstacle& l = lost_[best].first;
+        t.id = l.id;
+        t.origin = l.origin;
+        t.hits = std::max(t.hits, l.hits);
+        t.velocity = l.velocity;
+        t.max_radius_m = std::max(t.max_radius_m, l.max_radius_m);
+        t.top_m = std::max(t.top_m, l.top_m);
+        t.radii = l.radii;
+        for (auto& r : t.radii) r.stamp_s = stamp_s;  // the floor restarts its window now
+        t.radius_m = std::max(t.radius_m, floor_radius(t, blobs[j].radius_m, stamp_s, params_.radius_floor_window_s));
+        if (params_.recent_motion) {
+          t.recent = l.recent;
+          t.recent.push_back({stamp_s, t.position});
+          t.moving = false;
+          t.last_fast_s = stamp_s;
+        }
+        lost_.erase(lost_.begin() + static_cast<std::ptrdiff_t>(best));
+      } else {
+        t.radii.push_back({stamp_s, t.radius_m});
+      }
+    }
     tracks_.push_back(t);
   }
 }

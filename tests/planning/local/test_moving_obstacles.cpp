@@ -499,6 +499,54 @@ TEST(MovingObstacles, KeepLargestRadiusRemembersTheWholeObject) {
   EXPECT_DOUBLE_EQ(radius_after(true), 0.35);
 }
 
+TEST(MovingObstacles, RadiusFloorKeepsTheRadiusOfAShrinkingBlob) {
+  // A 0.5 m cube (bounding radius 0.35 m) moving at 0.3 m/s, seen whole for 1 s, then shrinking to
+  // 0.06 m over 1 s as it passes under the LiDAR's lowest ring: with radius_floor the track keeps
+  // 0.35 m (the largest of the last 5 s), without it follows the blob.
+  const auto radius_after = [](bool floor, double window_s) {
+    MovingObstacleParams p;
+    p.radius_floor = floor;
+    p.radius_floor_window_s = window_s;
+    MovingObstacleTracker tracker(p);
+    for (int k = 0; k <= 20; ++k) {
+      const double t = 0.1 * k;
+      const double r = k <= 10 ? 0.35 : 0.35 - 0.029 * (k - 10);
+      tracker.update_blobs({Blob{Eigen::Vector2d(0.3 * t, 2.0), r, 0.5, 20}}, t);
+    }
+    const auto m = tracker.moving(2.0);
+    return m.size() == 1 ? m[0].radius_m : -1.0;
+  };
+  EXPECT_NEAR(radius_after(false, 5.0), 0.06, 1e-9);
+  EXPECT_DOUBLE_EQ(radius_after(true, 5.0), 0.35);
+  // The floor is the largest of the window only: 0.5 s back the blob was 0.205 m.
+  EXPECT_NEAR(radius_after(true, 0.5), 0.205, 1e-9);
+}
+
+TEST(MovingObstacles, RadiusFloorContinuesALostTrackFoundAgain) {
+  // A cube moving at 0.3 m/s in +x is seen whole for 2 s, unseen for 1.5 s (dropped after 0.6 s:
+  // no coasting without the robot's pose), then seen again 0.3 m from its prediction as a partial
+  // view (0.03 m). With radius_floor the new blob continues the lost track: same id, confirmed and
+  // moving at once, with the whole cube's radius; without it, a new unconfirmed track.
+  const auto after = [](bool floor) {
+    MovingObstacleParams p;
+    p.radius_floor = floor;
+    MovingObstacleTracker tracker(p);
+    for (int k = 0; k <= 20; ++k) {
+      const double t = 0.1 * k;
+      tracker.update_blobs({Blob{Eigen::Vector2d(0.3 * t, 2.0), 0.35, 0.5, 20}}, t);
+    }
+    for (int k = 21; k < 35; ++k) tracker.update_blobs({}, 0.1 * k);
+    tracker.update_blobs({Blob{Eigen::Vector2d(0.3 * 3.5, 2.3), 0.03, 0.5, 5}}, 3.5);
+    return tracker.moving(3.5);
+  };
+  const auto off = after(false), on = after(true);
+  EXPECT_TRUE(off.empty());
+  ASSERT_EQ(on.size(), 1u);
+  EXPECT_EQ(on[0].id, 1);
+  EXPECT_DOUBLE_EQ(on[0].radius_m, 0.35);
+  EXPECT_NEAR(on[0].velocity.x(), 0.3, 0.05);
+}
+
 TEST(MovingObstacles, PartialViewNoiseKeepsTheVelocityOfAShrinkingBlob) {
   // A 0.5 m cube moving at 0.25 m/s in -y, seen whole for 3 s; then, for 0.6 s, only a shrinking
   // piece of its far side (as it passes under the LiDAR's lowest ring), whose centroid recedes
