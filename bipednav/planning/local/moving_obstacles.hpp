@@ -131,8 +131,9 @@ struct MovingObstacleParams {
   // 18, 20): 16/20 against 13/20 (partial_view_noise alone 14/20); which objects were touched not
   // examined; digit_lab_dynamic/digit 9/10 (9 touches, as with keep_largest_radius) against 10/10:
   // worse by one, so off. With partial_view_noise on as well: three_rooms/digit seeds 1-10 10/10,
-  // seeds 11-20 7/10 (15, 18, 19 touch; 17/20), digit_lab_dynamic/digit 10/10 (worth a default-on screen of both
-  // robots' pairs). Other pairs and robots not measured.
+  // seeds 11-20 7/10 (15, 18, 19 touch; 17/20), digit_lab_dynamic/digit 10/10, hexagon_static and
+  // digit_lab_static 10/10: both on for walkers (NavigatorParams::for_robot); off here and for the
+  // TurtleBot3 (not screened with it).
   bool radius_floor = false;
   double radius_floor_window_s = 5.0;
   double reacquire_gate_m = 1.0;
