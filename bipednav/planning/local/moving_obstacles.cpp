@@ -357,6 +357,14 @@ double coast_growth(const TrackedObstacle& t, double max_growth_m) {
   return std::clamp(position_sigma(t) - t.seen_sigma_m, 0.0, max_growth_m);
 }
 
+// The distance from p to the segment [a, b].
+double point_segment_distance(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  const Eigen::Vector2d ab = b - a;
+  const double len2 = ab.squaredNorm();
+  const double s = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+  return (p - (a + s * ab)).norm();
+}
+
 // radius_floor: adds a blob's radius to t's recent radii, forgets those older than window_s and
 // returns the largest left.
 double floor_radius(TrackedObstacle& t, double radius_m, double stamp_s, double window_s) {
@@ -461,16 +469,14 @@ void MovingObstacleTracker::update_blobs(const std::vector<Blob>& blobs, double 
       continue;
     }
     const bool was_moving = t.coasting || is_moving(t);
-    if (params_.radius_floor && was_moving) {
-      // Dropped below (unless it coasts on): remembered for reacquisition.
-      const bool coasts = can_coast && t.top_m > 0.0 && unseen_s <= params_.max_coast_s &&
-                          !((t.position - robot->position()).norm() <= params_.max_range_m &&
-                            visibility_.sees(*robot, t.position, t.top_m));
-      if (!coasts) lost_.emplace_back(t, stamp_s);
+    const bool coasts = was_moving && can_coast && t.top_m > 0.0 && unseen_s <= params_.max_coast_s &&
+                        !((t.position - robot->position()).norm() <= params_.max_range_m &&
+                          visibility_.sees(*robot, t.position, t.top_m));
+    if (!coasts) {
+      // Dropped: with radius_floor a moving one is remembered for reacquisition.
+      if (params_.radius_floor && was_moving) lost_.emplace_back(t, stamp_s);
+      continue;
     }
-    if (!can_coast || t.top_m <= 0.0 || unseen_s > params_.max_coast_s || !was_moving) continue;
-    const bool in_range = (t.position - robot->position()).norm() <= params_.max_range_m;
-    if (in_range && visibility_.sees(*robot, t.position, t.top_m)) continue;
     t.coasting = true;
     kept.push_back(t);
   }
@@ -502,11 +508,8 @@ void MovingObstacleTracker::update_blobs(const std::vector<Blob>& blobs, double 
       for (std::size_t k = 0; k < lost_.size(); ++k) {
         const TrackedObstacle& l = lost_[k].first;
         const double dt = std::min(stamp_s - l.stamp_s, params_.max_prediction_s);
-        const Eigen::Vector2d a = l.predict(l.last_seen_s), b = l.position + l.velocity * dt;
-        const Eigen::Vector2d ab = b - a;
-        const double len2 = ab.squaredNorm();
-        const double s = len2 > 0.0 ? std::clamp((blobs[j].centroid - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-        const double d = (blobs[j].centroid - (a + s * ab)).norm();
+        const double d =
+            point_segment_distance(blobs[j].centroid, l.predict(l.last_seen_s), l.position + l.velocity * dt);
         if (d <= params_.reacquire_gate_m && d < best_d) best = k, best_d = d;
       }
       if (best < lost_.size()) {
@@ -572,14 +575,6 @@ struct RolloutCheck {
   // one at the horizon); only computed on request.
   double corridor_exit_s = 0.0;
 };
-
-// The distance from p to the segment [a, b].
-double point_segment_distance(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  const Eigen::Vector2d ab = b - a;
-  const double len2 = ab.squaredNorm();
-  const double s = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-  return (p - (a + s * ab)).norm();
-}
 
 RolloutCheck rollout_check(const Pose2& pose, const Twist& current, const Twist& target,
                            const std::vector<TrackedObstacle>& moving, const CommandLimits& lim, double now_s,
