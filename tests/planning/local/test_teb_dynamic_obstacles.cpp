@@ -45,6 +45,29 @@ double predicted_clearance(const TebBand& band, const TebMovingObstacle& o) {
   return best;
 }
 
+// The analytic residual at (x, y) and time t, its Jacobian checked against Ceres' automatic one and,
+// unless (x, y) lies at the bound's kink, against central differences.
+double checked_residual(DynFixture& f, const TebMovingObstacle& o, double t, double x, double y, bool at_kink,
+                        int trial) {
+  double J[2];
+  const double res = dynamic_obstacle_jacobian(f.ctx, o, t, x, y, J);
+  using Jet = ceres::Jet<double, 2>;
+  const Jet p[3] = {Jet(x, 0), Jet(y, 1), Jet(0.0)};
+  const Jet rj = dynamic_obstacle_residual(f.ctx, o, t, p);
+  EXPECT_NEAR(res, rj.a, 1e-14);
+  EXPECT_NEAR(J[0], rj.v[0], 1e-12);
+  EXPECT_NEAR(J[1], rj.v[1], 1e-12);
+  if (at_kink) return res;
+  const double h = 1e-6;
+  const auto at = [&](double px, double py) {
+    const double q[3] = {px, py, 0.0};
+    return dynamic_obstacle_residual(f.ctx, o, t, q);
+  };
+  EXPECT_NEAR(J[0], (at(x + h, y) - at(x - h, y)) / (2 * h), 1e-6) << trial;
+  EXPECT_NEAR(J[1], (at(x, y + h) - at(x, y - h)) / (2 * h), 1e-6) << trial;
+  return res;
+}
+
 double max_pose_diff(const TebBand& a, const TebBand& b) {
   double d = 0.0;
   for (std::size_t k = 0; k < std::min(a.size(), b.size()); ++k) {
@@ -70,26 +93,13 @@ TEST(TebDynamicObstacles, ResidualJacobianMatchesAutodiffAndFiniteDifferences) {
     // Poses around the prediction, inside and outside the bound.
     const double r = 0.8 * std::abs(u(rng)) + 0.05, a = 3.2 * u(rng);
     const double x = c.x() + r * std::cos(a), y = c.y() + r * std::sin(a);
-    double J[2];
-    const double res = dynamic_obstacle_jacobian(f.ctx, o, t, x, y, J);
-    using Jet = ceres::Jet<double, 2>;
-    const Jet p[3] = {Jet(x, 0), Jet(y, 1), Jet(0.0)};
-    const Jet rj = dynamic_obstacle_residual(f.ctx, o, t, p);
-    EXPECT_NEAR(res, rj.a, 1e-14);
-    EXPECT_NEAR(J[0], rj.v[0], 1e-12);
-    EXPECT_NEAR(J[1], rj.v[1], 1e-12);
+    // Central differences only away from the bound's kink.
+    const double bound = o.clearance_m + f.op.penalty_epsilon;
+    const bool at_kink = std::abs(r - bound) < 1e-4;
+    const double res = checked_residual(f, o, t, x, y, at_kink, trial);
     const double pd[3] = {x, y, 0.0};
     EXPECT_DOUBLE_EQ(res, dynamic_obstacle_residual(f.ctx, o, t, pd));
-    // Central differences, away from the bound's kink.
-    const double bound = o.clearance_m + f.op.penalty_epsilon;
-    if (std::abs(r - bound) < 1e-4) continue;
-    const double h = 1e-6;
-    const auto at = [&](double px, double py) {
-      const double q[3] = {px, py, 0.0};
-      return dynamic_obstacle_residual(f.ctx, o, t, q);
-    };
-    EXPECT_NEAR(J[0], (at(x + h, y) - at(x - h, y)) / (2 * h), 1e-6) << trial;
-    EXPECT_NEAR(J[1], (at(x, y + h) - at(x, y - h)) / (2 * h), 1e-6) << trial;
+    if (at_kink) continue;
     if (res > 0.0) {
       ++active;
       EXPECT_NEAR(res, std::sqrt(65.0) * (bound - r), 1e-9);
@@ -115,26 +125,13 @@ TEST(TebDynamicObstacles, GrowthAndLeadJacobianMatchesAutodiffAndFiniteDifferenc
     const Eigen::Vector2d c = o.at(t) + s * (o.lead_end(t) - o.at(t));
     const double r = 0.8 * std::abs(u(rng)) + 0.05, a = 3.2 * u(rng);
     const double x = c.x() + r * std::cos(a), y = c.y() + r * std::sin(a);
-    double J[2];
-    const double res = dynamic_obstacle_jacobian(f.ctx, o, t, x, y, J);
-    using Jet = ceres::Jet<double, 2>;
-    const Jet p[3] = {Jet(x, 0), Jet(y, 1), Jet(0.0)};
-    const Jet rj = dynamic_obstacle_residual(f.ctx, o, t, p);
-    EXPECT_NEAR(res, rj.a, 1e-14);
-    EXPECT_NEAR(J[0], rj.v[0], 1e-12);
-    EXPECT_NEAR(J[1], rj.v[1], 1e-12);
     const double d = o.distance({x, y}, t);
     EXPECT_LE(d, (Eigen::Vector2d(x, y) - o.at(t)).norm() + 1e-9);  // the segment includes the prediction
     const double bound = o.bound(t) + f.op.penalty_epsilon;
     EXPECT_DOUBLE_EQ(o.bound(t), o.clearance_m + o.growth_mps * t);
-    if (std::abs(d - bound) < 1e-4) continue;
-    const double h = 1e-6;
-    const auto at = [&](double px, double py) {
-      const double q[3] = {px, py, 0.0};
-      return dynamic_obstacle_residual(f.ctx, o, t, q);
-    };
-    EXPECT_NEAR(J[0], (at(x + h, y) - at(x - h, y)) / (2 * h), 1e-6) << trial;
-    EXPECT_NEAR(J[1], (at(x, y + h) - at(x, y - h)) / (2 * h), 1e-6) << trial;
+    const bool at_kink = std::abs(d - bound) < 1e-4;
+    const double res = checked_residual(f, o, t, x, y, at_kink, trial);
+    if (at_kink) continue;
     if (res > 0.0) {
       ++active;
       EXPECT_NEAR(res, std::sqrt(65.0) * (bound - d), 1e-9);
