@@ -68,6 +68,19 @@ double checked_residual(DynFixture& f, const TebMovingObstacle& o, double t, dou
   return res;
 }
 
+// The time (on the band's own dT) at which the band last crosses x = x_m going forwards (0: never).
+double time_at_x(const TebBand& band, double x_m) {
+  const auto t = band_pose_times(band.dt_s, 1e9);
+  double out = 0.0;
+  for (std::size_t k = 0; k + 1 < band.size(); ++k) {
+    if (band.poses[k].x <= x_m && band.poses[k + 1].x > x_m) {
+      const double f = (x_m - band.poses[k].x) / (band.poses[k + 1].x - band.poses[k].x);
+      out = t[k] + f * band.dt_s[k];
+    }
+  }
+  return out;
+}
+
 double max_pose_diff(const TebBand& a, const TebBand& b) {
   double d = 0.0;
   for (std::size_t k = 0; k < std::min(a.size(), b.size()); ++k) {
@@ -251,14 +264,7 @@ TEST(TebDynamicObstacles, CrossingObstacleOpensThePredictedClearance) {
   // The time the band, optimised without the term, reaches x = 1.5.
   TebBand nominal = init_band(start, {}, goal, lim, bp);
   for (int i = 0; i < 3; ++i) ASSERT_TRUE(optimize_band(nominal, {}, lim, bp, off));
-  const auto t = band_pose_times(nominal.dt_s, 1e9);
-  double t_cross = 0.0;
-  for (std::size_t k = 0; k + 1 < nominal.size(); ++k) {
-    if (nominal.poses[k].x <= 1.5 && nominal.poses[k + 1].x > 1.5) {
-      const double f = (1.5 - nominal.poses[k].x) / (nominal.poses[k + 1].x - nominal.poses[k].x);
-      t_cross = t[k] + f * nominal.dt_s[k];
-    }
-  }
+  const double t_cross = time_at_x(nominal, 1.5);
   ASSERT_GT(t_cross, 2.0);
   // A 0.2 m box coming from the right side (y < 0) at 0.3 m/s, at the crossing at t_cross.
   const double speed = 0.3;
@@ -325,14 +331,7 @@ TEST(TebDynamicObstacles, LeadAndGrowthKeepTheBandOutOfTheObstaclesNextStretch) 
   // When the unobstructed band reaches x = 1.5.
   TebBand nominal = init_band(start, {}, goal, lim, bp);
   for (int i = 0; i < 3; ++i) ASSERT_TRUE(optimize_band(nominal, {}, lim, bp, plain));
-  const auto tn = band_pose_times(nominal.dt_s, 1e9);
-  double t_cross = 0.0;
-  for (std::size_t k = 0; k + 1 < nominal.size(); ++k) {
-    if (nominal.poses[k].x <= 1.5 && nominal.poses[k + 1].x > 1.5) {
-      const double f = (1.5 - nominal.poses[k].x) / (nominal.poses[k + 1].x - nominal.poses[k].x);
-      t_cross = tn[k] + f * nominal.dt_s[k];
-    }
-  }
+  const double t_cross = time_at_x(nominal, 1.5);
   ASSERT_GT(t_cross, 2.0);
   // A 0.25 m (bounding radius) cube coming up from y < 0 at 0.3 m/s, 0.4 m short of the band's line when the
   // band crosses it.
