@@ -431,19 +431,28 @@ TEST(TebDynamicObstacles, NonFiniteTracksAreIgnored) {
   }
 }
 
+// A tracker that has followed a box crossing the robot's way from the right at 0.4 m/s for 1.5 s (16 updates
+// at 10 Hz, the i-th blob of radius radius_at(i)); the tracker's clock ends at 1.5 s.
+namespace {
+template <typename RadiusAt>
+std::shared_ptr<MovingObstacleTracker> crossing_box_tracker(RadiusAt radius_at) {
+  auto tracker = std::make_shared<MovingObstacleTracker>();
+  for (int i = 0; i <= 15; ++i) {
+    const double t = 0.1 * i;
+    Blob b;
+    b.centroid = {1.6, -1.8 + 0.4 * t};
+    b.radius_m = radius_at(i);
+    b.points = 10;
+    tracker->update_blobs({b}, t);
+  }
+  return tracker;
+}
+}  // namespace
+
 // The planner hands the tracker's moving tracks to the band only with the option on.
 TEST(TebDynamicObstacles, PlannerUsesTheTrackerWhenEnabled) {
-  auto tracker = std::make_shared<MovingObstacleTracker>();
-  // A box crossing the robot's way from the right at 0.4 m/s, tracked for 1.5 s.
-  double now = 0.0;
-  for (int i = 0; i <= 15; ++i) {
-    now = 0.1 * i;
-    Blob b;
-    b.centroid = {1.6, -1.8 + 0.4 * now};
-    b.radius_m = 0.2;
-    b.points = 10;
-    tracker->update_blobs({b}, now);
-  }
+  const auto tracker = crossing_box_tracker([](int) { return 0.2; });
+  const double now = 1.5;
   ASSERT_EQ(tracker->moving(now).size(), 1u);
   const auto costmap = test::empty_costmap(0.0, 0.0, 8.0);
   const Path plan = test::straight_plan(0.0, 0.0, 3.0, 0.0);
@@ -470,16 +479,8 @@ TEST(TebDynamicObstacles, PlannerUsesTheTrackerWhenEnabled) {
 // a cube the sensors see shrinks as the robot closes in: three_rooms/turtlebot3 seed 2's cube_1 track fell from
 // 0.26 m to 0.05 m in the 2 s before contact), growth and lead from the parameters; nothing with the option off.
 TEST(TebDynamicObstacles, PlannerTracksUseTheLargestRadiusGrowthAndLead) {
-  auto tracker = std::make_shared<MovingObstacleTracker>();
-  double now = 0.0;
-  for (int i = 0; i <= 15; ++i) {
-    now = 0.1 * i;
-    Blob b;
-    b.centroid = {1.6, -1.8 + 0.4 * now};
-    b.radius_m = i < 10 ? 0.3 : 0.05;
-    b.points = 10;
-    tracker->update_blobs({b}, now);
-  }
+  const auto tracker = crossing_box_tracker([](int i) { return i < 10 ? 0.3 : 0.05; });
+  const double now = 1.5;
   ASSERT_EQ(tracker->moving(now).size(), 1u);
   TebParams p;
   TebPlanner off(p);
