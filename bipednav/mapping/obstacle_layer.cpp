@@ -139,24 +139,31 @@ void ObstacleLayer::clear_observation(Costmap2D& grid, const Observation& obs, C
   const double half_cell = 0.71 * g.resolution_m;
   const bool bands = params_.height_aware_clearing;
   const bool marks = keeps_marks(), decays = params_.mark_lifetime_updates > 0;
-  for (const auto& p : obs.points_map) {
-    if (!p.allFinite()) continue;
-    const Eigen::Vector3d d = p.cast<double>() - obs.origin_map;
-    if (d.squaredNorm() > max_range_sq) continue;
-    // Most returns lie on the grid within range: their end cell without the clipping (inline).
-    const Eigen::Vector2d q = p.head<2>().cast<double>();
-    std::optional<ClippedRay> ray;
-    if (const auto end = clipper.unclipped_end(q))
-      ray = ClippedRay{clipper.start(), *end, false};
-    else
-      ray = clipper.clip(q);
-    if (!ray) continue;
-    // Many returns share an end cell: trace each end cell once per observation. (A ray to the same
-    // end at another height might free an obstacle this one passed over; it waits for the next update.)
-    std::uint32_t& seen = traced_[g.index(ray->end)];
-    if (seen == stamp_) continue;
-    seen = stamp_;
-    for_each_line_index(ray->start, ray->end, ray->end_included, g.width, [&](std::size_t i, int x, int y) {
+  // Most returns lie on the grid within range: their end cells without the clipping, all at once.
+  const std::size_t n = obs.points_map.size();
+  codes_.resize(n);
+  clipper.end_cells(obs.points_map.data(), n, obs.origin_map, max_range_sq, codes_.data());
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::int32_t code = codes_[k];
+    if (code == kNoCell) continue;  // not finite or out of range
+    ClippedRay ray;
+    if (code >= 0) {
+      // Many returns share an end cell: trace each end cell once per observation. (A ray to the same
+      // end at another height might free an obstacle this one passed over; it waits for the next update.)
+      std::uint32_t& seen = traced_[static_cast<std::size_t>(code)];
+      if (seen == stamp_) continue;
+      seen = stamp_;
+      ray = ClippedRay{clipper.start(), g.cell_of(static_cast<std::size_t>(code)), false};
+    } else {
+      const auto clipped = clipper.clip(obs.points_map[k].head<2>().cast<double>());
+      if (!clipped) continue;
+      ray = *clipped;
+      std::uint32_t& seen = traced_[g.index(ray.end)];
+      if (seen == stamp_) continue;
+      seen = stamp_;
+    }
+    const Eigen::Vector3d d = obs.points_map[k].cast<double>() - obs.origin_map;
+    for_each_line_index(ray.start, ray.end, ray.end_included, g.width, [&](std::size_t i, int x, int y) {
       std::uint8_t& c = cells[i];
       if (c == kFree) return;
       if (bands && c == kLethal && !marks_[i].band.empty()) {
@@ -193,17 +200,19 @@ void ObstacleLayer::mark_observation(Costmap2D& grid, const Observation& obs, Ce
   const double range_sq = range * range;
   std::uint8_t* cells = grid.data().data();
   const bool bands = params_.height_aware_clearing, decays = params_.mark_lifetime_updates > 0;
-  for (const auto& p : obs.points_map) {
-    if (!p.allFinite()) continue;
-    if ((p.cast<double>() - obs.origin_map).squaredNorm() > range_sq) continue;
-    const auto c = g.world_to_cell(p.x(), p.y());
-    if (!c) continue;
-    const std::size_t i = g.index(*c);
+  const std::size_t n = obs.points_map.size();
+  codes_.resize(n);
+  point_cells(g, obs.points_map.data(), n, obs.origin_map, range_sq, codes_.data());
+  for (std::size_t k = 0; k < n; ++k) {
+    if (codes_[k] < 0) continue;  // not finite, out of range or off the grid
+    const auto i = static_cast<std::size_t>(codes_[k]);
+    const Eigen::Vector3f& p = obs.points_map[k];
     std::uint8_t& v = cells[i];
     const bool fresh = v != kLethal;
     if (fresh) {
       v = kLethal;
-      changed.include(c->x, c->y);
+      const Cell c = g.cell_of(i);
+      changed.include(c.x, c.y);
     }
     if (decays && (fresh || marks_[i].passes >= 0)) {
       // Confirmed now (after this update's rays: a pass and a return in one update is a return);

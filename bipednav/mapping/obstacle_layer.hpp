@@ -145,6 +145,7 @@ class ObstacleLayer {
   std::uint32_t tick_ = 0;             // updates so far (1, 2, ...; 0: none)
   std::vector<std::uint32_t> traced_;  // per cell: stamp of the last observation that traced a ray to it
   std::uint32_t stamp_ = 0;
+  std::vector<std::int32_t> codes_;  // per point of an observation: its cell (see RayClipper::end_cells)
 };
 
 }  // namespace bipednav::mapping

@@ -2,6 +2,7 @@
 
 #include <Eigen/Core>
 #include <cstddef>
+#include <cstdint>
 #include <cstdlib>
 #include <optional>
 #include <vector>
@@ -70,6 +71,17 @@ struct ClippedRay {
 std::optional<ClippedRay> clip_ray(const GridGeometry& g, const Eigen::Vector2d& origin, const Eigen::Vector2d& point,
                                    double max_length_m);
 
+// Codes of RayClipper::end_cells and point_cells for a point without a cell of its own.
+inline constexpr std::int32_t kNoCell = -1;    // not finite, out of range (or, point_cells: off the grid)
+inline constexpr std::int32_t kClipCell = -2;  // end_cells: the ray needs RayClipper::clip
+
+// For each of `n` points (map frame): the grid index of its cell when it is finite, no farther
+// than sqrt(range_sq) from `origin` (3D distance, in double) and on the grid; kNoCell otherwise.
+// The same as g.world_to_cell(p.x(), p.y()) after those checks, four points at a time where the
+// CPU has AVX2.
+void point_cells(const GridGeometry& g, const Eigen::Vector3f* points, std::size_t n, const Eigen::Vector3d& origin,
+                 double range_sq, std::int32_t* out);
+
 // clip_ray for many rays from one origin: the origin's cell and the grid box are computed once,
 // and a return on the grid within range (most of them) takes its cell directly, without clipping
 // or a square root.
@@ -84,6 +96,12 @@ class RayClipper {
       return g_.world_to_cell(point.x(), point.y());
     return std::nullopt;
   }
+  // unclipped_end for many returns at once: for each of `n` points (map frame), kNoCell when it is
+  // not finite or farther than sqrt(range_sq) from `origin` (3D, in double; origin.head<2>() is
+  // the clipper's origin), else the grid index of unclipped_end(p.xy) when that gives a cell, else
+  // kClipCell (ask clip). Four points at a time where the CPU has AVX2, with the same arithmetic.
+  void end_cells(const Eigen::Vector3f* points, std::size_t n, const Eigen::Vector3d& origin, double range_sq,
+                 std::int32_t* out) const;
   // The origin's cell (valid when unclipped_end or clip gave a ray).
   Cell start() const { return start_.value_or(Cell{}); }
 

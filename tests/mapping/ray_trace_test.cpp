@@ -3,7 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
+#include <limits>
+#include <optional>
 #include <set>
 #include <vector>
 
@@ -121,4 +124,83 @@ TEST(RayTrace, ReturnsInsideTheGridAreNeverClipped) {
     EXPECT_EQ(r->end, *g.world_to_cell(p.x(), p.y())) << i;
   }
   EXPECT_GT(rounding_cases, 0);  // the inputs do exercise the rounding
+}
+
+namespace {
+
+// Returns around a grid: most on it and in range, some on cell edges (and a float step either
+// side), beyond the ranges, off the grid, at the box's edge, or not finite.
+std::vector<Eigen::Vector3f> cell_test_points(const GridGeometry& g) {
+  std::vector<Eigen::Vector3f> pts;
+  std::uint32_t s = 12345;
+  const auto uniform = [&](double lo, double hi) {
+    s = s * 1664525u + 1013904223u;
+    return lo + (hi - lo) * ((s >> 8) / double(1u << 24));
+  };
+  const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
+  for (int i = 0; i < 20000; ++i) {
+    Eigen::Vector3f p(static_cast<float>(uniform(g.origin_x_m - 1.0, g.origin_x_m + g.size_x_m() + 1.0)),
+                      static_cast<float>(uniform(g.origin_y_m - 1.0, g.origin_y_m + g.size_y_m() + 1.0)),
+                      static_cast<float>(uniform(-1.0, 3.0)));
+    switch (i % 11) {
+      case 0:  // on a cell edge, or a float step off it
+      case 1: {
+        const float ex = static_cast<float>(g.origin_x_m + g.resolution_m * std::floor(uniform(0.0, g.width)));
+        const float ey = static_cast<float>(g.origin_y_m + g.resolution_m * std::floor(uniform(0.0, g.height)));
+        const int step = i % 3 - 1;
+        p.x() = step == 0 ? ex : std::nextafter(ex, step * inf);
+        p.y() = i % 2 ? ey : std::nextafter(ey, -inf);
+        break;
+      }
+      case 2:
+        p[i % 3] = (i / 11) % 3 == 0 ? nan : ((i / 11) % 3 == 1 ? inf : -inf);
+        break;
+      case 3:  // the grid's far edges
+        p.x() = static_cast<float>(g.origin_x_m + g.size_x_m());
+        p.y() = std::nextafter(static_cast<float>(g.origin_y_m + g.size_y_m()), -inf);
+        break;
+      default:
+        break;
+    }
+    pts.push_back(p);
+  }
+  return pts;
+}
+
+}  // namespace
+
+// RayClipper::end_cells and point_cells (four points at a time where the CPU has AVX2) give what
+// the one-point code gives, for every count of points (the tails after the groups of four).
+TEST(RayTrace, EndCellsArePerPointCells) {
+  const GridGeometry g{160, 140, 0.05, -4.05, -3.5};
+  const auto pts = cell_test_points(g);
+  int cells = 0, clipped = 0, skipped = 0;
+  for (const Eigen::Vector3d& origin : {Eigen::Vector3d(0.013, -0.27, 0.4), Eigen::Vector3d(-4.049, 3.49, 1.47),
+                                        Eigen::Vector3d(-9.0, 0.0, 0.3)}) {  // the last outside the grid
+    for (const double max_len : {5.0, 1.3}) {
+      const RayClipper clipper(g, origin.head<2>(), max_len);
+      for (const double range : {2.9, 100.0}) {
+        const double range_sq = range * range;
+        for (const std::size_t n : {pts.size(), std::size_t{7}, std::size_t{2}}) {
+          std::vector<std::int32_t> end(n, 7), cell(n, 7);
+          clipper.end_cells(pts.data(), n, origin, range_sq, end.data());
+          point_cells(g, pts.data(), n, origin, range_sq, cell.data());
+          for (std::size_t k = 0; k < n; ++k) {
+            const Eigen::Vector3f& p = pts[k];
+            const bool kept = p.allFinite() && (p.cast<double>() - origin).squaredNorm() <= range_sq;
+            const auto own = kept ? g.world_to_cell(p.x(), p.y()) : std::nullopt;
+            ASSERT_EQ(cell[k], own ? static_cast<std::int32_t>(g.index(*own)) : kNoCell) << k;
+            const auto e = kept ? clipper.unclipped_end(p.head<2>().cast<double>()) : std::nullopt;
+            ASSERT_EQ(end[k], !kept ? kNoCell : (e ? static_cast<std::int32_t>(g.index(*e)) : kClipCell)) << k;
+            cells += end[k] >= 0;
+            clipped += end[k] == kClipCell;
+            skipped += end[k] == kNoCell;
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GT(cells, 10000);  // every outcome is exercised
+  EXPECT_GT(clipped, 10000);
+  EXPECT_GT(skipped, 10000);
 }
