@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "bipednav/common/clock.hpp"
 #include "bipednav/common/cpu_time.hpp"
@@ -226,10 +227,29 @@ void Navigator::track_moving_obstacles() {
   const auto moving = moving_->moving(now_s_);
   if (moving.empty()) return;
   const double margin_m = params_.moving_obstacles.global_map_margin_m;
+  // (q - position).norm() <= r for a mover; most points are far from every mover, and their squared
+  // distance decides without the square root: sqrt rounds correctly, so a squared distance a
+  // millionth beyond r^2 (or within it) has a norm beyond (within) r. Near the circle (or when r is
+  // not a positive finite radius) the norm decides, as it always did.
+  struct Circle {
+    Eigen::Vector2d position;
+    double r, inside_sq, outside_sq;
+  };
+  std::vector<Circle> circles;
+  for (const auto& m : moving) {
+    const double r = m.radius_m + margin_m;
+    const bool plain = std::isfinite(r) && r > 1e-100 && r < 1e100;
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    circles.push_back({m.position, r, plain ? r * r * (1.0 - 1e-6) : -inf, plain ? r * r * (1.0 + 1e-6) : inf});
+  }
   const auto on_mover = [&](const Eigen::Vector3f& p) {
     const Eigen::Vector2d q(p.x(), p.y());
-    for (const auto& m : moving)
-      if ((q - m.position).norm() <= m.radius_m + margin_m) return true;
+    for (const auto& c : circles) {
+      const Eigen::Vector2d v = q - c.position;
+      const double s = v.squaredNorm();
+      if (s > c.outside_sq) continue;
+      if (s < c.inside_sq || v.norm() <= c.r) return true;
+    }
     return false;
   };
   for (auto& o : lidar_obs_) std::erase_if(o.points_map, on_mover);
@@ -240,7 +260,11 @@ void Navigator::track_moving_obstacles() {
   for (std::size_t i = 0; i < n; ++i) {
     if (!local_obs_[i].marking) continue;
     auto& pts = local_obs_[i].points_map;
-    const auto split = std::stable_partition(pts.begin(), pts.end(), [&](const auto& p) { return !on_mover(p); });
+    // The points before the first one on a mover stay where they are: only the rest is partitioned
+    // (no buffer for the stable partition of an observation without points on movers).
+    const auto first_on = std::find_if(pts.begin(), pts.end(), on_mover);
+    if (first_on == pts.end()) continue;
+    const auto split = std::stable_partition(first_on, pts.end(), [&](const auto& p) { return !on_mover(p); });
     if (split == pts.end()) continue;
     mapping::Observation mover;
     mover.origin_map = local_obs_[i].origin_map;

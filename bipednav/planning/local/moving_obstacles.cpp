@@ -299,10 +299,14 @@ std::vector<Blob> cluster_blobs(const std::vector<Eigen::Vector2d>& points, cons
       b.points += static_cast<int>(cells[c].second - cells[c].first);
     }
     b.centroid /= static_cast<double>(b.points);
+    // The largest distance is the square root of the largest squared distance (the rounded square
+    // root is monotonic): one square root per blob.
+    double r2 = 0.0;
     for (const std::size_t c : members) {
       for (std::size_t k = cells[c].first; k < cells[c].second; ++k)
-        b.radius_m = std::max(b.radius_m, (points[order[k]] - b.centroid).norm());
+        r2 = std::max(r2, (points[order[k]] - b.centroid).squaredNorm());
     }
+    b.radius_m = std::max(b.radius_m, std::sqrt(r2));
     if (b.points < params.min_points || b.radius_m > params.max_blob_radius_m) continue;
     if (check_structure) {
       // The share of the blob's binning cells (at their centres) on long-standing structure.
