@@ -229,6 +229,7 @@ void visit_fields(V& v, planning::local::MovingObstacleParams& p) {
   v("radius_floor", p.radius_floor);
   v("radius_floor_window_s", p.radius_floor_window_s);
   v("reacquire_gate_m", p.reacquire_gate_m);
+  v("reacquire_coasting", p.reacquire_coasting);
   v("structure_age_s", p.structure_age_s);
   v("structure_margin_m", p.structure_margin_m);
   v("structure_min_fraction", p.structure_min_fraction);

@@ -504,6 +504,41 @@ void MovingObstacleTracker::update_blobs(const std::vector<Blob>& blobs, double 
     t.cov_x << r2, 0.0, 0.0, v0 * v0;
     t.cov_y = t.cov_x;
     t.seen_sigma_m = position_sigma(t);
+    if (params_.radius_floor && params_.reacquire_coasting) {
+      // The nearest coasting track whose last seen or predicted position is within the gate
+      // continues (as a lost one does, below), unless a lost track is nearer.
+      std::size_t best = tracks_.size();
+      double best_d = kInf;
+      for (std::size_t k = 0; k < tracks_.size(); ++k) {
+        const TrackedObstacle& c = tracks_[k];
+        if (!c.coasting) continue;
+        const double d = point_segment_distance(blobs[j].centroid, c.predict(c.last_seen_s), c.position);
+        if (d <= params_.reacquire_gate_m && d < best_d) best = k, best_d = d;
+      }
+      for (const auto& lost : lost_) {
+        const TrackedObstacle& l = lost.first;
+        const double dt = std::min(stamp_s - l.stamp_s, params_.max_prediction_s);
+        if (point_segment_distance(blobs[j].centroid, l.predict(l.last_seen_s), l.position + l.velocity * dt) < best_d)
+          best = tracks_.size();
+      }
+      if (best < tracks_.size()) {
+        TrackedObstacle& c = tracks_[best];
+        c.position = blobs[j].centroid;
+        c.cov_x = t.cov_x;
+        c.cov_y = t.cov_y;
+        ++c.hits;
+        c.max_radius_m = std::max(c.max_radius_m, blobs[j].radius_m);
+        c.top_m = std::max(c.top_m, blobs[j].top_m);
+        for (auto& r : c.radii) r.stamp_s = stamp_s;  // the floor restarts its window now
+        c.radius_m = std::max(params_.keep_largest_radius ? c.max_radius_m : blobs[j].radius_m,
+                              floor_radius(c, blobs[j].radius_m, stamp_s, params_.radius_floor_window_s));
+        c.coasting = false;
+        c.last_seen_s = stamp_s;
+        c.seen_sigma_m = position_sigma(c);
+        update_motion(c, stamp_s);
+        continue;
+      }
+    }
     if (params_.radius_floor) {
       // The nearest lost track whose last seen or predicted position is within the gate (distance
       // to the segment between them) continues.
