@@ -120,14 +120,14 @@ bool FootstepNavigator::close_to_plan(const Footstep& stance) const {
          std::abs(angle_diff(planned.pose.theta, stance.pose.theta)) <= params_.replan_deviation_rad;
 }
 
-bool FootstepNavigator::needs_replan(const Footstep& stance) {
+bool FootstepNavigator::needs_replan(const Footstep& stance, std::optional<double> swing_z) {
   if (plan_.steps.empty() || cursor_ + 1 >= plan_.steps.size() || !close_to_plan(stance)) return true;
   if (!map_changed_) return false;
   map_changed_ = false;
-  return !planner_.still_valid(planning_map(), remaining());
+  return !planner_.still_valid(planning_map(), remaining(), swing_z);
 }
 
-Result FootstepNavigator::replan(const Footstep& stance) {
+Result FootstepNavigator::replan(const Footstep& stance, std::optional<double> swing_z) {
   if (plans_ >= params_.max_plans)
     return {Outcome::PLAN_FAILURE, "gave up after " + std::to_string(plans_) + " footstep plans"};
   ++plans_;
@@ -137,9 +137,9 @@ Result FootstepNavigator::replan(const Footstep& stance) {
   // closer to a riser than it is leaves no safe action).
   std::optional<Footstep> planned;
   if (!plan_.steps.empty() && cursor_ < plan_.steps.size() && close_to_plan(stance)) planned = plan_.steps[cursor_];
-  plan_ = planner_.plan(planning_map(), stance, goal_);
+  plan_ = planner_.plan(planning_map(), stance, goal_, swing_z);
   if (!plan_.result.ok() && planned && plan_.result.outcome != Outcome::BLOCKED_GOAL) {
-    FootstepPlan retry = planner_.plan(planning_map(), *planned, goal_);
+    FootstepPlan retry = planner_.plan(planning_map(), *planned, goal_, swing_z);
     if (retry.result.ok()) plan_ = std::move(retry);
   }
   cursor_ = 0;
@@ -152,7 +152,7 @@ Result FootstepNavigator::replan(const Footstep& stance) {
   return plan_.result;
 }
 
-bool FootstepNavigator::recover(const Footstep& stance) {
+bool FootstepNavigator::recover(const Footstep& stance, std::optional<double> swing_z) {
   // Within the planning map a plan that fails from a stance also fails from every step the
   // graph could take from it: one corrective planar step is taken, the head looks again and the
   // next decision replans from where the foot really landed (a centimetre or two elsewhere, seen
@@ -164,9 +164,9 @@ bool FootstepNavigator::recover(const Footstep& stance) {
   // stance inside (sideways in a narrow gap, an arm within 3 cm of a wall). Then the corrective
   // step is checked against the map as measured, without the margin, and the first of a few
   // candidates from whose landing the planner (with the margin) reaches the goal is preferred.
-  auto safe = planner_.safe_steps(planning_map(), stance);
+  auto safe = planner_.safe_steps(planning_map(), stance, swing_z);
   const bool inside_margin = safe.empty();
-  if (inside_margin) safe = planner_.safe_steps(fusion_.map(), stance);
+  if (inside_margin) safe = planner_.safe_steps(fusion_.map(), stance, swing_z);
   std::vector<const std::pair<std::string, Footstep>*> candidates;
   for (const char* name : kOrder)
     for (const auto& s : safe)
@@ -180,7 +180,8 @@ bool FootstepNavigator::recover(const Footstep& stance) {
   const std::pair<std::string, Footstep>* step = candidates.front();
   if (inside_margin) {
     for (std::size_t i = 0; i < std::min<std::size_t>(candidates.size(), 4); ++i) {
-      if (planner_.plan(planning_map(), candidates[i]->second, goal_).result.ok()) {
+      // After the corrective step the old stance foot is the swing foot.
+      if (planner_.plan(planning_map(), candidates[i]->second, goal_, stance.z_m).result.ok()) {
         step = candidates[i];
         break;
       }
@@ -196,7 +197,7 @@ bool FootstepNavigator::recover(const Footstep& stance) {
   return true;
 }
 
-StepDecision FootstepNavigator::next(const Footstep& odom_stance) {
+StepDecision FootstepNavigator::next(const Footstep& odom_stance, const std::optional<Footstep>& odom_swing) {
   StepDecision d;
   if (!has_goal_) {
     d.done = true;
@@ -204,6 +205,8 @@ StepDecision FootstepNavigator::next(const Footstep& odom_stance) {
     return d;
   }
   const Footstep stance = to_map(odom_stance);
+  std::optional<double> swing_z;
+  if (odom_swing) swing_z = to_map(*odom_swing).z_m;
   const double half = planner_.lattice().actions().body.nominal_separation_m / 2.0;
   // The body centre as the planner defines it: half a separation from the stance foot.
   const Pose2 body = stance.pose * Pose2{0.0, stance.foot == footstep::Foot::kLeft ? -half : half, 0.0};
@@ -214,13 +217,13 @@ StepDecision FootstepNavigator::next(const Footstep& odom_stance) {
     d.result = {Outcome::SUCCESS, "goal reached after " + std::to_string(plans_) + " plans"};
     return d;
   }
-  if (needs_replan(stance)) {
+  if (needs_replan(stance, swing_z)) {
     d.replanned = true;
-    d.result = replan(stance);
+    d.result = replan(stance, swing_z);
     if (d.result.ok()) {
       recoveries_in_row_ = 0;
     } else if (d.result.outcome == Outcome::NO_PATH_FOUND && recoveries_in_row_ < params_.max_recovery_steps &&
-               recover(stance)) {
+               recover(stance, swing_z)) {
       d.result = plan_.result;
     }
     if (!d.result.ok() || plan_.actions.empty()) {

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -67,8 +68,12 @@ class FootstepNavigator {
   // pose: one merged cloud corrects the odometry against the previous stance's (eq. 1), then
   // each view updates the Kalman heightmap (eq. 2-3) in the corrected frame.
   void observe(const std::vector<DepthView>& views, const SE3& T_odom_base);
-  // The next step from the odometry pose of the stance (supporting) foot.
-  StepDecision next(const footstep::Footstep& odom_stance);
+  // The next step from the odometry pose of the stance (supporting) foot and, when known, of the
+  // other foot: a swing foot that stands higher than the stance foot (mid-way down a step) keeps
+  // its lifted height on the way to its landing, and the plans from here check the first step so
+  // (FootstepPlanner::plan's swing_z_m).
+  StepDecision next(const footstep::Footstep& odom_stance,
+                    const std::optional<footstep::Footstep>& odom_swing = std::nullopt);
 
   // Odometry frame -> map frame: the x, y, yaw part of the GICP correction (height, roll and
   // pitch of the kinematic odometry come from the leg kinematics and the IMU, which do not drift;
@@ -86,11 +91,12 @@ class FootstepNavigator {
 
  private:
   bool close_to_plan(const footstep::Footstep& stance) const;  // plan_.steps[cursor_] must exist
-  bool needs_replan(const footstep::Footstep& stance);
-  Result replan(const footstep::Footstep& stance);
+  // `swing_z`: the swing foot's height in the map frame, if known.
+  bool needs_replan(const footstep::Footstep& stance, std::optional<double> swing_z);
+  Result replan(const footstep::Footstep& stance, std::optional<double> swing_z);
   // A corrective step from `stance` after a failed plan (plan_ becomes that one step); false
   // when no planar step is safe.
-  bool recover(const footstep::Footstep& stance);
+  bool recover(const footstep::Footstep& stance, std::optional<double> swing_z);
   footstep::FootstepPlan remaining() const;
   const mapping::Heightmap& planning_map();  // the heightmap with the obstacle margin
 

@@ -102,7 +102,7 @@ struct Loop {
     ProgressBar bar("footsteps " + scenario.name, static_cast<std::size_t>(time_limit_s), o.progress);
     for (std::size_t i = 0; walker.time_s() < time_limit_s; ++i) {
       if (i % static_cast<std::size_t>(o.steps_per_view) == 0) look();
-      const navigation::StepDecision d = nav.next(walker.odom_stance());
+      const navigation::StepDecision d = nav.next(walker.odom_stance(), walker.odom_swing());
       if (d.replanned && nav.plan().result.ok())
         (out.first_plan.steps.empty() ? out.first_plan : out.last_plan) = nav.plan();
       if (o.on_decision) o.on_decision(walker, nav, d);

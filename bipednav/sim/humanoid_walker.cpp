@@ -137,11 +137,13 @@ StepExecution HumanoidWalker::step(const StepCommand& cmd) {
   const Pose2 via = st.pose * Pose2{0.0, side * params_.body.nominal_separation_m, 0.0};
   // The trailing foot rises and moves to the via point beside the stance foot (the upward phase
   // of the planner's previous action), then on to the landing pose (this action's downward
-  // phase), and drops onto the terrain.
+  // phase), and drops onto the terrain. A trailing foot higher than the stance foot (on the step
+  // the stance foot came down from) stays that much higher on the way to the landing
+  // (footstep::build_inverse_heightmap's swing lift) rather than dropping at the via point.
   const double half = cmd.duration_s / 2.0;
   // The body is checked above the sole that supported it in the planner's model of each phase.
   sweep({sw.pose, via, sw.z_m + std::max(last_peak_m_, cmd.peak_m), sw.z_m}, st.pose, time_s_, half, out);
-  sweep({via, target, st.z_m + cmd.peak_m, st.z_m}, st.pose, time_s_ + half, half, out);
+  sweep({via, target, std::max(st.z_m, sw.z_m) + cmd.peak_m, st.z_m}, st.pose, time_s_ + half, half, out);
   if (out.support_ratio < params_.min_support_ratio)  // the sole came down on an edge: the robot falls
     out.contacts.push_back({time_s_ + cmd.duration_s, "landing_foot", target.position(), out.landing_spread_m});
 

@@ -52,6 +52,25 @@ TEST(FootstepRun, StairsAreClimbedAndDescended) {
   EXPECT_NEAR(r.max_body_z_m, 0.10, 0.005);  // the platform's height
 }
 
+TEST(FootstepRun, StairsSeed6ReplansWithTheTrailingFootStillOnThePlatform) {
+  // Seed 6 replans after the left foot stepped down onto the 5 cm tread 2.4 cm in front of the
+  // platform's edge, its heading turned by -0.2 rad, the right foot still on the 10 cm platform.
+  // Taken at the stance height, the swing foot's via point reached back into the platform and
+  // every step failed (NO_PATH_FOUND); the swing foot really keeps its height until it drops
+  // onto its landing (FootstepGraph's start).
+  const auto s = sim::load_scenario(test::source_dir() / "scenarios" / "nao_stairs.yaml");
+  runner::FootstepRunOptions o;
+  o.seed = 6;
+  int replans_with_swing_above = 0;
+  o.on_decision = [&](const sim::HumanoidWalker& w, const navigation::FootstepNavigator&,
+                      const navigation::StepDecision& d) {
+    replans_with_swing_above += d.replanned && w.swing().z_m > w.stance().z_m + 0.04;
+  };
+  const auto r = runner::run_footstep_scenario(s, o);
+  expect_reached(r);
+  EXPECT_GE(replans_with_swing_above, 1);
+}
+
 TEST(FootstepRun, NarrowPassageIsWalkedSideways) {
   const auto r = run("nao_narrow_passage");
   expect_reached(r);

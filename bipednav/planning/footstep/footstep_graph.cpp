@@ -57,8 +57,13 @@ int ActionLattice::bin_of(double theta) const {
 }
 
 FootstepGraph::FootstepGraph(const ActionLattice& lattice, const TerrainGrid& terrain, const Heuristic& heuristic,
-                             const FootstepGoal& goal, const Footstep& start)
-    : lattice_(lattice), terrain_(terrain), heuristic_(heuristic), goal_(goal) {
+                             const FootstepGoal& goal, const Footstep& start, double start_swing_lift_m)
+    : lattice_(lattice),
+      terrain_(terrain),
+      heuristic_(heuristic),
+      goal_(goal),
+      start_lift_m_(std::isfinite(start_swing_lift_m) && start_swing_lift_m > kMinSwingLiftM ? start_swing_lift_m
+                                                                                             : 0.0) {
   cell_block_.assign(terrain.geometry().size(), -1);
   const int bins = lattice.theta_bins();
   const double half = lattice.actions().body.nominal_separation_m / 2.0;
@@ -224,12 +229,26 @@ bool FootstepGraph::landing_height(int ix, int iy, int itheta, float stance_z, f
   return c.kind != Landing::kUnsafe;
 }
 
-bool FootstepGraph::whole_body_free(const StateKey& s, float z, int action) const {
+const InverseHeightmap& FootstepGraph::start_ihm(int a) {
+  const StateKey& k = states_[start_].key;
+  if (start_ihm_.empty()) {
+    start_ihm_.resize(lattice_.actions().actions.size());
+    start_ihm_built_.assign(start_ihm_.size(), false);
+  }
+  if (!start_ihm_built_[a]) {
+    start_ihm_[a] = build_inverse_heightmap(lattice_.actions().actions[a], lattice_.actions().body, k.stance,
+                                            lattice_.theta_of(k.itheta), lattice_.resolution_m(), start_lift_m_, true);
+    start_ihm_built_[a] = true;
+  }
+  return start_ihm_[a];
+}
+
+bool FootstepGraph::whole_body_free(const StateKey& s, float z, const InverseHeightmap& ihm) const {
   // Eq. 5: every IHM cell must stay above the terrain once aligned at the stance height.
   // The body band (torso, arms) must also keep off occluded cells (TerrainGrid::occluded): the
   // walker meets the true wall behind a face the map holds only the lower part of.
   const float body_band = static_cast<float>(lattice_.actions().body.torso_bottom_m) - 1e-4f;
-  for (const IhmLayer& layer : lattice_.ihm(s.stance, action, s.itheta).layers) {
+  for (const IhmLayer& layer : ihm.layers) {
     const int x0 = s.ix + layer.min_dx, y0 = s.iy + layer.min_dy, x1 = s.ix + layer.max_dx, y1 = s.iy + layer.max_dy;
     const auto quick = terrain_.range(x0, y0, x1, y1);
     const bool occlusion = layer.min_height_m >= body_band && terrain_.any_occluded(x0, y0, x1, y1);
@@ -260,7 +279,11 @@ bool FootstepGraph::action_safe(std::int32_t s, int a, std::int32_t* to) {
   const double dz = z - st.z;  // eq. 4
   if (dz < act.dz_min_m || dz > act.dz_max_m) return false;
   ++ihm_checks_;
-  if (!whole_body_free(st.key, st.z, a)) return false;
+  // The start's inverse heightmap has no cell lower than the lattice's (its swing foot is
+  // lifted, its lift-off sweeps fewer cells): it is built and checked only when that one fails.
+  if (!whole_body_free(st.key, st.z, lattice_.ihm(st.key.stance, a, st.key.itheta)) &&
+      (s != start_ || !whole_body_free(st.key, st.z, start_ihm(a))))
+    return false;
   if (to) *to = intern(nk, z);
   return true;
 }

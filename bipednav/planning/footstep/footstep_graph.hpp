@@ -65,10 +65,19 @@ struct FootstepGoal {
 // goal's tolerance at the fastest turn per action: both are lower bounds of the remaining time,
 // so their maximum is too, and the search no longer has to flood the goal's surroundings with
 // every heading the position heuristic cannot tell apart.
+//
+// A state carries only its stance foot: the swing foot is assumed at the stance height, at the
+// via point beside it. The start state is where the robot really stands (its own inverse
+// heightmaps, built on first use): its stance foot has landed, so its lift-off needs no margin
+// for a landing error (build_inverse_heightmap's stance_landed), and its swing foot may stand
+// higher (the trailing foot still on the step the stance foot came down from) and keep that
+// height until it drops onto its landing: the first action's downward phase is checked
+// `start_swing_lift_m` higher. Lifts of at most kMinSwingLiftM count as none.
 class FootstepGraph : public SearchGraph {
  public:
+  static constexpr double kMinSwingLiftM = 1e-3;
   FootstepGraph(const ActionLattice& lattice, const TerrainGrid& terrain, const Heuristic& heuristic,
-                const FootstepGoal& goal, const Footstep& start);
+                const FootstepGoal& goal, const Footstep& start, double start_swing_lift_m = 0.0);
 
   std::int32_t start_state() override { return start_; }
   void successors(std::int32_t s, std::vector<Edge>& out) override;
@@ -127,7 +136,9 @@ class FootstepGraph : public SearchGraph {
   // landing_at through the cell's landing cache, at `stance_z` on unknown ground.
   bool landing_height(int ix, int iy, int itheta, float stance_z, float* z);
   bool clear_of_rising_edges(int ix, int iy, int itheta, float top) const;  // the landing margin
-  bool whole_body_free(const StateKey& s, float z, int action) const;
+  bool whole_body_free(const StateKey& s, float z, const InverseHeightmap& ihm) const;
+  // The start state's inverse heightmap of action `a` (built on first use).
+  const InverseHeightmap& start_ihm(int a);
   Pose2 pose_of(const StateKey& k) const;
 
   const ActionLattice& lattice_;
@@ -149,6 +160,9 @@ class FootstepGraph : public SearchGraph {
   // products Pose2's composition forms, and the composed heading.
   std::vector<double> centre_dx_, centre_dy_, centre_theta_;
   std::int32_t start_ = 0;
+  double start_lift_m_ = 0.0;  // > kMinSwingLiftM, or 0
+  std::vector<InverseHeightmap> start_ihm_;
+  std::vector<bool> start_ihm_built_;
   std::size_t ihm_checks_ = 0;
   // Heading term of the heuristic: the most heading bins one action turns, the shortest action.
   int max_turn_bins_ = 0;

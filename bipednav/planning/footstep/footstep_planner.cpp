@@ -56,9 +56,15 @@ bool goal_standable(const TerrainGrid& t, const ActionSet& a, const FootstepPlan
   return false;
 }
 
+// How much higher than `stance` the swing foot stands (FootstepGraph's start_swing_lift_m).
+double swing_lift_m(const Footstep& stance, std::optional<double> swing_z_m) {
+  return swing_z_m && std::isfinite(*swing_z_m) ? *swing_z_m - stance.z_m : 0.0;
+}
+
 }  // namespace
 
-FootstepPlan FootstepPlanner::plan(const mapping::Heightmap& map, const Footstep& start, const Pose2& goal) const {
+FootstepPlan FootstepPlanner::plan(const mapping::Heightmap& map, const Footstep& start, const Pose2& goal,
+                                   std::optional<double> swing_z_m) const {
   FootstepPlan out;
   if (!start.pose.is_finite() || !goal.is_finite()) {
     out.result = {Outcome::INVALID_GOAL, "start or goal is not finite"};
@@ -82,7 +88,7 @@ FootstepPlan FootstepPlanner::plan(const mapping::Heightmap& map, const Footstep
   }
   const auto heuristic = make_heuristic(params_, terrain, actions, goal);
   FootstepGraph graph(*lattice_, terrain, *heuristic, {goal, params_.goal_tolerance_m, params_.goal_tolerance_rad},
-                      start);
+                      start, swing_lift_m(start, swing_z_m));
   out.setup_s = setup_clock.elapsed_s();
   const AraStarResult r = ara_star(graph, params_.search);
   out.expansions = r.expansions;
@@ -103,11 +109,13 @@ FootstepPlan FootstepPlanner::plan(const mapping::Heightmap& map, const Footstep
   return out;
 }
 
-bool FootstepPlanner::still_valid(const mapping::Heightmap& map, const FootstepPlan& plan) const {
+bool FootstepPlanner::still_valid(const mapping::Heightmap& map, const FootstepPlan& plan,
+                                  std::optional<double> swing_z_m) const {
   if (plan.steps.size() < 2) return !plan.steps.empty();
   const TerrainGrid terrain(map, params_.lattice_resolution_m, params_.occlusion_rise_m);
   const EuclideanHeuristic none(plan.steps.back().pose, 1.0, 1.0);
-  FootstepGraph graph(*lattice_, terrain, none, {plan.steps.back().pose, 1.0, 1.0}, plan.steps.front());
+  FootstepGraph graph(*lattice_, terrain, none, {plan.steps.back().pose, 1.0, 1.0}, plan.steps.front(),
+                      swing_lift_m(plan.steps.front(), swing_z_m));
   std::int32_t s = graph.start_state();
   for (const std::string& name : plan.actions) {
     int a = -1;
@@ -121,13 +129,14 @@ bool FootstepPlanner::still_valid(const mapping::Heightmap& map, const FootstepP
 }
 
 std::vector<std::pair<std::string, Footstep>> FootstepPlanner::safe_steps(const mapping::Heightmap& map,
-                                                                          const Footstep& from) const {
+                                                                          const Footstep& from,
+                                                                          std::optional<double> swing_z_m) const {
   std::vector<std::pair<std::string, Footstep>> out;
   if (!from.pose.is_finite() || !std::isfinite(from.z_m)) return out;
   const TerrainGrid terrain(map, params_.lattice_resolution_m, params_.occlusion_rise_m);
   if (!terrain.geometry().world_to_cell(from.pose.x, from.pose.y)) return out;
   const EuclideanHeuristic none(from.pose, 1.0, 1.0);
-  FootstepGraph graph(*lattice_, terrain, none, {from.pose, 1.0, 1.0}, from);
+  FootstepGraph graph(*lattice_, terrain, none, {from.pose, 1.0, 1.0}, from, swing_lift_m(from, swing_z_m));
   const auto& actions = lattice_->actions().actions;
   for (std::size_t a = 0; a < actions.size(); ++a) {
     std::int32_t to = -1;

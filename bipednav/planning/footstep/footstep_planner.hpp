@@ -1,6 +1,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -56,12 +57,20 @@ class FootstepPlanner {
 
   // Plans from a start stance foot to a goal body pose. Outcomes: SUCCESS, PLAN_OUT_OF_MAP,
   // BLOCKED_GOAL (no safe stance exists at the goal), NO_PATH_FOUND, PLAN_PAT_EXCEEDED.
-  FootstepPlan plan(const mapping::Heightmap& map, const Footstep& start, const Pose2& goal) const;
-  // Whether every step of `plan` is still safe on `map` (replan when it is not).
-  bool still_valid(const mapping::Heightmap& map, const FootstepPlan& plan) const;
+  // `swing_z_m`: the height of the other (swing) foot where it stands, when known. Standing
+  // higher than the start foot (mid-way down a step), it keeps that height until it drops onto
+  // its landing, and the first step's whole-body check follows it (FootstepGraph); without it
+  // or at the stance height the swing foot is taken at the stance height.
+  FootstepPlan plan(const mapping::Heightmap& map, const Footstep& start, const Pose2& goal,
+                    std::optional<double> swing_z_m = std::nullopt) const;
+  // Whether every step of `plan` is still safe on `map` (replan when it is not); `swing_z_m`:
+  // the swing foot's height beside plan.steps.front(), as in plan().
+  bool still_valid(const mapping::Heightmap& map, const FootstepPlan& plan,
+                   std::optional<double> swing_z_m = std::nullopt) const;
   // The actions that are safe from `from` on `map` (flat landing, dz, whole body), each with
   // the foot it lands (on the lattice). For recovery steps when no plan reaches the goal.
-  std::vector<std::pair<std::string, Footstep>> safe_steps(const mapping::Heightmap& map, const Footstep& from) const;
+  std::vector<std::pair<std::string, Footstep>> safe_steps(const mapping::Heightmap& map, const Footstep& from,
+                                                           std::optional<double> swing_z_m = std::nullopt) const;
 
   // The stance foot pose for a body pose (feet half a separation to each side).
   Footstep stance_for_body(const Pose2& body, Foot foot, double z_m = 0.0) const;

@@ -107,7 +107,7 @@ void add_swing(SweptVolume& vol, const BodyModel& b, const PlanarPose& foot, dou
 }  // namespace
 
 InverseHeightmap build_inverse_heightmap(const FootstepAction& a, const BodyModel& b, Foot stance, double theta,
-                                         double res) {
+                                         double res, double swing_lift_m, bool stance_landed) {
   const double m = stance == Foot::kLeft ? 1.0 : -1.0;  // mirror for a right stance foot
   const double sep = b.nominal_separation_m;
   const PlanarPose stance_pose{0, 0, 0};
@@ -122,11 +122,11 @@ InverseHeightmap build_inverse_heightmap(const FootstepAction& a, const BodyMode
     const double s = static_cast<double>(k) / kSamples;
     // Downward phase: swing foot from its via point to the landing pose (section V-C).
     const PlanarPose swing = lerp(via0, land, s);
-    add_swing(vol, b, swing, a.peak_m);
+    add_swing(vol, b, swing, a.peak_m + swing_lift_m);
     add_body(vol, b, stance_pose, swing);
     // Upward phase: the old stance foot rises to the via point beside the new stance foot.
     const PlanarPose trail = lerp(stance_pose, via1, s);
-    add_swing(vol, b, trail, a.peak_m);
+    if (k > 0 || !stance_landed) add_swing(vol, b, trail, a.peak_m);
     add_body(vol, b, trail, land);
   }
   return vol.result(b.torso_bottom_m);

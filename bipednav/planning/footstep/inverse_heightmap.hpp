@@ -66,9 +66,15 @@ void rasterize_rect(const Rect& r, double theta, double res, double grow_m, Visi
 // `theta`: the swept volume of the body model (swing foot and leg from the via point to the
 // landing pose, the body between the feet, the trailing foot up to the next via point),
 // projected onto the lattice. The stance and landing soles are excluded: flatness and eq. 4
-// check those.
+// check those. `swing_lift_m` raises the downward phase's swing foot and leg by that much: a
+// swing foot that starts higher than the stance foot (the trailing foot still on the step the
+// stance foot came down from) keeps its lifted height until it drops onto the landing
+// (sim::HumanoidWalker::step); 0 is the via point configuration of every other step.
+// `stance_landed`: the stance foot is where the robot really stands (a search's start), so its
+// lift-off sweeps only its own sole; at a planned foothold the lift-off also covers the cells
+// within half a cell of the sole, a margin for where the foot will really land.
 InverseHeightmap build_inverse_heightmap(const FootstepAction& action, const BodyModel& body, Foot stance, double theta,
-                                         double res);
+                                         double res, double swing_lift_m = 0.0, bool stance_landed = false);
 
 // Lattice offsets of a foot sole with heading `theta` centred on cell (0, 0), the sole grown by
 // `grow_m` on every side.

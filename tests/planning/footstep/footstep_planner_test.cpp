@@ -2,8 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <string>
+#include <vector>
 
 #include "bipednav/planning/footstep/heuristics.hpp"
 
@@ -139,6 +142,60 @@ TEST(FootstepPlanner, ClimbsTheScenarioStairsWithTheLoopsLandingMargin) {
   ASSERT_TRUE(plan.result.ok()) << plan.result.message;
   EXPECT_TRUE(uses(plan, "step_onto"));
   EXPECT_TRUE(uses(plan, "step_down"));
+}
+
+TEST(FootstepPlanner, ASwingFootStillOnTheStepAboveKeepsItsHeightOverTheEdge) {
+  // nao_stairs seed 6 mid-way down: the left foot has stepped down onto the 5 cm tread, turned
+  // by -0.39 rad, 2.4 cm in front of the 10 cm platform's edge (x = 1.65); the right foot is
+  // still on the platform. The swing foot's via point beside the stance foot reaches 1.4 cm back
+  // over the platform: taken at the stance height (peak 4 cm above 5 cm) it is 1 cm inside the
+  // platform, so every planar step fails, and step_over / step_down land across the next
+  // riser (x = 2.0). The swing foot really comes from the platform at its height and keeps it
+  // until it drops onto the tread (sim::HumanoidWalker).
+  auto map = flat_map(2.6, 0.8, 0.01);
+  add_box(map, 0.6, 0.0, 2.0, 0.8, 0.05);
+  add_box(map, 0.95, 0.0, 1.65, 0.8, 0.10);
+  FootstepPlanner planner(fast_params());
+  const double theta = -2.0 * 2.0 * std::numbers::pi / planner.params().theta_bins;  // on the lattice
+  const Footstep stance{{1.765, 0.355, theta}, 0.05, Foot::kLeft};
+  const Pose2 goal{2.3, 0.4, 0.0};
+  const FootstepPlan assumed_level = planner.plan(map, stance, goal);
+  EXPECT_EQ(assumed_level.result.outcome, Outcome::NO_PATH_FOUND) << assumed_level.result.message;
+  EXPECT_TRUE(planner.safe_steps(map, stance).empty());
+  // A swing foot at the stance height is the same problem.
+  EXPECT_EQ(planner.plan(map, stance, goal, 0.05).result.outcome, Outcome::NO_PATH_FOUND);
+  const FootstepPlan from_platform = planner.plan(map, stance, goal, 0.10);
+  ASSERT_TRUE(from_platform.result.ok()) << from_platform.result.message;
+  EXPECT_NEAR(from_platform.steps[1].z_m, 0.05, 1e-5);  // the right foot lands on the tread
+  EXPECT_TRUE(uses(from_platform, "step_down"));
+  EXPECT_NEAR(from_platform.steps.back().z_m, 0.0, 1e-6);
+  EXPECT_FALSE(planner.safe_steps(map, stance, 0.10).empty());
+  // Only the first step is lifted: a plan whose first step was not safe without the lift is not
+  // valid from a stance whose swing foot is level with it.
+  EXPECT_TRUE(planner.still_valid(map, from_platform, 0.10));
+  EXPECT_FALSE(planner.still_valid(map, from_platform));
+}
+
+TEST(FootstepPlanner, TheStartFootLiftsOffWithoutALandingMargin) {
+  // The same stance a centimetre further back (x = 1.745, seed 6's lattice cell) on a map that
+  // reads the platform a centimetre longer (its edge cell high, as the run's Kalman map did):
+  // the heel's corner is within half a cell of the edge. The lattice's inverse heightmaps sweep
+  // a planned foot's lift-off over the cells within half a cell of its sole (a margin for where
+  // it will land), which would leave only step_over; the start foot has landed and lifts off
+  // within its own sole.
+  auto map = flat_map(2.6, 0.8, 0.01);
+  add_box(map, 0.6, 0.0, 2.0, 0.8, 0.05);
+  add_box(map, 0.95, 0.0, 1.66, 0.8, 0.10);
+  FootstepPlanner planner(fast_params());
+  const double theta = -2.0 * 2.0 * std::numbers::pi / planner.params().theta_bins;
+  const Footstep stance{{1.745, 0.355, theta}, 0.05, Foot::kLeft};
+  std::vector<std::string> safe;
+  for (const auto& [name, foot] : planner.safe_steps(map, stance, 0.10)) safe.push_back(name);
+  for (const char* action : {"fwd_8", "diag_out", "long_out", "t_step", "step_over"})
+    EXPECT_NE(std::find(safe.begin(), safe.end(), action), safe.end()) << action;
+  const FootstepPlan plan = planner.plan(map, stance, {2.3, 0.4, 0.0}, 0.10);
+  ASSERT_TRUE(plan.result.ok()) << plan.result.message;
+  EXPECT_NEAR(plan.steps.back().z_m, 0.0, 1e-6);
 }
 
 TEST(FootstepPlanner, UnknownGroundNextToAPlatformDoesNotBlockTheHeuristic) {
