@@ -141,7 +141,8 @@ LoamOutput Loam::process(const PointCloud& sweep, const std::optional<SE3>& moti
                          const std::optional<Eigen::Vector3d>& up_in_lidar) {
   Stopwatch sw;
   LoamOutput out;
-  const PointCloud clean = sanitize_sweep(sweep, p_.features);
+  PointCloud dropped;
+  const PointCloud& clean = sanitized(sweep, p_.features, dropped);
   const bool prior_given = motion_prior.has_value() && finite(*motion_prior);
   if (motion_prior && !prior_given) append_reason(out, "motion prior is not finite, ignored");
   const SE3 guess = prior_given ? *motion_prior : constant_velocity_guess();

@@ -189,18 +189,36 @@ std::vector<double> ring_smoothness(const std::vector<Eigen::Vector3f>& ring, in
   return c;
 }
 
+namespace {
+
+// Point i is finite (with a finite time) and within [min_range_m, max_range_m].
+bool usable_sweep_point(const PointCloud& sweep, std::size_t i, const FeatureParams& p) {
+  const Eigen::Vector3f& q = sweep.points[i];
+  if (!q.allFinite() || (sweep.has_time() && !std::isfinite(sweep.time_offsets_s[i]))) return false;
+  const double r = q.norm();
+  return r >= p.min_range_m && r <= p.max_range_m;
+}
+
+}  // namespace
+
 PointCloud sanitize_sweep(const PointCloud& sweep, const FeatureParams& p) {
   if (!sweep.is_consistent()) throw Error("LOAM: sweep fields (time, ring, intensity) do not match its point count");
   PointCloud out = sweep.empty_copy();
   out.reserve(sweep.size());
-  for (std::size_t i = 0; i < sweep.size(); ++i) {
-    const Eigen::Vector3f& q = sweep.points[i];
-    if (!q.allFinite() || (sweep.has_time() && !std::isfinite(sweep.time_offsets_s[i]))) continue;
-    const double r = q.norm();
-    if (r < p.min_range_m || r > p.max_range_m) continue;
-    out.push_back_from(sweep, i);
-  }
+  for (std::size_t i = 0; i < sweep.size(); ++i)
+    if (usable_sweep_point(sweep, i, p)) out.push_back_from(sweep, i);
   return out;
+}
+
+const PointCloud& sanitized(const PointCloud& sweep, const FeatureParams& p, PointCloud& storage) {
+  if (!sweep.is_consistent()) throw Error("LOAM: sweep fields (time, ring, intensity) do not match its point count");
+  for (std::size_t i = 0; i < sweep.size(); ++i) {
+    if (!usable_sweep_point(sweep, i, p)) {
+      storage = sanitize_sweep(sweep, p);
+      return storage;
+    }
+  }
+  return sweep;  // sanitize_sweep would keep every point, with the same fields and metadata
 }
 
 std::vector<std::uint16_t> ring_indices(const PointCloud& sweep, const FeatureParams& p) {

@@ -43,6 +43,9 @@ std::vector<double> ring_smoothness(const std::vector<Eigen::Vector3f>& ring, in
 
 // Drops non-finite points and points outside [min_range_m, max_range_m], keeping the other fields.
 PointCloud sanitize_sweep(const PointCloud& sweep, const FeatureParams& p);
+// sanitize_sweep's result without a copy when it keeps every point: `sweep` itself, else `storage`
+// filled with sanitize_sweep(sweep, p) (a simulated sweep often has nothing to drop).
+const PointCloud& sanitized(const PointCloud& sweep, const FeatureParams& p, PointCloud& storage);
 
 // Ring index per point: the cloud's own rings, else derived from the elevation angle.
 std::vector<std::uint16_t> ring_indices(const PointCloud& sweep, const FeatureParams& p);

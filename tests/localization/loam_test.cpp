@@ -62,6 +62,37 @@ TEST(LoamFeatures, ExtractsPerRegionMaxima) {
   EXPECT_EQ(f.planars.time_offsets_s.size(), f.planars.size());
 }
 
+TEST(LoamFeatures, SanitizedIsTheSweepItselfWhenNothingIsDropped) {
+  PointCloud sweep;
+  sweep.frame_id = "lidar";
+  sweep.stamp_s = 2.5;
+  sweep.points = {{1, 0, 0}, {0, 2, 0}, {0, 0, 3}};
+  sweep.time_offsets_s = {0.0f, 0.01f, 0.02f};
+  sweep.rings = {0, 1, 2};
+  const FeatureParams p;
+  PointCloud storage;
+  EXPECT_EQ(&sanitized(sweep, p, storage), &sweep);
+  EXPECT_TRUE(storage.empty());
+  const auto same = [](const PointCloud& a, const PointCloud& b) {
+    return a.points == b.points && a.time_offsets_s == b.time_offsets_s && a.rings == b.rings &&
+           a.intensities == b.intensities && a.frame_id == b.frame_id && a.stamp_s == b.stamp_s;
+  };
+  EXPECT_TRUE(same(sanitize_sweep(sweep, p), sweep));
+  // A non-finite time, a point too near and one too far: the sanitized copy.
+  for (const int bad : {0, 1, 2}) {
+    PointCloud s = sweep;
+    if (bad == 0) s.time_offsets_s[1] = std::numeric_limits<float>::quiet_NaN();
+    if (bad == 1) s.points[1] = {0.1f, 0, 0};
+    if (bad == 2) s.points[1] = {200.0f, 0, 0};
+    const PointCloud& clean = sanitized(s, p, storage);
+    EXPECT_EQ(&clean, &storage);
+    EXPECT_EQ(clean.size(), 2u);
+    EXPECT_TRUE(same(clean, sanitize_sweep(s, p)));
+  }
+  sweep.rings.pop_back();
+  EXPECT_THROW(sanitized(sweep, p, storage), Error);
+}
+
 TEST(LoamOdometry, DeskewUnderPureRotationRestoresTheEndFrame) {
   Rng rng(2);
   const auto scene = test::room_scene();
