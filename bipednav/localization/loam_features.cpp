@@ -14,7 +14,9 @@ namespace {
 // computed once: the marking below reads each several times.
 struct RingGeometry {
   std::vector<float> range, gap;
-  explicit RingGeometry(const std::vector<Eigen::Vector3f>& pts) : range(pts.size()), gap(pts.size(), 0.0f) {
+  void assign(const std::vector<Eigen::Vector3f>& pts) {
+    range.resize(pts.size());
+    gap.assign(pts.size(), 0.0f);
     for (std::size_t i = 0; i < pts.size(); ++i) range[i] = pts[i].norm();
     for (std::size_t i = 0; i + 1 < pts.size(); ++i) gap[i] = (pts[i + 1] - pts[i]).norm();
   }
@@ -62,26 +64,27 @@ void mark_neighbours(const RingGeometry& ring, int i, const FeatureParams& p, st
   }
 }
 
-struct RegionSelection {
-  std::vector<int> sharp, map;
-};
-
 // Picks up to max and max * factor points of one sub-region from `candidates` (the points past
-// the threshold), best first (highest smoothness c for edges, lowest for planars). The selection
-// usually runs through most candidates, so they are sorted whole, with their scores beside them.
-// Candidates already picked (unreliable, or next to a selected feature) are skipped wherever they
-// come, so only the others are sorted. Equal scores keep the order a chunked partial sort of
-// `candidates` gives them (the order these features were selected in before; ties are rare), so
-// that path stays for them.
-RegionSelection select(std::vector<int>& candidates, const std::vector<double>& c, bool edges, const RingGeometry& ring,
-                       const FeatureParams& p, std::vector<char>& picked, std::vector<std::pair<double, int>>& scored) {
-  RegionSelection sel;
+// the threshold; indices into the ring `idx` of `sweep`) into `sharp_out` and `map_out`, best first (highest smoothness
+// c for edges, lowest for planars). The selection usually runs through most candidates, so they are sorted whole, with
+// their scores beside them. Candidates already picked (unreliable, or next to a selected feature) are skipped wherever
+// they come, so only the others are sorted. Equal scores keep the order a chunked partial sort of `candidates` gives
+// them (the order these features were selected in before; ties are rare), so that path stays for them.
+void select(std::vector<int>& candidates, const std::vector<double>& c, bool edges, const RingGeometry& ring,
+            const FeatureParams& p, std::vector<char>& picked, std::vector<std::pair<double, int>>& scored,
+            const PointCloud& sweep, const std::uint32_t* idx, PointCloud& sharp_out, PointCloud& map_out) {
   const int max_sharp = edges ? p.max_edges_per_region : p.max_planars_per_region;
   const auto max_map = static_cast<std::size_t>(max_sharp * p.map_feature_factor);
+  int sharp = 0;
+  std::size_t map = 0;
   const auto consider = [&](int i) {
     if (picked[static_cast<std::size_t>(i)]) return;
-    if (static_cast<int>(sel.sharp.size()) < max_sharp) sel.sharp.push_back(i);
-    sel.map.push_back(i);
+    if (sharp < max_sharp) {
+      sharp_out.push_back_from(sweep, idx[static_cast<std::size_t>(i)]);
+      ++sharp;
+    }
+    map_out.push_back_from(sweep, idx[static_cast<std::size_t>(i)]);
+    ++map;
     picked[static_cast<std::size_t>(i)] = 1;
     mark_neighbours(ring, i, p, picked);
   };
@@ -95,15 +98,15 @@ RegionSelection select(std::vector<int>& candidates, const std::vector<double>& 
   bool ties = false;
   for (std::size_t n = 1; n < scored.size() && !ties; ++n) ties = scored[n - 1].first == scored[n].first;
   if (!ties) {
-    for (std::size_t n = 0; n < scored.size() && sel.map.size() < max_map; ++n) consider(scored[n].second);
-    return sel;
+    for (std::size_t n = 0; n < scored.size() && map < max_map; ++n) consider(scored[n].second);
+    return;
   }
   const auto better = [&](int a, int b) {
     const double ca = c[static_cast<std::size_t>(a)], cb = c[static_cast<std::size_t>(b)];
     return edges ? ca > cb : ca < cb;
   };
   std::size_t sorted = 0;
-  for (std::size_t n = 0; n < candidates.size() && sel.map.size() < max_map; ++n) {
+  for (std::size_t n = 0; n < candidates.size() && map < max_map; ++n) {
     if (n == sorted) {
       const std::size_t chunk = std::min(candidates.size() - sorted, std::max<std::size_t>(2 * max_map, 16));
       const auto first = candidates.begin() + static_cast<std::ptrdiff_t>(sorted);
@@ -113,22 +116,61 @@ RegionSelection select(std::vector<int>& candidates, const std::vector<double>& 
     }
     consider(candidates[n]);
   }
-  return sel;
 }
 
-void process_ring(const PointCloud& sweep, const std::vector<std::uint32_t>& idx, const FeatureParams& p,
-                  LoamFeatures& out) {
-  const int k = p.neighbours_per_side;
-  const int n = static_cast<int>(idx.size());
-  if (n < 2 * k + 1) return;
-  std::vector<Eigen::Vector3f> pts(idx.size());
-  for (std::size_t i = 0; i < idx.size(); ++i) pts[i] = sweep.points[idx[i]];
-  const std::vector<double> c = ring_smoothness(pts, k);
-  std::vector<char> picked(idx.size(), 0);
-  const RingGeometry ring(pts);
-  mark_unreliable(ring, p, picked);
+// ring_smoothness into `c`, with `prefix` as its work space (both resized).
+void smoothness_into(const std::vector<Eigen::Vector3f>& ring, int k, std::vector<Eigen::Vector3d>& prefix,
+                     std::vector<double>& c) {
+  const int n = static_cast<int>(ring.size());
+  c.assign(ring.size(), -1.0);
+  if (k < 1 || n < 2 * k + 1) return;
+  // sum_{j != i} (x_i - x_j) over the window = (2k + 1) x_i - (window sum), the window sums from
+  // prefix sums: O(n) instead of O(n k).
+  prefix.resize(ring.size() + 1);
+  prefix[0].setZero();
+  for (std::size_t i = 0; i < ring.size(); ++i) prefix[i + 1] = prefix[i] + ring[i].cast<double>();
+  for (int i = k; i + k < n; ++i) {
+    const auto u = static_cast<std::size_t>(i);
+    const Eigen::Vector3d xi = ring[u].cast<double>();
+    const Eigen::Vector3d sum =
+        (2.0 * k + 1.0) * xi - (prefix[u + static_cast<std::size_t>(k) + 1] - prefix[u - static_cast<std::size_t>(k)]);
+    const double r = xi.norm();
+    if (r > 0.0) c[u] = sum.norm() / (2.0 * k * r);  // eq. 4.5
+  }
+}
+
+// One ring's work space, kept between rings and sweeps (extract_features runs ~16 rings of ~1000
+// points per sweep: allocating these per ring cost more than some of the work done in them).
+struct RingScratch {
+  std::vector<std::uint32_t> order;  // the sweep's point indices grouped by ring
+  std::vector<std::size_t> ring_begin, next;
+  std::vector<float> azimuth;  // the sort key of clouds without times
+  std::vector<std::uint16_t> derived_rings;
+  std::vector<Eigen::Vector3f> pts;
+  std::vector<Eigen::Vector3d> prefix;
+  std::vector<double> c;
+  std::vector<char> picked;
+  RingGeometry ring;
   std::vector<int> sharp, flat;
   std::vector<std::pair<double, int>> scored;
+};
+
+void process_ring(const PointCloud& sweep, const std::uint32_t* idx, std::size_t count, const FeatureParams& p,
+                  RingScratch& w, LoamFeatures& out) {
+  const int k = p.neighbours_per_side;
+  const int n = static_cast<int>(count);
+  if (n < 2 * k + 1) return;
+  std::vector<Eigen::Vector3f>& pts = w.pts;
+  pts.resize(count);
+  for (std::size_t i = 0; i < count; ++i) pts[i] = sweep.points[idx[i]];
+  smoothness_into(pts, k, w.prefix, w.c);
+  const std::vector<double>& c = w.c;
+  std::vector<char>& picked = w.picked;
+  picked.assign(count, 0);
+  w.ring.assign(pts);
+  const RingGeometry& ring = w.ring;
+  mark_unreliable(ring, p, picked);
+  std::vector<int>&sharp = w.sharp, &flat = w.flat;
   for (int r = 0; r < p.sub_regions; ++r) {
     const int begin = k + (n - 2 * k) * r / p.sub_regions;
     const int end = k + (n - 2 * k) * (r + 1) / p.sub_regions;
@@ -143,12 +185,8 @@ void process_ring(const PointCloud& sweep, const std::vector<std::uint32_t>& idx
       else if (ci >= 0.0 && ci < p.planar_threshold)
         flat.push_back(i);
     }
-    const RegionSelection e = select(sharp, c, true, ring, p, picked, scored);
-    const RegionSelection f = select(flat, c, false, ring, p, picked, scored);
-    for (int i : e.sharp) out.edges.push_back_from(sweep, idx[static_cast<std::size_t>(i)]);
-    for (int i : e.map) out.map_edges.push_back_from(sweep, idx[static_cast<std::size_t>(i)]);
-    for (int i : f.sharp) out.planars.push_back_from(sweep, idx[static_cast<std::size_t>(i)]);
-    for (int i : f.map) out.map_planars.push_back_from(sweep, idx[static_cast<std::size_t>(i)]);
+    select(sharp, c, true, ring, p, picked, w.scored, sweep, idx, out.edges, out.map_edges);
+    select(flat, c, false, ring, p, picked, w.scored, sweep, idx, out.planars, out.map_planars);
   }
 }
 
@@ -170,22 +208,9 @@ void FeatureParams::validate() const {
 }
 
 std::vector<double> ring_smoothness(const std::vector<Eigen::Vector3f>& ring, int k) {
-  const int n = static_cast<int>(ring.size());
-  std::vector<double> c(ring.size(), -1.0);
-  if (k < 1 || n < 2 * k + 1) return c;
-  // sum_{j != i} (x_i - x_j) over the window = (2k + 1) x_i - (window sum), the window sums from
-  // prefix sums: O(n) instead of O(n k).
-  std::vector<Eigen::Vector3d> prefix(ring.size() + 1);
-  prefix[0].setZero();
-  for (std::size_t i = 0; i < ring.size(); ++i) prefix[i + 1] = prefix[i] + ring[i].cast<double>();
-  for (int i = k; i + k < n; ++i) {
-    const auto u = static_cast<std::size_t>(i);
-    const Eigen::Vector3d xi = ring[u].cast<double>();
-    const Eigen::Vector3d sum =
-        (2.0 * k + 1.0) * xi - (prefix[u + static_cast<std::size_t>(k) + 1] - prefix[u - static_cast<std::size_t>(k)]);
-    const double r = xi.norm();
-    if (r > 0.0) c[u] = sum.norm() / (2.0 * k * r);  // eq. 4.5
-  }
+  std::vector<Eigen::Vector3d> prefix;
+  std::vector<double> c;
+  smoothness_into(ring, k, prefix, c);
   return c;
 }
 
@@ -221,9 +246,11 @@ const PointCloud& sanitized(const PointCloud& sweep, const FeatureParams& p, Poi
   return sweep;  // sanitize_sweep would keep every point, with the same fields and metadata
 }
 
-std::vector<std::uint16_t> ring_indices(const PointCloud& sweep, const FeatureParams& p) {
-  if (sweep.has_ring()) return sweep.rings;
-  std::vector<std::uint16_t> rings(sweep.size());
+namespace {
+
+// ring_indices of a cloud without rings, into `rings`.
+void derive_rings(const PointCloud& sweep, const FeatureParams& p, std::vector<std::uint16_t>& rings) {
+  rings.resize(sweep.size());
   const double span = p.max_elevation_rad - p.min_elevation_rad;
   for (std::size_t i = 0; i < sweep.size(); ++i) {
     const Eigen::Vector3f& q = sweep.points[i];
@@ -231,6 +258,14 @@ std::vector<std::uint16_t> ring_indices(const PointCloud& sweep, const FeaturePa
     const double f = std::clamp((elevation - p.min_elevation_rad) / span, 0.0, 1.0);
     rings[i] = static_cast<std::uint16_t>(std::lround(f * (p.rings - 1)));
   }
+}
+
+}  // namespace
+
+std::vector<std::uint16_t> ring_indices(const PointCloud& sweep, const FeatureParams& p) {
+  if (sweep.has_ring()) return sweep.rings;
+  std::vector<std::uint16_t> rings;
+  derive_rings(sweep, p, rings);
   return rings;
 }
 
@@ -238,13 +273,22 @@ LoamFeatures extract_features(const PointCloud& sweep, const FeatureParams& p) {
   LoamFeatures out;
   for (PointCloud* c : {&out.edges, &out.planars, &out.map_edges, &out.map_planars}) *c = sweep.empty_copy();
   if (sweep.empty()) return out;
-  const std::vector<std::uint16_t> rings = ring_indices(sweep, p);
+  thread_local RingScratch w;
+  if (!sweep.has_ring()) derive_rings(sweep, p, w.derived_rings);
+  const std::vector<std::uint16_t>& rings = sweep.has_ring() ? sweep.rings : w.derived_rings;
   const std::size_t n_rings = static_cast<std::size_t>(*std::max_element(rings.begin(), rings.end())) + 1;
-  std::vector<std::vector<std::uint32_t>> per_ring(n_rings);
-  for (std::size_t i = 0; i < sweep.size(); ++i) per_ring[rings[i]].push_back(static_cast<std::uint32_t>(i));
-  std::vector<float> key(sweep.size());
-  for (std::size_t i = 0; i < sweep.size(); ++i)
-    key[i] = sweep.has_time() ? sweep.time_offsets_s[i] : std::atan2(sweep.points[i].y(), sweep.points[i].x());
+  // Each ring's points in index order (a counting sort), ring after ring.
+  w.ring_begin.assign(n_rings + 1, 0);
+  for (const std::uint16_t r : rings) ++w.ring_begin[r + 1u];
+  for (std::size_t r = 0; r < n_rings; ++r) w.ring_begin[r + 1] += w.ring_begin[r];
+  w.order.resize(sweep.size());
+  w.next.assign(w.ring_begin.begin(), w.ring_begin.end() - 1);
+  for (std::size_t i = 0; i < sweep.size(); ++i) w.order[w.next[rings[i]]++] = static_cast<std::uint32_t>(i);
+  if (!sweep.has_time()) {
+    w.azimuth.resize(sweep.size());
+    for (std::size_t i = 0; i < sweep.size(); ++i) w.azimuth[i] = std::atan2(sweep.points[i].y(), sweep.points[i].x());
+  }
+  const float* key = sweep.has_time() ? sweep.time_offsets_s.data() : w.azimuth.data();
   PointCloud with_rings;
   if (!sweep.has_ring()) {
     with_rings = sweep;
@@ -252,9 +296,11 @@ LoamFeatures extract_features(const PointCloud& sweep, const FeatureParams& p) {
   }
   const PointCloud& source = sweep.has_ring() ? sweep : with_rings;
   const auto earlier = [&](std::uint32_t a, std::uint32_t b) { return key[a] < key[b]; };
-  for (auto& idx : per_ring) {
-    if (!std::is_sorted(idx.begin(), idx.end(), earlier)) std::stable_sort(idx.begin(), idx.end(), earlier);
-    process_ring(source, idx, p, out);
+  for (std::size_t r = 0; r < n_rings; ++r) {
+    const auto first = w.order.begin() + static_cast<std::ptrdiff_t>(w.ring_begin[r]);
+    const auto last = w.order.begin() + static_cast<std::ptrdiff_t>(w.ring_begin[r + 1]);
+    if (!std::is_sorted(first, last, earlier)) std::stable_sort(first, last, earlier);
+    process_ring(source, w.order.data() + w.ring_begin[r], w.ring_begin[r + 1] - w.ring_begin[r], p, w, out);
   }
   return out;
 }
