@@ -29,11 +29,13 @@ void deskew_points_to_end(const PointCloud& cloud, const SE3& T_start_end, doubl
   // One transform per distinct time: a VLP-16 sweep comes column by column, 16 points at a time.
   double last_s = -1.0;
   SE3 A = SE3::Identity();
+  double next_s = out.empty() ? 0.0 : time_fraction(cloud, 0, scan_period_s);  // of point i + 1, once
   for (std::size_t i = 0; i < out.size(); ++i) {
-    const double s = time_fraction(cloud, i, scan_period_s);
+    const double s = next_s;
+    if (i + 1 < out.size()) next_s = time_fraction(cloud, i + 1, scan_period_s);
     const Eigen::Vector3d p = cloud.points[i].cast<double>();
     if (s != last_s) {
-      const bool shared = i + 1 < out.size() && time_fraction(cloud, i + 1, scan_period_s) == s;
+      const bool shared = i + 1 < out.size() && next_s == s;
       if (!shared) {  // a time of its own (feature clouds): move the point, no transform to compose
         out[i] = (T_end_start * apply_motion(x, s, p)).cast<float>();
         continue;
@@ -58,13 +60,32 @@ LoamOdometry::LoamOdometry(OdometryParams p) : p_(std::move(p)) { p_.validate();
 
 void LoamOdometry::reset() {
   for (PointCloud* c : {&raw_edges_, &raw_planars_, &ref_edges_, &ref_planars_}) c->clear();
+  raw_motion_ = SE3::Identity();
+  ref_stale_ = false;
 }
 
 void LoamOdometry::set_reference(const LoamFeatures& f, const SE3& T_start_end) {
   raw_edges_ = f.map_edges;
   raw_planars_ = f.map_planars;
-  ref_edges_ = deskew_to_end(f.map_edges, T_start_end, p_.scan_period_s);
-  ref_planars_ = deskew_to_end(f.map_planars, T_start_end, p_.scan_period_s);
+  raw_motion_ = T_start_end;
+  ref_stale_ = true;
+}
+
+void LoamOdometry::deskew_reference() const {
+  if (!ref_stale_) return;
+  ref_edges_ = deskew_to_end(raw_edges_, raw_motion_, p_.scan_period_s);
+  ref_planars_ = deskew_to_end(raw_planars_, raw_motion_, p_.scan_period_s);
+  ref_stale_ = false;
+}
+
+const PointCloud& LoamOdometry::reference_edges() const {
+  deskew_reference();
+  return ref_edges_;
+}
+
+const PointCloud& LoamOdometry::reference_planars() const {
+  deskew_reference();
+  return ref_planars_;
 }
 
 namespace {

@@ -66,18 +66,24 @@ class LoamOdometry {
   // Makes this sweep the reference for the next one; T_start_end is its estimated motion.
   void set_reference(const LoamFeatures& f, const SE3& T_start_end);
   bool has_reference() const { return !raw_edges_.empty() || !raw_planars_.empty(); }
-  // The reference sweep's map features, de-skewed to its end (the mapping step's input).
-  const PointCloud& reference_edges() const { return ref_edges_; }
-  const PointCloud& reference_planars() const { return ref_planars_; }
+  // The reference sweep's map features, de-skewed to its end (the mapping step's input). De-skewed
+  // on the first call after set_reference: the mapping step reads them on one sweep in ten.
+  const PointCloud& reference_edges() const;
+  const PointCloud& reference_planars() const;
   void reset();
   const OdometryParams& params() const { return p_; }
 
  private:
   std::vector<Constraint> associate(const LoamFeatures& f, const Vector6d& x, const Vector6d& reference_offset) const;
 
+  void deskew_reference() const;
+
   OdometryParams p_;
   PointCloud raw_edges_, raw_planars_;  // the previous sweep's map features, as measured
-  PointCloud ref_edges_, ref_planars_;  // the same, de-skewed to its end with its own estimate
+  SE3 raw_motion_ = SE3::Identity();    // their sweep's estimated motion
+  // The same, de-skewed to its end with raw_motion_ (computed on demand: stale while ref_stale_).
+  mutable PointCloud ref_edges_, ref_planars_;
+  mutable bool ref_stale_ = false;
 };
 
 }  // namespace bipednav::localization
