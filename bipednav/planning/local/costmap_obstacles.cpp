@@ -3,7 +3,8 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
-#include <map>
+#include <cstdint>
+#include <cstring>
 #include <utility>
 
 namespace bipednav::planning::local {
@@ -14,36 +15,50 @@ double cross(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Ve
   return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
 }
 
-// 8-connected components of the lethal cells, each as a list of cell indices (scan order).
-std::vector<std::vector<std::size_t>> lethal_components(const mapping::Costmap2D& costmap) {
+// Buffers of extract_obstacles, kept between calls (one set per thread).
+struct LethalScratch {
+  std::vector<std::uint8_t> seen;     // per cell: already in a component
+  std::vector<std::size_t> stack;     // flood fill
+  std::vector<std::size_t> cells;     // the components' cells, component after component, each in scan order
+  std::vector<std::size_t> comp_end;  // end of each component in cells (components in scan order)
+  std::vector<std::pair<std::pair<long, long>, std::size_t>> keyed;  // (block, position in cells)
+  std::vector<Eigen::Vector2d> pts;                                  // one block's cell centres
+};
+
+// 8-connected components of the lethal cells into s.cells / s.comp_end: components in the order of their
+// first cell in scan order, each component's cells in scan order.
+void lethal_components(const mapping::Costmap2D& costmap, LethalScratch& s) {
   const auto& g = costmap.geometry();
-  const auto& data = costmap.data();
-  std::vector<int> label(data.size(), -1);
-  std::vector<std::vector<std::size_t>> comps;
-  std::vector<std::size_t> stack;
-  for (std::size_t i = 0; i < data.size(); ++i) {
-    if (data[i] != mapping::kLethal || label[i] >= 0) continue;
-    const int id = static_cast<int>(comps.size());
-    comps.emplace_back();
-    label[i] = id;
-    stack.assign(1, i);
-    while (!stack.empty()) {
-      const std::size_t c = stack.back();
-      stack.pop_back();
-      comps.back().push_back(c);
+  const std::uint8_t* data = costmap.data().data();
+  const std::size_t n = costmap.data().size();
+  s.seen.assign(n, 0);
+  s.cells.clear();
+  s.comp_end.clear();
+  for (std::size_t i = 0; i < n; ++i) {
+    const void* next = std::memchr(data + i, mapping::kLethal, n - i);  // the next lethal cell
+    if (next == nullptr) break;
+    i = static_cast<std::size_t>(static_cast<const std::uint8_t*>(next) - data);
+    if (s.seen[i] != 0) continue;
+    const std::size_t begin = s.cells.size();
+    s.seen[i] = 1;
+    s.stack.assign(1, i);
+    while (!s.stack.empty()) {
+      const std::size_t c = s.stack.back();
+      s.stack.pop_back();
+      s.cells.push_back(c);
       const mapping::Cell cell = g.cell_of(c);
       for (int dy = -1; dy <= 1; ++dy) {
         for (int dx = -1; dx <= 1; ++dx) {
           const int nx = cell.x + dx, ny = cell.y + dy;
           if (!g.in_bounds(nx, ny)) continue;
-          const std::size_t n = g.index(nx, ny);
-          if (data[n] == mapping::kLethal && label[n] < 0) label[n] = id, stack.push_back(n);
+          const std::size_t m = g.index(nx, ny);
+          if (data[m] == mapping::kLethal && s.seen[m] == 0) s.seen[m] = 1, s.stack.push_back(m);
         }
       }
     }
-    std::sort(comps.back().begin(), comps.back().end());
+    std::sort(s.cells.begin() + static_cast<long>(begin), s.cells.end());
+    s.comp_end.push_back(s.cells.size());
   }
-  return comps;
 }
 
 }  // namespace
@@ -133,19 +148,30 @@ std::vector<Obstacle> extract_obstacles(const mapping::Costmap2D& costmap, const
   if (costmap.width() <= 0 || costmap.height() <= 0) return out;
   const auto& g = costmap.geometry();
   const double half = 0.5 * g.resolution_m;
-  for (const auto& comp : lethal_components(costmap)) {
-    // Cut large components into blocks so that hulls stay local (a wall's L or U stays concave).
-    std::map<std::pair<long, long>, std::vector<Eigen::Vector2d>> blocks;
-    for (const std::size_t i : comp) {
-      const Eigen::Vector2d c = g.cell_center(g.cell_of(i));
-      const std::pair<long, long> key{static_cast<long>(std::floor(c.x() / params.cluster_block_m)),
-                                      static_cast<long>(std::floor(c.y() / params.cluster_block_m))};
-      blocks[key].push_back(c);
+  thread_local LethalScratch s;
+  lethal_components(costmap, s);
+  std::size_t begin = 0;
+  for (const std::size_t end : s.comp_end) {
+    // Cut large components into blocks so that hulls stay local (a wall's L or U stays concave). Blocks in
+    // order of (column, row) of the block, each block's cells in scan order.
+    s.keyed.clear();
+    for (std::size_t j = begin; j < end; ++j) {
+      const Eigen::Vector2d c = g.cell_center(g.cell_of(s.cells[j]));
+      s.keyed.push_back({{static_cast<long>(std::floor(c.x() / params.cluster_block_m)),
+                          static_cast<long>(std::floor(c.y() / params.cluster_block_m))},
+                         j});
     }
-    for (const auto& [key, pts] : blocks) {
+    std::sort(s.keyed.begin(), s.keyed.end());
+    for (std::size_t k = 0; k < s.keyed.size();) {
+      s.pts.clear();
+      std::size_t l = k;
+      for (; l < s.keyed.size() && s.keyed[l].first == s.keyed[k].first; ++l)
+        s.pts.push_back(g.cell_center(g.cell_of(s.cells[s.keyed[l].second])));
       if (static_cast<int>(out.size()) >= params.max_obstacles) return out;
-      out.push_back(make_obstacle(pts, half, params));
+      out.push_back(make_obstacle(s.pts, half, params));
+      k = l;
     }
+    begin = end;
   }
   return out;
 }
