@@ -3,7 +3,12 @@
 #include <ceres/ceres.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstring>
+#include <memory>
+#include <type_traits>
+#include <utility>
 
 #include "bipednav/common/angles.hpp"
 #include "bipednav/planning/local/teb_lm.hpp"
@@ -84,6 +89,92 @@ struct ViaFunctor {
   }
 };
 
+// Wraps an automatic-differentiation cost function (parameter blocks of sizes Ns) and remembers its last
+// Jacobian evaluation. With the dT lower bounds, Ceres' trust region runs a projected line search every
+// iteration; the search evaluates the gradient (all Jacobians) at the point it accepts, and a successful step
+// evaluates the Jacobians at that point once more. That second evaluation returns the first's residuals and
+// Jacobians: the same function of bitwise the same parameters, so the same bits. Evaluations without
+// Jacobians always go to the wrapped function (its double evaluation rounds differently from the Jets'
+// values, so they are neither served nor stored). Not thread-safe: one problem is solved by one thread.
+template <int R, int... Ns>
+class MemoJacobians final : public ceres::CostFunction {
+ public:
+  explicit MemoJacobians(ceres::CostFunction* inner) : inner_(inner) {
+    set_num_residuals(inner->num_residuals());
+    *mutable_parameter_block_sizes() = inner->parameter_block_sizes();
+    if constexpr (R == ceres::DYNAMIC) out_.resize(static_cast<std::size_t>(num_residuals()) * (1 + kParams));
+  }
+
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+    if (jacobians == nullptr) return inner_->Evaluate(parameters, residuals, nullptr);
+    const std::size_t nr =
+        R == ceres::DYNAMIC ? static_cast<std::size_t>(num_residuals()) : static_cast<std::size_t>(R);
+    if (valid_ && hit(kIdx, parameters, jacobians)) {
+      std::memcpy(residuals, out_.data(), nr * sizeof(double));
+      load(kIdx, nr, jacobians);
+      return true;
+    }
+    valid_ = false;
+    if (!inner_->Evaluate(parameters, residuals, jacobians)) return false;
+    std::memcpy(out_.data(), residuals, nr * sizeof(double));
+    store(kIdx, nr, parameters, jacobians);
+    valid_ = true;
+    return true;
+  }
+
+ private:
+  static constexpr std::size_t kBlocks = sizeof...(Ns);
+  static constexpr std::size_t kParams = (static_cast<std::size_t>(Ns) + ...);
+  static constexpr std::array<std::size_t, kBlocks> kSizes{static_cast<std::size_t>(Ns)...};
+  static constexpr std::array<std::size_t, kBlocks> kOffsets = [] {
+    std::array<std::size_t, kBlocks> o{};
+    for (std::size_t b = 1; b < kBlocks; ++b) o[b] = o[b - 1] + kSizes[b - 1];
+    return o;
+  }();
+  static constexpr auto kIdx = std::make_index_sequence<kBlocks>{};
+  using Out =
+      std::conditional_t<R == ceres::DYNAMIC, std::vector<double>,
+                         std::array<double, static_cast<std::size_t>(R == ceres::DYNAMIC ? 1 : R) * (1 + kParams)>>;
+
+  // The stored evaluation is at bitwise these parameters and holds every Jacobian block asked for.
+  template <std::size_t... B>
+  bool hit(std::index_sequence<B...>, double const* const* parameters, double** jacobians) const {
+    return ((jacobians[B] == nullptr || stored_[B]) && ...) &&
+           ((std::memcmp(parameters[B], x_.data() + kOffsets[B], kSizes[B] * sizeof(double)) == 0) && ...);
+  }
+  template <std::size_t... B>
+  void load(std::index_sequence<B...>, std::size_t nr, double** jacobians) const {
+    const double* J = out_.data() + nr;
+    ((jacobians[B] != nullptr ? (void)std::memcpy(jacobians[B], J + nr * kOffsets[B], nr * kSizes[B] * sizeof(double))
+                              : void()),
+     ...);
+  }
+  template <std::size_t... B>
+  void store(std::index_sequence<B...>, std::size_t nr, double const* const* parameters, double** jacobians) const {
+    double* J = out_.data() + nr;
+    ((std::memcpy(x_.data() + kOffsets[B], parameters[B], kSizes[B] * sizeof(double)),
+      stored_[B] = jacobians[B] != nullptr,
+      stored_[B] ? (void)std::memcpy(J + nr * kOffsets[B], jacobians[B], nr * kSizes[B] * sizeof(double)) : void()),
+     ...);
+  }
+
+  std::unique_ptr<ceres::CostFunction> inner_;
+  mutable std::array<double, kParams> x_{};  // the parameters of the stored evaluation
+  mutable Out out_{};                        // its residuals, then its Jacobian blocks (row-major)
+  mutable std::array<bool, kBlocks> stored_{};
+  mutable bool valid_ = false;
+};
+
+// new MemoJacobians around new AutoDiffCostFunction<Functor, R, Ns...>(f[, num_residuals]).
+template <typename Functor, int R, int... Ns>
+ceres::CostFunction* memo_autodiff(Functor* f, int num_residuals = R) {
+  if constexpr (R == ceres::DYNAMIC) {
+    return new MemoJacobians<R, Ns...>(new ceres::AutoDiffCostFunction<Functor, R, Ns...>(f, num_residuals));
+  } else {
+    return new MemoJacobians<R, Ns...>(new ceres::AutoDiffCostFunction<Functor, R, Ns...>(f));
+  }
+}
+
 // Nearest inner pose of the band for each via point (ordered along the band).
 std::vector<std::pair<std::size_t, Eigen::Vector2d>> assign_via_points(const std::vector<double>& x, std::size_t n,
                                                                        const std::vector<Eigen::Vector2d>& via) {
@@ -125,36 +216,32 @@ bool solve_once(std::vector<double>& x, std::vector<double>& dt, const TebProble
   problem.SetParameterBlockConstant(&x[0]);
   problem.SetParameterBlockConstant(&x[3 * (n - 1)]);
   for (std::size_t k = 0; k + 1 < n; ++k) {
-    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<EdgeFunctor, 5, 3, 3, 1>(new EdgeFunctor{ctx}), nullptr,
-                             &x[3 * k], &x[3 * k + 3], &dt[k]);
+    problem.AddResidualBlock(memo_autodiff<EdgeFunctor, 5, 3, 3, 1>(new EdgeFunctor{ctx}), nullptr, &x[3 * k],
+                             &x[3 * k + 3], &dt[k]);
   }
   for (std::size_t k = 0; k + 2 < n; ++k) {
-    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<AccFunctor, 2, 3, 3, 3, 1, 1>(new AccFunctor{ctx}),
-                             nullptr, &x[3 * k], &x[3 * k + 3], &x[3 * k + 6], &dt[k], &dt[k + 1]);
+    problem.AddResidualBlock(memo_autodiff<AccFunctor, 2, 3, 3, 3, 1, 1>(new AccFunctor{ctx}), nullptr, &x[3 * k],
+                             &x[3 * k + 3], &x[3 * k + 6], &dt[k], &dt[k + 1]);
   }
-  problem.AddResidualBlock(
-      new ceres::AutoDiffCostFunction<StartAccFunctor, 2, 3, 3, 1>(new StartAccFunctor{ctx, input.start_velocity}),
-      nullptr, &x[0], &x[3], &dt[0]);
+  problem.AddResidualBlock(memo_autodiff<StartAccFunctor, 2, 3, 3, 1>(new StartAccFunctor{ctx, input.start_velocity}),
+                           nullptr, &x[0], &x[3], &dt[0]);
   const int kobs = ctx.params->obstacles_per_pose;
   if (input.obstacles != nullptr && kobs > 0) {
     for (std::size_t k = 1; k + 1 < n; ++k) {
       if (assoc[k].empty()) continue;
       auto* f = new ObstacleFunctor{ctx, input.obstacles, &assoc[k]};
-      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<ObstacleFunctor, ceres::DYNAMIC, 3>(f, kobs), nullptr,
-                               &x[3 * k]);
+      problem.AddResidualBlock(memo_autodiff<ObstacleFunctor, ceres::DYNAMIC, 3>(f, kobs), nullptr, &x[3 * k]);
     }
   }
   if (!moving.empty()) {
     const int m = static_cast<int>(moving.size());
     for (std::size_t k = 1; k + 1 < n; ++k) {
       auto* f = new DynamicObstacleFunctor{ctx, &moving, times[k]};
-      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<DynamicObstacleFunctor, ceres::DYNAMIC, 3>(f, m),
-                               nullptr, &x[3 * k]);
+      problem.AddResidualBlock(memo_autodiff<DynamicObstacleFunctor, ceres::DYNAMIC, 3>(f, m), nullptr, &x[3 * k]);
     }
   }
   for (const auto& [k, v] : via) {
-    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<ViaFunctor, 2, 3>(new ViaFunctor{ctx, v}), nullptr,
-                             &x[3 * k]);
+    problem.AddResidualBlock(memo_autodiff<ViaFunctor, 2, 3>(new ViaFunctor{ctx, v}), nullptr, &x[3 * k]);
   }
   ceres::Solver::Options opt;
   opt.minimizer_type = ceres::TRUST_REGION;
