@@ -40,6 +40,12 @@ bool edge_free(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const std::ve
   return true;
 }
 
+// One segment's share of the winding signature: the signed angle from p - c to q - c.
+double winding_term(const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eigen::Vector2d& c) {
+  const Eigen::Vector2d a = p - c, b = q - c;
+  return std::atan2(a.x() * b.y() - a.y() * b.x(), a.dot(b));
+}
+
 struct Partial {
   double length;
   std::vector<int> nodes;
@@ -52,11 +58,7 @@ std::vector<double> winding_signature(const std::vector<Eigen::Vector2d>& path,
                                       const std::vector<Eigen::Vector2d>& centroids) {
   std::vector<double> sig(centroids.size(), 0.0);
   for (std::size_t l = 0; l < centroids.size(); ++l) {
-    const Eigen::Vector2d& c = centroids[l];
-    for (std::size_t i = 1; i < path.size(); ++i) {
-      const Eigen::Vector2d a = path[i - 1] - c, b = path[i] - c;
-      sig[l] += std::atan2(a.x() * b.y() - a.y() * b.x(), a.dot(b));  // signed angle from a to b
-    }
+    for (std::size_t i = 1; i < path.size(); ++i) sig[l] += winding_term(path[i - 1], path[i], centroids[l]);
   }
   return sig;
 }
@@ -143,6 +145,23 @@ std::vector<std::vector<Eigen::Vector2d>> candidate_paths(const Pose2& start, co
   if ((goal.position() - start.position()).norm() < 1e-6 || max_new <= 0) return out;
   const Roadmap rm = build_roadmap(start.position(), goal.position(), obstacles, min_dist_m, params);
   const int goal_node = static_cast<int>(rm.nodes.size()) - 1;
+  // The winding signature of a roadmap path, from its edges' terms (computed once per edge: the enumerated
+  // paths share edges). Each centroid's terms are summed in path order, as winding_signature does.
+  const std::size_t nn = rm.nodes.size();
+  std::vector<std::vector<double>> edge_terms(nn * nn);
+  const auto signature = [&](const std::vector<int>& nodes) {
+    std::vector<double> sig(centroids.size(), 0.0);
+    for (std::size_t i = 1; i < nodes.size(); ++i) {
+      const auto u = static_cast<std::size_t>(nodes[i - 1]), v = static_cast<std::size_t>(nodes[i]);
+      std::vector<double>& t = edge_terms[u * nn + v];
+      if (t.size() != centroids.size()) {
+        t.resize(centroids.size());
+        for (std::size_t l = 0; l < centroids.size(); ++l) t[l] = winding_term(rm.nodes[u], rm.nodes[v], centroids[l]);
+      }
+      for (std::size_t l = 0; l < centroids.size(); ++l) sig[l] += t[l];
+    }
+    return sig;
+  };
   // Best-first enumeration of paths in order of length (k shortest paths in a DAG).
   std::vector<std::vector<double>> seen = known;
   std::priority_queue<Partial, std::vector<Partial>, std::greater<>> open;
@@ -151,12 +170,12 @@ std::vector<std::vector<Eigen::Vector2d>> candidate_paths(const Pose2& start, co
     Partial p = open.top();
     open.pop();
     if (p.nodes.back() == goal_node) {
-      std::vector<Eigen::Vector2d> path;
-      for (int k : p.nodes) path.push_back(rm.nodes[k]);
-      auto sig = winding_signature(path, centroids);
+      auto sig = signature(p.nodes);
       if (std::none_of(seen.begin(), seen.end(),
                        [&](const auto& k) { return same_homotopy_class(k, sig, params.signature_tolerance_rad); })) {
         seen.push_back(std::move(sig));
+        std::vector<Eigen::Vector2d> path;
+        for (int k : p.nodes) path.push_back(rm.nodes[k]);
         out.push_back(std::move(path));
         if (static_cast<int>(out.size()) >= max_new) break;
       }
