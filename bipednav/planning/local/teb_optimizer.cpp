@@ -207,7 +207,10 @@ bool solve_once(std::vector<double>& x, std::vector<double>& dt, const TebProble
                 const std::vector<TebMovingObstacle>& moving, const std::vector<double>& times, const Context& ctx,
                 const TebBandParams& bp) {
   const std::size_t n = dt.size() + 1;
-  ceres::Problem problem;
+  // Without construction checks (parameter block sizes, duplicates, aliasing): every block here is distinct.
+  ceres::Problem::Options po;
+  po.disable_all_safety_checks = true;
+  ceres::Problem problem(po);
   for (std::size_t k = 0; k < n; ++k) problem.AddParameterBlock(&x[3 * k], 3);
   for (std::size_t k = 0; k + 1 < n; ++k) {
     problem.AddParameterBlock(&dt[k], 1);
