@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <type_traits>
 #include <vector>
 
 namespace bipednav::planning::local {
@@ -128,12 +129,45 @@ T distance_to_segment(const T& px, const T& py, const Eigen::Vector2d& a, const 
   return safe_norm(T(px - (T(a.x()) + t * T(ab.x()))), T(py - (T(a.y()) + t * T(ab.y()))));
 }
 
+// distance_to_segment's argument of the square root (doubles): the same arithmetic up to the root.
+inline double squared_distance_to_segment(double px, double py, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  const Eigen::Vector2d ab = b - a;
+  const double len2 = ab.squaredNorm();
+  double dx = px - a.x(), dy = py - a.y();
+  if (!(len2 < 1e-18)) {
+    double t = ((px - a.x()) * ab.x() + (py - a.y()) * ab.y()) / len2;
+    if (t < 0.0) t = 0.0;
+    if (t > 1.0) t = 1.0;
+    dx = px - (a.x() + t * ab.x());
+    dy = py - (a.y() + t * ab.y());
+  }
+  return dx * dx + dy * dy + 1e-12;
+}
+
 // Signed distance from (px, py) to a convex polygon (vertices counter-clockwise): negative inside
 // (minus the depth), so the gradient keeps pushing out of an obstacle.
 template <typename T>
 T distance_to_polygon(const T& px, const T& py, const std::vector<Eigen::Vector2d>& v) {
   if (v.size() == 1) return distance_to_point(px, py, v[0]);
   if (v.size() == 2) return distance_to_segment(px, py, v[0], v[1]);
+  if constexpr (std::is_same_v<T, double>) {
+    // One square root for the nearest edge: the root is monotonic, so the root of the least square is the
+    // least of the edges' distances (bitwise), as the generic code below computes it.
+    bool inside = true;
+    double best = squared_distance_to_segment(px, py, v.back(), v.front());
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      const Eigen::Vector2d& a = v[i];
+      const Eigen::Vector2d& b = v[(i + 1) % v.size()];
+      const double cross = (b.x() - a.x()) * (py - a.y()) - (b.y() - a.y()) * (px - a.x());
+      if (cross < 0.0) inside = false;
+      if (i + 1 < v.size()) {
+        const double d = squared_distance_to_segment(px, py, a, b);
+        if (d < best) best = d;
+      }
+    }
+    const double d = std::sqrt(best);
+    return inside ? -d : d;
+  }
   bool inside = true;
   T best = distance_to_segment(px, py, v.back(), v.front());
   for (std::size_t i = 0; i < v.size(); ++i) {

@@ -1,7 +1,10 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <random>
+#include <vector>
 
 #include "bipednav/planning/local/teb_terms.hpp"
 
@@ -71,6 +74,37 @@ TEST(TebTerms, ObstacleDistances) {
   const std::vector<Eigen::Vector2d> square{{0, 0}, {1, 0}, {1, 1}, {0, 1}};
   EXPECT_NEAR(distance_to_polygon(2.0, 0.5, square), 1.0, 1e-9);
   EXPECT_NEAR(distance_to_polygon(0.5, 0.4, square), -0.4, 1e-9);  // inside: minus the depth
+}
+
+// The double polygon distance takes one square root (of the nearest edge's square): it must give bitwise the
+// generic (per-edge root) value, which the Jets' values and the optimiser's cost evaluations follow.
+TEST(TebTerms, PolygonDistanceOneRootMatchesPerEdgeRoots) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int t = 0; t < 2000; ++t) {
+    const int k = 3 + static_cast<int>(rng() % 10);
+    const Eigen::Vector2d c(10 * u(rng), 10 * u(rng));
+    const double r = 0.02 + std::abs(u(rng));
+    std::vector<Eigen::Vector2d> v;
+    for (int i = 0; i < k; ++i) {
+      const double a = 2 * kPi * i / k + 0.1 * u(rng);
+      v.emplace_back(c.x() + r * std::cos(a), c.y() + r * std::sin(a));
+    }
+    if (t % 10 == 0) v[1] = v[0];  // a degenerate edge
+    for (int q = 0; q < 8; ++q) {
+      const double px = q == 0 ? v[0].x() : c.x() + 2 * r * u(rng), py = q == 0 ? v[0].y() : c.y() + 2 * r * u(rng);
+      bool inside = true;
+      double best = distance_to_segment(px, py, v.back(), v.front());
+      for (std::size_t i = 0; i < v.size(); ++i) {
+        const Eigen::Vector2d& a = v[i];
+        const Eigen::Vector2d& b = v[(i + 1) % v.size()];
+        EXPECT_EQ(std::sqrt(squared_distance_to_segment(px, py, a, b)), distance_to_segment(px, py, a, b));
+        if ((b.x() - a.x()) * (py - a.y()) - (b.y() - a.y()) * (px - a.x()) < 0.0) inside = false;
+        if (i + 1 < v.size()) best = std::min(best, distance_to_segment(px, py, a, b));
+      }
+      EXPECT_EQ(distance_to_polygon(px, py, v), inside ? -best : best);
+    }
+  }
 }
 
 }  // namespace bipednav::planning::local
