@@ -207,6 +207,7 @@ void HomotopyPlanner::warm_start(const Pose2& start, const Pose2& goal, const st
 }
 
 void HomotopyPlanner::drop_duplicates(const std::vector<Eigen::Vector2d>& centroids, bool by_cost) {
+  if (bands_.size() < 2) return;  // nothing to compare: every band stays, in its order
   std::vector<std::size_t> order(bands_.size());
   std::iota(order.begin(), order.end(), 0);
   if (by_cost) {
