@@ -36,17 +36,20 @@ Vlp16::Vlp16(const Vlp16Params& params, std::string frame_id, std::uint64_t seed
     }
   }
   ranges_.resize(static_cast<std::size_t>(params_.rings) * RayPacket::kWidth);
-  // Ring-major copies, padded by a packet width so that every packet reads 16 columns.
-  beam_stride_ = static_cast<std::size_t>(params_.columns) + RayPacket::kWidth;
-  for (auto* v : {&beam_x_, &beam_y_, &beam_z_})
-    v->assign(beam_stride_ * static_cast<std::size_t>(params_.rings), 0.0f);
-  for (int c = 0; c < params_.columns; ++c)
-    for (int r = 0; r < params_.rings; ++r) {
-      const std::size_t i = static_cast<std::size_t>(r) * beam_stride_ + static_cast<std::size_t>(c);
-      beam_x_[i] = beam(c, r).x();
-      beam_y_[i] = beam(c, r).y();
-      beam_z_[i] = beam(c, r).z();
-    }
+  const std::size_t padded = static_cast<std::size_t>(params_.columns) + RayPacket::kWidth;
+  cos_az_.assign(padded, 0.0);
+  sin_az_.assign(padded, 0.0);
+  for (int c = 0; c < params_.columns; ++c) {
+    const double az = column_azimuth_rad(c);
+    cos_az_[static_cast<std::size_t>(c)] = std::cos(az);
+    sin_az_[static_cast<std::size_t>(c)] = std::sin(az);
+  }
+  for (int r = 0; r < params_.rings; ++r) {
+    const double el = ring_elevation_rad(r);
+    cos_el_.push_back(std::cos(el));
+    sin_el_.push_back(static_cast<float>(std::sin(el)));
+  }
+  for (auto* v : {&packet_beam_x_, &packet_beam_y_, &packet_beam_z_}) v->assign(ranges_.size(), 0.0f);
 }
 
 double Vlp16::ring_elevation_rad(int ring) const {
@@ -86,25 +89,38 @@ void Vlp16::fire_columns(int first, int n, const RayCaster& caster, const PoseAt
   packet.count = n;
   const auto max_range = static_cast<float>(params_.max_range_m);
   using namespace simd4;
+  const double* cos_az = &cos_az_[static_cast<std::size_t>(first)];
+  const double* sin_az = &sin_az_[static_cast<std::size_t>(first)];
   for (int r = 0; r < rings; ++r) {
-    // All 16 lanes (columns past n are ignored by the caster): dir = R_k * beam, 4 columns at once.
-    const std::size_t b = static_cast<std::size_t>(r) * beam_stride_ + static_cast<std::size_t>(first);
+    // The beams of all 16 lanes (columns past n are ignored by the caster), sensor frame.
+    const std::size_t b = static_cast<std::size_t>(r) * W;
+    float* beam_x = &packet_beam_x_[b];
+    float* beam_y = &packet_beam_y_[b];
+    float* beam_z = &packet_beam_z_[b];
+    const double ce = cos_el_[static_cast<std::size_t>(r)];
+    for (int k = 0; k < W; ++k) {
+      beam_x[k] = static_cast<float>(ce * cos_az[k]);
+      beam_y[k] = static_cast<float>(ce * sin_az[k]);
+      beam_z[k] = sin_el_[static_cast<std::size_t>(r)];
+    }
+    // dir = R_k * beam, 4 columns at once.
     for (int k = 0; k < W; k += 4) {
-      const F4 bx = load(&beam_x_[b + k]), by = load(&beam_y_[b + k]), bz = load(&beam_z_[b + k]);
+      const F4 bx = load(beam_x + k), by = load(beam_y + k), bz = load(beam_z + k);
       float* dir[3] = {packet.dir_x, packet.dir_y, packet.dir_z};
       for (int i = 0; i < 3; ++i)
         store(dir[i] + k, load(&R[i][0][k]) * bx + load(&R[i][1][k]) * by + load(&R[i][2][k]) * bz);
     }
-    caster.cast_packet(packet, max_range, &ranges_[static_cast<std::size_t>(r) * W], true);
+    caster.cast_packet(packet, max_range, &ranges_[b], true);
   }
   // Output in firing order: column by column, rings bottom to top.
   const auto sigma = static_cast<float>(params_.range_noise_stddev_m);
   for (int k = 0; k < n; ++k)
     for (int r = 0; r < rings; ++r) {
-      const float range = ranges_[static_cast<std::size_t>(r) * W + k];
+      const std::size_t i = static_cast<std::size_t>(r) * W + static_cast<std::size_t>(k);
+      const float range = ranges_[i];
       if (!(range >= params_.min_range_m && range <= params_.max_range_m)) continue;
       const float noisy = range + sigma * noise_();
-      current_.points.push_back(beam(first + k, r) * noisy);
+      current_.points.emplace_back(packet_beam_x_[i] * noisy, packet_beam_y_[i] * noisy, packet_beam_z_[i] * noisy);
       current_.time_offsets_s.push_back(dt[k]);
       current_.rings.push_back(static_cast<std::uint16_t>(r));
     }

@@ -66,10 +66,16 @@ class Vlp16 {
   Vlp16Params params_;
   std::string frame_id_;
   GaussianNoise noise_;
-  std::vector<Eigen::Vector3f> beams_;           // column-major, sensor frame
-  std::vector<float> ranges_;                    // ring-major, RayPacket::kWidth columns per ring
-  std::vector<float> beam_x_, beam_y_, beam_z_;  // beams ring-major, beam_stride_ per ring
-  std::size_t beam_stride_ = 0;
+  std::vector<Eigen::Vector3f> beams_;  // column-major, sensor frame
+  std::vector<float> ranges_;           // ring-major, RayPacket::kWidth columns per ring
+  // The beams' factors: beam (c, r) = float(cos_el_[r] * cos_az_[c]), float(cos_el_[r] *
+  // sin_az_[c]), sin_el_[r] (the same double products as beams_). A packet's beams are formed
+  // from these small tables instead of read from a 350 kB table that a sweep streams through
+  // cache. The azimuth tables are padded by a packet width (zeros).
+  std::vector<double> cos_az_, sin_az_, cos_el_;
+  std::vector<float> sin_el_;
+  // Scratch: the current packets' beams, sensor frame, ring-major with kWidth columns per ring.
+  std::vector<float> packet_beam_x_, packet_beam_y_, packet_beam_z_;
   std::uint64_t sweep_ = 0;
   int next_column_ = 0;
   PointCloud current_;
