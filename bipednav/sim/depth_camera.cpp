@@ -53,6 +53,8 @@ DepthCamera::DepthCamera(const DepthCameraParams& params, std::string frame_id, 
   const double fy = 0.5 * h / std::tan(0.5 * params_.vfov_rad);
   for (int u = 0; u < w; ++u) slope_u_.push_back(static_cast<float>(-(u + 0.5 - 0.5 * w) / fx));
   for (int v = 0; v < h; ++v) slope_v_.push_back(static_cast<float>(-(v + 0.5 - 0.5 * h) / fy));
+  for (int u = 0; u < w / 4 * 4; ++u)
+    slope_xyz_.insert(slope_xyz_.end(), {1.0f, slope_u_[static_cast<std::size_t>(u)], 0.0f});
   // A ray can reach depth max_range_m at range max_range_m / cos(angle to the axis).
   max_cast_m_ = static_cast<float>(params_.max_range_m / min_x) * 1.01f;
   if (params_.renderer == "raster")
@@ -106,19 +108,29 @@ void DepthCamera::render_into(PointCloud& cloud, double stamp_s, const SE3& T_wo
   const float* su = slope_u_.data();
   float* noise = noise_row_.data();
   using namespace simd4;
+  // The lanes of a block's 12 floats x0 y0 z0 x1 | y1 z1 x2 y2 | z2 x3 y3 z3 that are z.
+  const I4 z_lanes[3] = {I4{0, 0, -1, 0}, I4{0, -1, 0, 0}, I4{-1, 0, 0, -1}};
   for (std::size_t v = 0; v < slope_v_.size(); ++v) {
     noise_.fill(noise_row_);
     const float sv = slope_v_[v];
     const float* z_row = depth_.data() + (raster ? 0 : v * w);
     if (raster) rasterizer_.depth_row(static_cast<int>(v), depth_.data());
     Eigen::Vector3f* out_row = out + v * w;
+    // slope_xyz_ with sv in its zeros (bitwise: exactly (1, su, sv) per pixel).
+    const I4 sv_bits[3] = {(I4)splat(sv) & z_lanes[0], (I4)splat(sv) & z_lanes[1], (I4)splat(sv) & z_lanes[2]};
+    const float* slopes = slope_xyz_.data();
     std::size_t u = 0;
-    for (; u + 4 <= w; u += 4) {
+    for (; u + 4 <= w; u += 4, slopes += 12) {
       const F4 z = load(z_row + u);
       const F4 z_noisy = z + splat(k) * z * z * load(noise + u);
       const I4 ok = (z >= z_min) & (z <= z_max) & (z_noisy > 0.0f);
-      const F4 x = select(ok, z_noisy, splat(nan)), y = x * load(su + u), zz = x * sv;
-      store_xyz(out_row[u].data(), x, y, zz);
+      const F4 x = select(ok, z_noisy, splat(nan));
+      // Point i is x_i * (1, su_i, sv): x_i itself (x * 1 is exact, NaN included), x_i * su_i and
+      // x_i * sv, the same products as x, x * su, x * sv lane by lane.
+      float* o = out_row[u].data();
+      store(o, shuffle<0, 0, 0, 1>(x, x) * (F4)((I4)load(slopes) | sv_bits[0]));
+      store(o + 4, shuffle<1, 1, 2, 2>(x, x) * (F4)((I4)load(slopes + 4) | sv_bits[1]));
+      store(o + 8, shuffle<2, 3, 3, 3>(x, x) * (F4)((I4)load(slopes + 8) | sv_bits[2]));
     }
     for (; u < w; ++u) {
       const float z = z_row[u];

@@ -70,6 +70,9 @@ class DepthCamera {
   std::vector<int> tile_count_;               // used lanes per tile
   // A pixel's point is depth * (1, slope_u_[u], slope_v_[v]).
   std::vector<float> slope_u_, slope_v_;
+  // Per block of 4 pixels of a row, (1, slope_u_[u], 0) for its 4 pixels as 12 floats: a row's
+  // points are the depths times these with slope_v_ in the zeros.
+  std::vector<float> slope_xyz_;
   float max_cast_m_ = 0.0f;  // range at which the outermost ray reaches max_range_m in depth
   DepthRasterizer rasterizer_;
   std::vector<float> depth_;      // scratch: depth per pixel (row-major; raster: one row), +inf without a hit
