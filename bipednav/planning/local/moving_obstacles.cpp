@@ -617,10 +617,17 @@ struct RolloutCheck {
 
 RolloutCheck rollout_check(const Pose2& pose, const Twist& current, const Twist& target,
                            const std::vector<TrackedObstacle>& moving, const CommandLimits& lim, double now_s,
-                           const DynamicAvoidanceParams& p, std::vector<Pose2>* arc, bool corridors = false) {
+                           const DynamicAvoidanceParams& p, std::vector<Pose2>* arc, bool corridors = false,
+                           const std::vector<double>* turns = nullptr) {
+  // The prediction of obstacle i at now_s + dt: constant velocity, turned back at its turn time.
+  const auto at = [&](std::size_t i, double dt) -> Eigen::Vector2d {
+    const double tt = turns ? (*turns)[i] : kInf;
+    if (dt <= tt) return moving[i].predict(now_s + dt);
+    return moving[i].predict(now_s + tt) - moving[i].velocity * (dt - tt);
+  };
   Rollout r{pose, current};
   std::vector<double> prev(moving.size());
-  for (std::size_t i = 0; i < moving.size(); ++i) prev[i] = (moving[i].predict(now_s) - pose.position()).norm();
+  for (std::size_t i = 0; i < moving.size(); ++i) prev[i] = (at(i, 0.0) - pose.position()).norm();
   if (arc) arc->assign(1, pose);
   RolloutCheck out;
   const int n = static_cast<int>(std::ceil(p.horizon_s / p.sim_step_s - 1e-9));
@@ -629,14 +636,13 @@ RolloutCheck rollout_check(const Pose2& pose, const Twist& current, const Twist&
     step(r, target, lim, p.sim_step_s);
     if (arc && t <= p.static_check_s + 1e-9) arc->push_back(r.pose);
     for (std::size_t i = 0; i < moving.size(); ++i) {
-      const double d = (moving[i].predict(now_s + t) - r.pose.position()).norm();
+      const double d = (at(i, t) - r.pose.position()).norm();
       const double reach = p.robot_radius_m + moving[i].radius_m + p.safety_margin_m + p.prediction_growth_mps * t;
       out.min_gap_m = std::min(out.min_gap_m, d - reach);
       if (!std::isfinite(out.ttc_s) && d < reach && d < prev[i] - 1e-6) out.ttc_s = t;
       prev[i] = d;
       // Inside the obstacle's corridor: within reach of its predicted path over the next horizon.
-      if (corridors && point_segment_distance(r.pose.position(), moving[i].predict(now_s + t),
-                                              moving[i].predict(now_s + t + p.horizon_s)) < reach)
+      if (corridors && point_segment_distance(r.pose.position(), at(i, t), at(i, t + p.horizon_s)) < reach)
         out.corridor_exit_s = k == n ? kInf : t + p.sim_step_s;
     }
   }
@@ -661,7 +667,31 @@ YieldDecision yield_to_moving_obstacles(const Twist& cmd, const Pose2& pose, con
   out.ttc_s = kInf;
   if (moving.empty() || !pose.is_finite() || !cmd.is_finite()) return out;
   const Twist cur = current.is_finite() ? current : Twist{};
-  out.ttc_s = rollout_check(pose, cur, cmd, moving, lim, now_s, p, nullptr).ttc_s;
+  // reverse_at_structure: when each obstacle's leading edge would reach a lethal cell.
+  std::vector<double> turn_s;
+  const std::vector<double>* turns = nullptr;
+  if (p.reverse_at_structure) {
+    const double res = costmap.resolution_m();
+    for (const auto& m : moving) {
+      double tt = kInf;
+      const double speed = m.velocity.norm();
+      if (speed > 1e-3) {
+        const Eigen::Vector2d dir = m.velocity / speed, c = m.predict(now_s);
+        const double reach_m = speed * (p.horizon_s + 1e-9) + m.radius_m;
+        for (double s = m.radius_m + 2.0 * res; s <= reach_m; s += 0.5 * res) {
+          const Eigen::Vector2d q = c + dir * s;
+          const auto cell = costmap.geometry().world_to_cell(q.x(), q.y());
+          if (cell && costmap.cost(*cell) == mapping::kLethal) {
+            tt = std::max(0.0, (s - m.radius_m) / speed);
+            break;
+          }
+        }
+      }
+      turn_s.push_back(tt);
+    }
+    turns = &turn_s;
+  }
+  out.ttc_s = rollout_check(pose, cur, cmd, moving, lim, now_s, p, nullptr, false, turns).ttc_s;
   if (!std::isfinite(out.ttc_s)) return out;
 
   // Candidates: the command slowed along its arc, then a coarse grid of forward, turning and
@@ -685,7 +715,7 @@ YieldDecision yield_to_moving_obstacles(const Twist& cmd, const Pose2& pose, con
   double best_dev = kInf, best_gap = -kInf, best_exit = kInf;
   std::vector<Pose2> arc;
   for (const auto& c : cand) {
-    const RolloutCheck rc = rollout_check(pose, cur, c, moving, lim, now_s, p, &arc, p.exit_swept_corridor);
+    const RolloutCheck rc = rollout_check(pose, cur, c, moving, lim, now_s, p, &arc, p.exit_swept_corridor, turns);
     if (!poses_feasible(arc, costmap)) continue;
     const bool free = !std::isfinite(rc.ttc_s);
     const double dev = deviation(c);
@@ -701,12 +731,12 @@ YieldDecision yield_to_moving_obstacles(const Twist& cmd, const Pose2& pose, con
   if (best == nullptr) {
     out.target = {};
     out.cmd = clamp_command({}, cur, lim, period_s);
-    out.ttc_s = rollout_check(pose, cur, Twist{}, moving, lim, now_s, p, nullptr).ttc_s;
+    out.ttc_s = rollout_check(pose, cur, Twist{}, moving, lim, now_s, p, nullptr, false, turns).ttc_s;
     return out;
   }
   out.target = *best;
   out.cmd = clamp_command(*best, cur, lim, period_s);
-  out.ttc_s = rollout_check(pose, cur, *best, moving, lim, now_s, p, nullptr).ttc_s;
+  out.ttc_s = rollout_check(pose, cur, *best, moving, lim, now_s, p, nullptr, false, turns).ttc_s;
   return out;
 }
 

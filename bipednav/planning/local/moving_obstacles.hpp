@@ -346,6 +346,18 @@ struct DynamicAvoidanceParams {
   // yields in the lane with the free candidates backing off, which the lagging walker does not
   // follow before a wrong track of cube_1 behind it makes every candidate run into.
   bool exit_swept_corridor = false;
+  // An obstacle's prediction turns back (the velocity reversed) where its leading edge, moving on
+  // at constant velocity, would reach a lethal cell of the costmap (searched along the velocity from
+  // its radius plus two cells on, within the horizon): movers do not pass through walls, and one
+  // walking to and fro comes back. Cause addressed: three_rooms/digit seeds 15 and 18, cube_1 turns
+  // at the end of its lane (y = -2.3, 0.35 m from the wall's face) at 92 s while Digit crosses the
+  // lane 1 m in front of it; predicted on into the wall, it left the robot's path free until the
+  // turn, and yielding began 0.7 s after it, too late for the walker to leave the lane.
+  // Off: on for Digit (walker defaults, main fec66ac + this), three_rooms seeds 15, 18, 19 (cube_1,
+  // cube_1, cube_2 contacts off) reach the goal without contact, but 3 (NO_PATH_FOUND after
+  // touching cube_2) and 4 (cube_2) now fail; 1, 2, 5, 6 succeed as off; the other seeds and
+  // digit_lab_dynamic not screened (session 15).
+  bool reverse_at_structure = false;
 
   void validate() const;
 };

@@ -324,6 +324,37 @@ TEST(MovingObstacles, InAMoversLaneExitSweptCorridorLeavesTheLane) {
   EXPECT_GT(roll_out(pose, exit.target, lim, p.horizon_s).x, reach);
 }
 
+TEST(MovingObstacles, ReverseAtStructureTurnsAMoverBackAtTheWall) {
+  // A cube (radius 0.35 m) 0.8 m from a wall (lethal from y = -2.0 down) walks towards it at
+  // 0.3 m/s; the robot (radius 0.38 m) crosses its lane 0.6 m in front of it at 0.3 m/s. Constant
+  // velocity takes the cube through the wall and away from the robot's path: nothing to yield to.
+  // Turned back where its leading edge reaches the wall (after ~1.6 s), it meets the robot in its
+  // lane (three_rooms: cube_1 turns at the end of its lane as Digit crosses it).
+  auto map = test::empty_costmap(0.0, 0.0, 8.0);
+  test::add_box(map, -3.0, -2.2, 3.0, -2.0);
+  TrackedObstacle cube;
+  cube.id = 1;
+  cube.position = {1.0, -1.2};
+  cube.velocity = {0.0, -0.3};
+  cube.radius_m = 0.35;
+  const std::vector<TrackedObstacle> moving{cube};
+  const CommandLimits lim{0.5, 0.25, 0.6, 0.5, 1.0};
+  DynamicAvoidanceParams p;
+  p.robot_radius_m = 0.38;
+  const Pose2 pose{0.2, -0.6, 0.0};
+  const Twist cmd{0.3, 0.0, 0.0};
+  const auto straight = yield_to_moving_obstacles(cmd, pose, cmd, moving, map, lim, 0.1, 0.0, p);
+  EXPECT_FALSE(straight.modified);
+  EXPECT_FALSE(std::isfinite(straight.ttc_s));
+  p.reverse_at_structure = true;
+  const auto turned = yield_to_moving_obstacles(cmd, pose, cmd, moving, map, lim, 0.1, 0.0, p);
+  EXPECT_TRUE(turned.modified);
+  // Without a wall in its way the prediction is the straight one.
+  const auto open =
+      yield_to_moving_obstacles(cmd, pose, cmd, moving, test::empty_costmap(0.0, 0.0, 8.0), lim, 0.1, 0.0, p);
+  EXPECT_FALSE(open.modified);
+}
+
 TEST(MovingObstacles, OfSeveralSafeCommandsTheClosestToThePlannersIsKept) {
   // A box crossing 1.2 m ahead from the right: slowing down or veering lets it pass; stopping
   // and backing off are safe too but further from the command.
