@@ -353,10 +353,9 @@ struct DynamicAvoidanceParams {
   // at the end of its lane (y = -2.3, 0.35 m from the wall's face) at 92 s while Digit crosses the
   // lane 1 m in front of it; predicted on into the wall, it left the robot's path free until the
   // turn, and yielding began 0.7 s after it, too late for the walker to leave the lane.
-  // Off: on for Digit (walker defaults, main fec66ac + this), three_rooms seeds 15, 18, 19 (cube_1,
-  // cube_1, cube_2 contacts off) reach the goal without contact, but 3 (NO_PATH_FOUND after
-  // touching cube_2) and 4 (cube_2) now fail; 1, 2, 5, 6 succeed as off; the other seeds and
-  // digit_lab_dynamic not screened (session 15).
+  // Off: on for Digit (walker defaults, main fec66ac + this), seeds 1-20: three_rooms 17/20 as off
+  // but other seeds: 15, 18, 19 (cube_1, cube_1, cube_2 contacts off) succeed, 3 (NO_PATH_FOUND
+  // after touching cube_2), 4 and 9 (cube_2) fail; digit_lab_dynamic 10/10 as off (session 15).
   bool reverse_at_structure = false;
 
   void validate() const;
