@@ -6,6 +6,7 @@
 #include <string>
 
 #include "bipednav/common/error.hpp"
+#include "bipednav/common/xyz4.hpp"
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -114,13 +115,7 @@ BIPEDNAV_AVX2 std::size_t avx2_keys(const float* xyz, std::size_t n, const Eigen
   __m256d bad = _mm256_setzero_pd();
   std::size_t i = 0;
   for (; i + 4 <= n; i += 4) {
-    const float* p = xyz + 3 * i;  // x0 y0 z0 x1 | y1 z1 x2 y2 | z2 x3 y3 z3
-    const __m128 a = _mm_loadu_ps(p), b = _mm_loadu_ps(p + 4), c = _mm_loadu_ps(p + 8);
-    const __m128 x = _mm_shuffle_ps(a, _mm_shuffle_ps(b, c, _MM_SHUFFLE(1, 0, 3, 2)), _MM_SHUFFLE(3, 0, 3, 0));
-    const __m128 y = _mm_shuffle_ps(_mm_shuffle_ps(a, b, _MM_SHUFFLE(0, 0, 1, 1)),
-                                    _mm_shuffle_ps(b, c, _MM_SHUFFLE(2, 2, 3, 3)), _MM_SHUFFLE(2, 0, 2, 0));
-    const __m128 z = _mm_shuffle_ps(_mm_shuffle_ps(a, b, _MM_SHUFFLE(1, 1, 2, 2)),
-                                    _mm_shuffle_ps(c, c, _MM_SHUFFLE(3, 3, 0, 0)), _MM_SHUFFLE(2, 0, 2, 0));
+    const auto [x, y, z] = xyz4::load(xyz + 3 * i);
     const __m256d sx = _mm256_mul_pd(_mm256_cvtps_pd(x), lx);
     const __m256d sy = _mm256_mul_pd(_mm256_cvtps_pd(y), ly);
     const __m256d sz = _mm256_mul_pd(_mm256_cvtps_pd(z), lz);
