@@ -22,6 +22,7 @@ struct LethalScratch {
   std::vector<std::size_t> cells;     // the components' cells, component after component, each in scan order
   std::vector<std::size_t> comp_end;  // end of each component in cells (components in scan order)
   std::vector<std::pair<std::pair<long, long>, std::size_t>> keyed;  // (block, position in cells)
+  std::vector<Eigen::Vector2d> centres;                              // one component's cell centres
   std::vector<Eigen::Vector2d> pts;                                  // one block's cell centres
 };
 
@@ -155,8 +156,10 @@ std::vector<Obstacle> extract_obstacles(const mapping::Costmap2D& costmap, const
     // Cut large components into blocks so that hulls stay local (a wall's L or U stays concave). Blocks in
     // order of (column, row) of the block, each block's cells in scan order.
     s.keyed.clear();
+    s.centres.clear();
     for (std::size_t j = begin; j < end; ++j) {
       const Eigen::Vector2d c = g.cell_center(g.cell_of(s.cells[j]));
+      s.centres.push_back(c);
       s.keyed.push_back({{static_cast<long>(std::floor(c.x() / params.cluster_block_m)),
                           static_cast<long>(std::floor(c.y() / params.cluster_block_m))},
                          j});
@@ -166,7 +169,7 @@ std::vector<Obstacle> extract_obstacles(const mapping::Costmap2D& costmap, const
       s.pts.clear();
       std::size_t l = k;
       for (; l < s.keyed.size() && s.keyed[l].first == s.keyed[k].first; ++l)
-        s.pts.push_back(g.cell_center(g.cell_of(s.cells[s.keyed[l].second])));
+        s.pts.push_back(s.centres[s.keyed[l].second - begin]);
       if (static_cast<int>(out.size()) >= params.max_obstacles) return out;
       out.push_back(make_obstacle(s.pts, half, params));
       k = l;

@@ -369,6 +369,14 @@ double point_segment_distance(const Eigen::Vector2d& p, const Eigen::Vector2d& a
   return (p - (a + s * ab)).norm();
 }
 
+// radius_floor: the distance from p to the segment from where the lost track l was last seen to where it
+// is predicted at stamp_s (at most max_prediction_s past its last update).
+double lost_track_distance(const TrackedObstacle& l, const Eigen::Vector2d& p, double stamp_s,
+                           double max_prediction_s) {
+  const double dt = std::min(stamp_s - l.stamp_s, max_prediction_s);
+  return point_segment_distance(p, l.predict(l.last_seen_s), l.position + l.velocity * dt);
+}
+
 // radius_floor: adds a blob's radius to t's recent radii, forgets those older than window_s and
 // returns the largest left.
 double floor_radius(TrackedObstacle& t, double radius_m, double stamp_s, double window_s) {
@@ -516,9 +524,7 @@ void MovingObstacleTracker::update_blobs(const std::vector<Blob>& blobs, double 
         if (d <= params_.reacquire_gate_m && d < best_d) best = k, best_d = d;
       }
       for (const auto& lost : lost_) {
-        const TrackedObstacle& l = lost.first;
-        const double dt = std::min(stamp_s - l.stamp_s, params_.max_prediction_s);
-        if (point_segment_distance(blobs[j].centroid, l.predict(l.last_seen_s), l.position + l.velocity * dt) < best_d)
+        if (lost_track_distance(lost.first, blobs[j].centroid, stamp_s, params_.max_prediction_s) < best_d)
           best = tracks_.size();
       }
       if (best < tracks_.size()) {
@@ -545,10 +551,7 @@ void MovingObstacleTracker::update_blobs(const std::vector<Blob>& blobs, double 
       std::size_t best = lost_.size();
       double best_d = kInf;
       for (std::size_t k = 0; k < lost_.size(); ++k) {
-        const TrackedObstacle& l = lost_[k].first;
-        const double dt = std::min(stamp_s - l.stamp_s, params_.max_prediction_s);
-        const double d =
-            point_segment_distance(blobs[j].centroid, l.predict(l.last_seen_s), l.position + l.velocity * dt);
+        const double d = lost_track_distance(lost_[k].first, blobs[j].centroid, stamp_s, params_.max_prediction_s);
         if (d <= params_.reacquire_gate_m && d < best_d) best = k, best_d = d;
       }
       if (best < lost_.size()) {
