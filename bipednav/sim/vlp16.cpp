@@ -26,15 +26,6 @@ void Vlp16Params::validate() const {
 Vlp16::Vlp16(const Vlp16Params& params, std::string frame_id, std::uint64_t seed)
     : params_(params), frame_id_(std::move(frame_id)), noise_(seed) {
   params_.validate();
-  beams_.reserve(static_cast<std::size_t>(params_.columns) * params_.rings);
-  for (int c = 0; c < params_.columns; ++c) {
-    const double az = column_azimuth_rad(c);
-    for (int r = 0; r < params_.rings; ++r) {
-      const double el = ring_elevation_rad(r);
-      beams_.emplace_back(static_cast<float>(std::cos(el) * std::cos(az)),
-                          static_cast<float>(std::cos(el) * std::sin(az)), static_cast<float>(std::sin(el)));
-    }
-  }
   ranges_.resize(static_cast<std::size_t>(params_.rings) * RayPacket::kWidth);
   const std::size_t padded = static_cast<std::size_t>(params_.columns) + RayPacket::kWidth;
   cos_az_.assign(padded, 0.0);
@@ -137,9 +128,9 @@ std::optional<PointCloud> Vlp16::fire_until(double t_end_s, const RayCaster& cas
       current_.clear();
       current_.frame_id = frame_id_;
       current_.stamp_s = t;
-      current_.reserve(beams_.size());
-      current_.time_offsets_s.reserve(beams_.size());
-      current_.rings.reserve(beams_.size());
+      current_.reserve(beam_count());
+      current_.time_offsets_s.reserve(beam_count());
+      current_.rings.reserve(beam_count());
     }
     // The columns of this sweep due before t_end_s, up to one packet width.
     int n = 1;

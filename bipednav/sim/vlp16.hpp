@@ -54,9 +54,14 @@ class Vlp16 {
   double column_time_s(std::uint64_t sweep, int column) const;
   double ring_elevation_rad(int ring) const;
   double column_azimuth_rad(int column) const;
-  // Unit beam direction in the sensor frame.
-  const Eigen::Vector3f& beam(int column, int ring) const { return beams_[column * params_.rings + ring]; }
+  // Unit beam direction in the sensor frame: float(cos(el) cos(az)), float(cos(el) sin(az)), float(sin(el)).
+  Eigen::Vector3f beam(int column, int ring) const {
+    const auto c = static_cast<std::size_t>(column);
+    const auto r = static_cast<std::size_t>(ring);
+    return {static_cast<float>(cos_el_[r] * cos_az_[c]), static_cast<float>(cos_el_[r] * sin_az_[c]), sin_el_[r]};
+  }
   const Vlp16Params& params() const { return params_; }
+  std::size_t beam_count() const { return static_cast<std::size_t>(params_.columns) * params_.rings; }
 
  private:
   // Fires columns [first, first + n) (n <= RayPacket::kWidth) at their own times and poses:
@@ -66,12 +71,11 @@ class Vlp16 {
   Vlp16Params params_;
   std::string frame_id_;
   GaussianNoise noise_;
-  std::vector<Eigen::Vector3f> beams_;  // column-major, sensor frame
-  std::vector<float> ranges_;           // ring-major, RayPacket::kWidth columns per ring
+  std::vector<float> ranges_;  // ring-major, RayPacket::kWidth columns per ring
   // The beams' factors: beam (c, r) = float(cos_el_[r] * cos_az_[c]), float(cos_el_[r] *
-  // sin_az_[c]), sin_el_[r] (the same double products as beams_). A packet's beams are formed
-  // from these small tables instead of read from a 350 kB table that a sweep streams through
-  // cache. The azimuth tables are padded by a packet width (zeros).
+  // sin_az_[c]), sin_el_[r]. A packet's beams are formed from these small tables (29 kB) rather
+  // than read from a 350 kB table of beams that a sweep would stream through cache. The azimuth
+  // tables are padded by a packet width (zeros).
   std::vector<double> cos_az_, sin_az_, cos_el_;
   std::vector<float> sin_el_;
   // Scratch: the current packets' beams, sensor frame, ring-major with kWidth columns per ring.
