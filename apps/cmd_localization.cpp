@@ -19,6 +19,7 @@
 #include "bipednav/localization/drift_metrics.hpp"
 #include "bipednav/localization/gicp.hpp"
 #include "bipednav/localization/loam.hpp"
+#include "bipednav/navigation/navigator_params_yaml.hpp"
 #include "bipednav/perception/voxel_grid.hpp"
 #include "bipednav/sim/scenario.hpp"
 #include "bipednav/sim/simulation.hpp"
@@ -102,6 +103,7 @@ struct OdometryOptions {
   bool no_prior = false;
   bool planar = false;  // LOAM keeps the LiDAR's height, roll and pitch (LoamParams::planar_motion)
   bool json_out = false;
+  std::string params;  // a navigation parameters file: LOAM's parameters from its localization.loam
 };
 
 // The route for `bipednav odometry`: explicit waypoints, a built-in route through three_rooms, or
@@ -172,7 +174,12 @@ void run_odometry(const OdometryOptions& o) {
     const SE3 T_world_base = se3_from_pose2(sim.true_pose());
     if (!loam) {
       localization::LoamParams lp;
-      lp.planar_motion = o.planar;
+      if (!o.params.empty()) {
+        navigation::NavigatorParams np = navigation::NavigatorParams::for_robot(robot);
+        navigation::apply_navigator_params_file(o.params, np);
+        lp = np.localization.loam;
+      }
+      lp.planar_motion = lp.planar_motion || o.planar;
       lp.T_world_lidar_initial = T_world_base * T_base_lidar;
       loam.emplace(lp);
       odom_anchor = odom;
@@ -369,6 +376,10 @@ void add_localization_commands(CLI::App& app, CLI::App& bench) {
   d->add_flag("--no-prior", odo->no_prior, "Do not give LOAM the odometry as a motion prior");
   d->add_flag("--planar", odo->planar, "LOAM keeps the LiDAR's height, roll and pitch (flat floor)");
   d->add_flag("--json", odo->json_out, "Print one JSON object");
+  d->add_option("--params", odo->params,
+                "Navigation parameters file (the layout of `bipednav params`): LOAM's parameters are its "
+                "localization.loam (default: LoamParams' defaults)")
+      ->check(CLI::ExistingFile);
   d->callback([odo] { run_odometry(*odo); });
 
   add_localization_bench(bench);

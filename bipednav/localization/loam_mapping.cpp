@@ -11,6 +11,8 @@ void MappingParams::validate() const {
   require(map_radius_m > 0.0, "map_radius_m", "> 0");
   association.validate();
   require(correspondence_rounds >= 1, "correspondence_rounds", ">= 1");
+  require(round_converged_translation_m > 0.0, "round_converged_translation_m", "> 0");
+  require(round_converged_rotation_rad > 0.0, "round_converged_rotation_rad", "> 0");
   require(min_constraints >= 6, "min_constraints", ">= 6");
   require(gravity_weight >= 0.0, "gravity_weight", ">= 0");
   lm.validate();
@@ -138,7 +140,9 @@ MappingResult LoamMapping::process(const PointCloud& edges, const PointCloud& pl
     res.degenerate_dims = sol.degenerate_dims;
     res.inliers = sol.inliers;
     res.rms_m = sol.rms_m;
-    if (sol.x.head<3>().norm() < 1e-4 && sol.x.tail<3>().norm() < 1e-5) break;
+    if (sol.x.head<3>().norm() < p_.round_converged_translation_m &&
+        sol.x.tail<3>().norm() < p_.round_converged_rotation_rad)
+      break;
   }
   if (res.matched) res.T_world_lidar = T;
   insert(edges, planars, res.T_world_lidar);

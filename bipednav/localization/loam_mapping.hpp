@@ -25,6 +25,9 @@ struct MappingParams {
                                 .min_line_ratio = 3.0,
                                 .edge_weight = 0.3};
   int correspondence_rounds = 5;
+  // The rounds stop once a round's correction is below both of these (as OdometryParams').
+  double round_converged_translation_m = 1e-4;
+  double round_converged_rotation_rad = 1e-5;
   std::size_t min_constraints = 30;
   // Weight of a gravity (IMU tilt) measurement in units of full-weight point rows, rad vs m. The
   // map alone pins roll and pitch only as well as the map was built: each new room is inserted at

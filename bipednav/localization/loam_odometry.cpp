@@ -12,6 +12,8 @@ void OdometryParams::validate() const {
   association.validate();
   require(correspondence_rounds >= 1, "correspondence_rounds", ">= 1");
   require(relaxation > 0.0 && relaxation <= 1.0, "relaxation", "in (0, 1]");
+  require(round_converged_translation_m > 0.0, "round_converged_translation_m", "> 0");
+  require(round_converged_rotation_rad > 0.0, "round_converged_rotation_rad", "> 0");
   require(min_constraints >= 6, "min_constraints", ">= 6");
   lm.validate();
 }
@@ -150,6 +152,7 @@ OdometryResult LoamOdometry::estimate(const LoamFeatures& f, const SE3& guess, c
   Vector6d x = se3_to_motion(guess);
   for (int round = 0; round < p_.correspondence_rounds; ++round) {
     const std::vector<Constraint> cs = associate(f, x, offset);
+    ++res.rounds;
     res.constraints = cs.size();
     if (cs.size() < p_.min_constraints) {
       res.matched = false;
@@ -163,7 +166,9 @@ OdometryResult LoamOdometry::estimate(const LoamFeatures& f, const SE3& guess, c
     res.inliers = sol.inliers;
     res.rms_m = sol.rms_m;
     res.iterations += sol.iterations;
-    if (change.head<3>().norm() < 1e-4 && change.tail<3>().norm() < 1e-5) break;
+    if (change.head<3>().norm() < p_.round_converged_translation_m &&
+        change.tail<3>().norm() < p_.round_converged_rotation_rad)
+      break;
   }
   res.matched = x.allFinite() && res.inliers >= p_.min_constraints;
   res.T_start_end = res.matched ? motion_to_se3(x) : guess;

@@ -128,6 +128,8 @@ void visit_fields(V& v, localization::OdometryParams& p) {
   v.group("association", p.association);
   v("correspondence_rounds", p.correspondence_rounds);
   v("relaxation", p.relaxation);
+  v("round_converged_translation_m", p.round_converged_translation_m);
+  v("round_converged_rotation_rad", p.round_converged_rotation_rad);
   v("min_constraints", p.min_constraints);
   v.group("lm", p.lm);
 }
@@ -140,6 +142,8 @@ void visit_fields(V& v, localization::MappingParams& p) {
   v("map_radius_m", p.map_radius_m);
   v.group("association", p.association);
   v("correspondence_rounds", p.correspondence_rounds);
+  v("round_converged_translation_m", p.round_converged_translation_m);
+  v("round_converged_rotation_rad", p.round_converged_rotation_rad);
   v("min_constraints", p.min_constraints);
   v("gravity_weight", p.gravity_weight);
   v.group("lm", p.lm);

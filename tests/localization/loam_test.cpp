@@ -135,6 +135,36 @@ TEST(LoamOdometry, RecoversSweepMotionFromIdentity) {
   EXPECT_LT(rotation_angle(err), 0.006);
 }
 
+// OdometryParams::round_converged_*: stopping the rounds once a round's change is below 1 mm /
+// 0.3 mrad (instead of 0.1 mm / 0.01 mrad) runs fewer rounds and keeps the estimate within the
+// bounds above.
+TEST(LoamOdometry, LooserRoundConvergenceStopsEarlierWithinTheSameBounds) {
+  const auto scene = test::room_scene();
+  SweepSpec spec;
+  spec.noise_m = 0.01;
+  const auto pose_at = constant_motion(make_se3(-1, 0.5, 1.2, 0, 0, 0.3), 0.6, 0.1, 0.4);
+  FeatureParams fp;
+  Rng rng(3);
+  const LoamFeatures f0 = extract_features(sanitize_sweep(synthetic_sweep(scene, pose_at, 0.0, spec, rng), fp), fp);
+  const LoamFeatures f1 = extract_features(sanitize_sweep(synthetic_sweep(scene, pose_at, 0.1, spec, rng), fp), fp);
+  const SE3 truth = pose_at(0.1).inverse() * pose_at(0.2);
+  const auto run = [&](const OdometryParams& p) {
+    LoamOdometry odo(p);
+    odo.set_reference(f0, pose_at(0.0).inverse() * pose_at(0.1));
+    return odo.estimate(f1, SE3::Identity());
+  };
+  OdometryParams loose;
+  loose.round_converged_translation_m = 1e-3;
+  loose.round_converged_rotation_rad = 3e-4;
+  const OdometryResult tight = run(OdometryParams{}), r = run(loose);
+  const SE3 err = truth.inverse() * r.T_start_end;
+  EXPECT_TRUE(r.matched);
+  EXPECT_LT(r.rounds, tight.rounds);
+  EXPECT_LE(r.degenerate_dims, 1);
+  EXPECT_LT(err.translation().norm(), 0.01);
+  EXPECT_LT(rotation_angle(err), 0.006);
+}
+
 TEST(Loam, DrivesARoomWithSmallDrift) {
   Rng rng(4);
   const auto scene = test::room_scene();

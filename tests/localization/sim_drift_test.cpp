@@ -37,7 +37,7 @@ struct DriveResult {
 // Drives `route` in three_rooms with `robot_name`, feeding LOAM as the Localizer does: the
 // odometry's motion between sweeps as the prior and its IMU tilt as the gravity direction.
 DriveResult drive_three_rooms(const std::string& robot_name, std::vector<Eigen::Vector2d> waypoints,
-                              double time_limit_s) {
+                              double time_limit_s, const LoamParams& loam_params = {}) {
   const auto root = test::source_dir();
   const sim::Scenario scenario = sim::load_scenario(root / "scenarios" / "three_rooms.yaml");
   const RobotProfile robot = io::load_robot_profile(root / "config" / (robot_name + ".yaml"));
@@ -64,7 +64,7 @@ DriveResult drive_three_rooms(const std::string& robot_name, std::vector<Eigen::
     const SE3 T_world_base = se3_from_pose2(sim.true_pose());
     const SE3 odom_lidar = odom_now * T_base_lidar;
     if (!loam) {  // anchor both estimates at the true pose of the first sweep
-      LoamParams lp;
+      LoamParams lp = loam_params;
       lp.T_world_lidar_initial = T_world_base * T_base_lidar;
       loam.emplace(lp);
       anchor_odom = odom_now;
@@ -113,21 +113,11 @@ TEST(LoamSimulation, ThreeRoomsDriftIsSmallAndBeatsOdometry) {
 // height from drifting (it drifted ~1.6 m, the error at the end was ~0.5 m).
 class LoamFullRoute : public ::testing::TestWithParam<std::string> {};
 
-TEST_P(LoamFullRoute, ThreeRoomsEndsWellWithinTheGoalTolerance) {
-  const DriveResult r = drive_three_rooms(GetParam(),
-                                          {{2.2, 1.6},
-                                           {9.0, 1.6},
-                                           {11.2, 1.6},
-                                           {12.8, 0.4},
-                                           {15.0, -0.2},
-                                           {16.8, -0.3},
-                                           {17.5, -1.5},
-                                           {19.2, -1.6},
-                                           {21.0, -1.6},
-                                           {22.5, -0.3},
-                                           {29.2, 0.0}},
-                                          250.0);
-  print(GetParam().c_str(), r);
+const std::vector<Eigen::Vector2d> kFullRoute = {{2.2, 1.6},   {9.0, 1.6},   {11.2, 1.6},  {12.8, 0.4},
+                                                 {15.0, -0.2}, {16.8, -0.3}, {17.5, -1.5}, {19.2, -1.6},
+                                                 {21.0, -1.6}, {22.5, -0.3}, {29.2, 0.0}};
+
+void expect_full_route_accuracy(const DriveResult& r) {
   EXPECT_GT(r.loam.distance_m, 29.0);
   EXPECT_LT(r.loam.translation_error_m, 0.15);
   EXPECT_LT(r.loam.max_translation_error_m, 0.2);
@@ -135,6 +125,23 @@ TEST_P(LoamFullRoute, ThreeRoomsEndsWellWithinTheGoalTolerance) {
   EXPECT_LE(r.loam.translation_percent, 0.5);
   EXPECT_LT(r.loam.translation_error_m, 0.5 * r.odometry.translation_error_m);
   EXPECT_LE(r.unhealthy, r.sweeps / 50);
+}
+
+TEST_P(LoamFullRoute, ThreeRoomsEndsWellWithinTheGoalTolerance) {
+  const DriveResult r = drive_three_rooms(GetParam(), kFullRoute, 250.0);
+  print(GetParam().c_str(), r);
+  expect_full_route_accuracy(r);
+}
+
+// The CPU saving of the round_converged_* parameters (odometry and mapping stop their correspondence
+// rounds at 1 mm / 0.3 mrad changes) keeps the same accuracy on the same route.
+TEST_P(LoamFullRoute, ThreeRoomsWithLooserRoundConvergenceEndsWellWithinTheGoalTolerance) {
+  LoamParams lp;
+  lp.odometry.round_converged_translation_m = lp.mapping.round_converged_translation_m = 1e-3;
+  lp.odometry.round_converged_rotation_rad = lp.mapping.round_converged_rotation_rad = 3e-4;
+  const DriveResult r = drive_three_rooms(GetParam(), kFullRoute, 250.0, lp);
+  print((GetParam() + ", looser round convergence").c_str(), r);
+  expect_full_route_accuracy(r);
 }
 
 INSTANTIATE_TEST_SUITE_P(Robots, LoamFullRoute, ::testing::Values("turtlebot3", "digit"));
