@@ -118,6 +118,21 @@ struct TebOptimizerParams {
   double dynamic_obstacle_lead_s = 0.0;         // > 0: the bound from the segment swept over the next lead_s
   bool dynamic_obstacle_largest_radius = true;  // the track's largest blob radius, not its latest
   std::string linear_solver = "sparse_normal_cholesky";
+  // Ceres-only solver settings (the Ceres linear solvers above; banded_lm ignores them); the defaults are Ceres'
+  // own and give today's bands. With the dT lower bounds Ceres runs a projected Armijo line search along every
+  // trust-region step. ceres_line_search_interpolation is its line_search_interpolation_type: "cubic" evaluates
+  // the gradient (every Jacobian) at each trial point, "bisection" halves the step and "quadratic" interpolates,
+  // both from costs alone. ceres_sparse_library is sparse_normal_cholesky's factorisation: "suite_sparse"
+  // (CHOLMOD) or "eigen_sparse" (Eigen's simplicial LDLT: the same bands to rounding, less set-up per solve).
+  // Measured on hexagon_static, TurtleBot3 seed 1 (interleaved, 3 runs each, medians, loaded machine): default
+  // local_planner 1572 ms / cpu_s 5.51 (34.6 s run); eigen_sparse 1489 ms / 5.24 s (33.8 s run: rounding reshuffles
+  // the loop); bisection + eigen_sparse 1310 ms / 5.04 s (30.9 s run, 0 recoveries, clearance 0.150 m). One cold
+  // optimize_band of 12 test bands (BisectionLineSearchGivesValidBands): bisection's objectives sum 11 % lower,
+  // worst band 35 % higher. "quadratic" was far worse there (its objectives summed 5x the default's); so was
+  // skipping the line search (max_num_line_search_step_size_iterations = 0: the large first trust-region steps
+  // are then rejected, 4.6 of 6 steps per solve, and the robot crawled: 2.7 m in hexagon_static's first run).
+  std::string ceres_line_search_interpolation = "cubic";
+  std::string ceres_sparse_library = "suite_sparse";
 
   void validate() const;
 };
