@@ -64,6 +64,7 @@ void visit_fields(V& v, perception::RansacParams& p) {
   v("max_normal_angle_rad", p.max_normal_angle_rad);
   v("refit", p.refit);
   v("inlier_std", p.inlier_std);
+  v("max_points", p.max_points);
 }
 
 template <class V>

@@ -14,6 +14,7 @@ void RansacParams::validate() const {
   require(success_probability > 0.0 && success_probability < 1.0, "success_probability", "in (0, 1)");
   require(max_iterations >= 1, "max_iterations", ">= 1");
   require(prior_normal.allFinite() && prior_normal.norm() > 1e-9, "prior_normal", "a finite non-zero vector");
+  require(max_points == 0 || max_points >= 3, "max_points", "0 (all points) or >= 3");
   require(max_normal_angle_rad >= 0.0 && max_normal_angle_rad <= M_PI, "max_normal_angle_rad", "in [0, pi]");
 }
 
@@ -27,13 +28,14 @@ struct SoaPoints {
   Eigen::Vector3d at(std::size_t i) const { return {x[i], y[i], z[i]}; }
 };
 
-// The finite points of `pts` into `s` (its buffers reused).
-void finite_points(const std::vector<Eigen::Vector3f>& pts, SoaPoints& s) {
+// The finite points of `pts` (every `stride`-th point) into `s` (its buffers reused).
+void finite_points(const std::vector<Eigen::Vector3f>& pts, SoaPoints& s, std::size_t stride = 1) {
   const std::size_t n = pts.size();
-  for (auto* v : {&s.x, &s.y, &s.z}) v->resize(n);
-  s.index.resize(n);
+  const std::size_t cap = (n + stride - 1) / stride;
+  for (auto* v : {&s.x, &s.y, &s.z}) v->resize(cap);
+  s.index.resize(cap);
   std::size_t m = 0;
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = 0; i < n; i += stride) {
     const Eigen::Vector3f& p = pts[i];
     s.x[m] = p.x();
     s.y[m] = p.y();
@@ -138,8 +140,11 @@ PlaneFit fit_plane_ransac(const std::vector<Eigen::Vector3f>& points, const Rans
   params.validate();
   // Per-thread buffers: a pipeline fits a plane every frame, and fresh vectors of this size cost
   // an allocation (and page faults) each time.
-  thread_local SoaPoints buffers;
-  finite_points(points, buffers);
+  thread_local SoaPoints buffers, all;
+  const std::size_t stride = params.max_points > 0 && points.size() > params.max_points
+                                 ? (points.size() + params.max_points - 1) / params.max_points
+                                 : 1;
+  finite_points(points, buffers, stride);
   const SoaPoints& s = buffers;
   PlaneFit best;
   if (s.size() < 3) return best;
@@ -186,6 +191,12 @@ PlaneFit fit_plane_ransac(const std::vector<Eigen::Vector3f>& points, const Rans
       best.plane = refit;
       best.inliers = refit_count;
     }
+  }
+  if (stride > 1) {  // the result's counts are of all points
+    finite_points(points, all);
+    best.inliers = count_inliers(all, best.plane, t);
+    if (params.inlier_std) best.inlier_std_m = inlier_std(all, best.plane, t);
+    return best;
   }
   if (params.inlier_std) best.inlier_std_m = inlier_std(s, best.plane, t);
   return best;

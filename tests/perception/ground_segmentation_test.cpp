@@ -53,6 +53,30 @@ TEST(Ransac, SyntheticPlanesWithOutliers) {
   }
 }
 
+// RansacParams::max_points: models from every k-th point; the counts are still of all points.
+TEST(Ransac, MaxPointsFitsOnASubsetAndCountsEveryPoint) {
+  PointCloud c = noisy_plane(Plane(0, 0, 1, 0.02), 20000, 0, 0.003, 21);             // the floor
+  const PointCloud box = noisy_plane(Plane(1, 0, 0, -1.5), 12000, 3000, 0.003, 22);  // a wall and clutter
+  c.points.insert(c.points.end(), box.points.begin(), box.points.end());
+  c.points.emplace_back(std::numeric_limits<float>::quiet_NaN(), 0.0f, 0.0f);
+  RansacParams p;
+  p.distance_threshold_m = 0.03;
+  p.use_normal_prior = true;
+  Rng rng_all(5), rng_sub(5);
+  const PlaneFit all = fit_plane_ransac(c.points, p, rng_all);
+  p.max_points = 2000;
+  const PlaneFit sub = fit_plane_ransac(c.points, p, rng_sub);
+  ASSERT_TRUE(all.found);
+  ASSERT_TRUE(sub.found);
+  expect_plane_near(sub.plane, Plane(0, 0, 1, 0.02), 0.005);
+  // Counted on all 35k points, not on the ~2k of the subset.
+  EXPECT_GE(sub.inliers, 19900u);
+  EXPECT_NEAR(static_cast<double>(sub.inliers), static_cast<double>(all.inliers), 0.01 * all.inliers);
+  EXPECT_NEAR(sub.inlier_std_m, all.inlier_std_m, 0.001);
+  p.max_points = 2;
+  EXPECT_THROW(p.validate(), Error);
+}
+
 TEST(Ransac, NormalPriorSelectsTheFloorOverALargerWall) {
   PointCloud c = noisy_plane(Plane(1, 0, 0, -1), 4000, 0, 0.002, 3);  // wall x = 1
   const PointCloud floor = noisy_plane(Plane(0, 0, 1, 0), 1500, 0, 0.002, 4);
