@@ -31,6 +31,10 @@ class RateGate {
   }
   void reset() { next_s_ = -1.0; }
   double period_s() const { return period_s_; }
+  // Whether ready(now_s) would pass now (without taking the slot), and the time from which it
+  // passes next (-1 before the first ready()).
+  bool due(double now_s) const { return !(now_s + 1e-9 < next_s_); }
+  double next_s() const { return next_s_; }
 
  private:
   double period_s_;

@@ -104,8 +104,13 @@ Twist Navigator::tick(const SensorFrame& frame) {
   perception_in_.stamp_s = admitted.stamp_s;
   perception_in_.lidar = admitted.lidar ? &*frame.lidar : nullptr;
   perception_in_.depth.clear();
-  for (std::size_t i = 0; i < frame.depth.size(); ++i)
-    if (admitted.depth[i]) perception_in_.depth.push_back(&frame.depth[i]);
+  for (std::size_t i = 0; i < frame.depth.size(); ++i) {
+    if (!admitted.depth[i]) continue;
+    if (depth_superseded(frame, admitted, i))
+      ++depth_frames_skipped_;
+    else
+      perception_in_.depth.push_back(&frame.depth[i]);
+  }
   perceive(perception_in_);
   perception_in_.lidar = nullptr;  // the pointers are only valid during this tick
   perception_in_.depth.clear();
@@ -119,6 +124,27 @@ Twist Navigator::tick(const SensorFrame& frame) {
     cpu_.local_planner_ms = server_->local_planner_cpu_ms();
   }
   return cmd_;
+}
+
+bool Navigator::depth_superseded(const SensorFrame& frame, const Admission& admitted, std::size_t i) {
+  if (!params_.newest_depth_only) return false;
+  const DepthCloud& d = frame.depth[i];
+  auto clock = std::find_if(depth_clocks_.begin(), depth_clocks_.end(),
+                            [&](const DepthClock& c) { return c.camera == d.camera; });
+  double period = std::numeric_limits<double>::infinity();  // unknown before the camera's second frame
+  if (clock == depth_clocks_.end()) {
+    depth_clocks_.push_back({d.camera, d.cloud.stamp_s});
+  } else {
+    period = d.cloud.stamp_s - clock->last_stamp_s;
+    clock->last_stamp_s = d.cloud.stamp_s;
+  }
+  // A newer frame of the same camera in this step supersedes it at once.
+  for (std::size_t j = i + 1; j < frame.depth.size(); ++j)
+    if (admitted.depth[j] && frame.depth[j].camera == d.camera) return true;
+  if (local_gate_.due(now_s_)) return false;  // the map integrates this step's frames
+  // The next frame arrives about one period from now (this frame's latency included): before the
+  // next update, it replaces this one.
+  return period > 0.0 && now_s_ + period < local_gate_.next_s() - 1e-9;
 }
 
 namespace {

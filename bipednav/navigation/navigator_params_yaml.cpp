@@ -417,6 +417,7 @@ template <class V>
 void visit_fields(V& v, NavigatorParams& p) {
   v("control_rate_hz", p.control_rate_hz);
   v("brake_from_last_command", p.brake_from_last_command);
+  v("newest_depth_only", p.newest_depth_only);
   v("behavior_tree", p.behavior_tree);
   v.group("local_map", p.local_map);
   v.group("global_map", p.global_map);
