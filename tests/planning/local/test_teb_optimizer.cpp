@@ -4,6 +4,7 @@
 
 #include "bipednav/planning/local/teb_optimizer.hpp"
 #include "bipednav/planning/local/teb_planner.hpp"
+#include "teb_trials.hpp"
 
 namespace bipednav::planning::local {
 
@@ -81,14 +82,7 @@ struct CeresOptionScene {
     const TebOptimizerParams def;
     double sum_def = 0.0, sum_op = 0.0;
     for (int trial = 0; trial < 12; ++trial) {
-      TebProblemInput in;
-      in.obstacles = &obs;
-      in.start_velocity.linear_x = 0.2 + 0.2 * u(rng);
-      const Pose2 goal{3.0 + 0.5 * u(rng), 0.8 * u(rng), 0.5 * u(rng)};
-      if (trial % 2 == 0) in.via_points = {{1.5, 0.5 + 0.2 * u(rng)}};
-      TebBand band = init_band({0, 0, 0.3 * u(rng)}, in.via_points, goal, lim, bp);
-      if (trial % 3 == 0)
-        for (double& dt : band.dt_s) dt *= 2.0;
+      const auto [in, band] = test::random_teb_trial(trial, rng, u, obs, lim, bp);
       TebBand b0 = band, b1 = band;
       ASSERT_TRUE(optimize_band(b0, in, lim, bp, def));
       ASSERT_TRUE(optimize_band(b1, in, lim, bp, op)) << "trial " << trial;

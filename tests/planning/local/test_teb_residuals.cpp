@@ -6,6 +6,7 @@
 #include "bipednav/planning/local/teb_lm.hpp"
 #include "bipednav/planning/local/teb_optimizer.hpp"
 #include "bipednav/planning/local/teb_residuals.hpp"
+#include "teb_trials.hpp"
 
 namespace bipednav::planning::local {
 
@@ -275,14 +276,7 @@ TEST(TebLm, MatchesCeresOnTheSameBands) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   int compared = 0;
   for (int trial = 0; trial < 12; ++trial) {
-    TebProblemInput in;
-    in.obstacles = &obs;
-    in.start_velocity.linear_x = 0.2 + 0.2 * u(rng);
-    const Pose2 goal{3.0 + 0.5 * u(rng), 0.8 * u(rng), 0.5 * u(rng)};
-    if (trial % 2 == 0) in.via_points = {{1.5, 0.5 + 0.2 * u(rng)}};
-    TebBand band = init_band({0, 0, 0.3 * u(rng)}, in.via_points, goal, lim, bp);
-    if (trial % 3 == 0)
-      for (double& dt : band.dt_s) dt *= 2.0;  // far from time-optimal
+    const auto [in, band] = test::random_teb_trial(trial, rng, u, obs, lim, bp);
     TebOptimizerParams ceres_op, band_op;
     ceres_op.linear_solver = "sparse_normal_cholesky";
     band_op.linear_solver = "banded_lm";
