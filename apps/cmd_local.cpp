@@ -11,6 +11,7 @@
 #include "bipednav/io/map_server.hpp"
 #include "bipednav/planning/local/bench_scene.hpp"
 #include "bipednav/planning/local/local_planner.hpp"
+#include "bipednav/runner/scenario_runner.hpp"
 #include "bipednav/viz/canvas.hpp"
 
 namespace bipednav::app {
@@ -114,19 +115,39 @@ void local_plan(const PlanOptions& o) {
   std::cout << j.dump(2) << std::endl;
 }
 
-void bench_local(int cycles, int threads) {
+struct BenchLocalArgs {
+  int cycles = 100;
+  int threads = 1;
+  bool json = false;
+  std::string params;                // a navigation parameters file: its TEB settings (server.local.teb)
+  std::string robot = "turtlebot3";  // the robot whose defaults the file overlays
+};
+
+void bench_local(const BenchLocalArgs& a) {
   using namespace planning::local;
+  // Without a file: TebParams' own defaults (the figures in the README). With one: the robot's TEB
+  // settings with the file overlaid, as `run --params` would use them.
+  TebParams base;
+  if (!a.params.empty()) {
+    const RobotProfile robot = runner::load_robot(a.robot);
+    if (robot.kind == "humanoid")
+      throw Error("bench local --robot " + a.robot + ": a humanoid walks by footsteps, no TEB");
+    runner::RunOptions o;
+    o.params_file = a.params;
+    base = runner::navigator_params(robot, o).server.local.teb;
+  }
   nlohmann::json j;
   j["benchmark"] = "local";
-  j["threads"] = threads;
+  j["threads"] = a.threads;
+  if (!a.params.empty()) j["params"] = a.params, j["robot"] = a.robot;
   j["homotopy_classes"] = true;
   j["goal_median_ms"] = 10.0;
   j["goal_p99_ms"] = 25.0;
   for (const int n : {0, 20, 100}) {
-    TebParams params;
+    TebParams params = base;
     params.homotopy.enabled = true;
-    params.homotopy.num_threads = threads;
-    const auto st = run_local_bench(make_local_bench_scene(n, 42), params, cycles);
+    params.homotopy.num_threads = a.threads;
+    const auto st = run_local_bench(make_local_bench_scene(n, 42), params, a.cycles);
     nlohmann::json e;
     e["obstacles_placed"] = n;
     e["obstacles_extracted"] = st.obstacles;
@@ -167,13 +188,15 @@ void add_local_commands(CLI::App& app, CLI::App& bench) {
   plan->callback([o] { local_plan(*o); });
 
   auto* b = bench.add_subcommand("local", "TEB local planner cycle time with 0, 20 and 100 obstacles");
-  auto cycles = std::make_shared<int>(100);
-  auto threads = std::make_shared<int>(1);
-  auto json = std::make_shared<bool>(false);
-  b->add_option("--cycles", *cycles, "control cycles per obstacle count")->check(CLI::PositiveNumber);
-  b->add_option("--threads", *threads, "threads for the homotopy candidates")->check(CLI::PositiveNumber);
-  b->add_flag("--json", *json, "print JSON (the only output format)");
-  b->callback([cycles, threads] { bench_local(*cycles, *threads); });
+  auto ba = std::make_shared<BenchLocalArgs>();
+  b->add_option("--cycles", ba->cycles, "control cycles per obstacle count")->check(CLI::PositiveNumber);
+  b->add_option("--threads", ba->threads, "threads for the homotopy candidates")->check(CLI::PositiveNumber);
+  b->add_flag("--json", ba->json, "print JSON (the only output format)");
+  b->add_option("--params", ba->params,
+                "Navigation parameters YAML: its TEB settings (server.local.teb) over --robot's defaults, as `run "
+                "--params` (without it: TebParams' defaults)");
+  b->add_option("--robot", ba->robot, "Robot profile whose defaults --params overlays");
+  b->callback([ba] { bench_local(*ba); });
 }
 
 }  // namespace bipednav::app
