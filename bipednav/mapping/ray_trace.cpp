@@ -32,6 +32,7 @@ struct CellQuery {
 #define BIPEDNAV_RAY_AVX2 __attribute__((target("avx2")))
 BIPEDNAV_RAY_AVX2 std::size_t ray_cells_avx2(const CellQuery& q, const Eigen::Vector3f* points, std::size_t n,
                                              std::int32_t* out) {
+  if (n < 4) return 0;  // no full block (and points may be null when n == 0)
   const __m256d ox = _mm256_set1_pd(q.origin.x()), oy = _mm256_set1_pd(q.origin.y()), oz = _mm256_set1_pd(q.origin.z());
   const __m256d o2x = _mm256_set1_pd(q.origin2.x()), o2y = _mm256_set1_pd(q.origin2.y());
   const __m256d lox = _mm256_set1_pd(q.lo.x()), loy = _mm256_set1_pd(q.lo.y());
