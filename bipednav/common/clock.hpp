@@ -24,7 +24,7 @@ class RateGate {
  public:
   explicit RateGate(double rate_hz) : period_s_(rate_hz > 0.0 ? 1.0 / rate_hz : 0.0) {}
   bool ready(double now_s) {
-    if (now_s + 1e-9 < next_s_) return false;
+    if (!due(now_s)) return false;
     next_s_ = (next_s_ < 0.0 ? now_s : next_s_) + period_s_;
     if (next_s_ <= now_s) next_s_ = now_s + period_s_;
     return true;
