@@ -19,8 +19,8 @@
 #include "bipednav/localization/drift_metrics.hpp"
 #include "bipednav/localization/gicp.hpp"
 #include "bipednav/localization/loam.hpp"
-#include "bipednav/navigation/navigator_params_yaml.hpp"
 #include "bipednav/perception/voxel_grid.hpp"
+#include "bipednav/runner/scenario_runner.hpp"
 #include "bipednav/sim/scenario.hpp"
 #include "bipednav/sim/simulation.hpp"
 
@@ -173,11 +173,12 @@ void run_odometry(const OdometryOptions& o) {
     if (!f.lidar) continue;
     const SE3 T_world_base = se3_from_pose2(sim.true_pose());
     if (!loam) {
+      // LoamParams' defaults, or the file overlaid on the robot's defaults as `run --params` loads it.
       localization::LoamParams lp;
       if (!o.params.empty()) {
-        navigation::NavigatorParams np = navigation::NavigatorParams::for_robot(robot);
-        navigation::apply_navigator_params_file(o.params, np);
-        lp = np.localization.loam;
+        runner::RunOptions ro;
+        ro.params_file = o.params;
+        lp = runner::navigator_params(robot, ro).localization.loam;
       }
       lp.planar_motion = lp.planar_motion || o.planar;
       lp.T_world_lidar_initial = T_world_base * T_base_lidar;
@@ -376,9 +377,10 @@ void add_localization_commands(CLI::App& app, CLI::App& bench) {
   d->add_flag("--no-prior", odo->no_prior, "Do not give LOAM the odometry as a motion prior");
   d->add_flag("--planar", odo->planar, "LOAM keeps the LiDAR's height, roll and pitch (flat floor)");
   d->add_flag("--json", odo->json_out, "Print one JSON object");
-  d->add_option("--params", odo->params,
-                "Navigation parameters file (the layout of `bipednav params`): LOAM's parameters are its "
-                "localization.loam (default: LoamParams' defaults)")
+  d->add_option(
+       "--params", odo->params,
+       "Navigation parameters file (the layout of `bipednav params`): LOAM's parameters are its "
+       "localization.loam, over the robot's defaults as `run --params` reads it (default: LoamParams' defaults)")
       ->check(CLI::ExistingFile);
   d->callback([odo] { run_odometry(*odo); });
 
