@@ -85,6 +85,11 @@ RobotProfile load_robot(const std::string& name, const std::filesystem::path& co
 // The global map's grid: the scenario's bounds plus a margin, at the given resolution.
 mapping::GridGeometry global_geometry_for(const sim::Scenario& scenario, double resolution_m, double margin_m = 2.0);
 
+// Whether `after` leaves `before` by more than `limit_m` somewhere: some pose of it is farther than
+// that from every pose of `before` (a replan worth a figure panel). An empty `after` never does; a
+// non-empty one leaves an empty `before`.
+bool path_departs(const Path& before, const Path& after, double limit_m = 0.5);
+
 // Runs a scenario closed-loop: the simulator's sensor frames feed the Navigator (through the
 // fault injector when the scenario or the options name faults), its command drives the simulated robot; goals are
 // handed over at their times; the run ends when the last goal succeeded or failed, or at the time limit. Success = the
