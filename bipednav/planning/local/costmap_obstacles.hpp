@@ -25,6 +25,14 @@ T obstacle_distance(const Obstacle& o, const T& x, const T& y) {
   return distance_to_polygon(x, y, o.vertices);
 }
 
+// The scalar part of obstacle_distance on ceres::Jet arguments (x, y the Jets' scalar parts), bitwise.
+inline double jet_value_obstacle_distance(const Obstacle& o, double x, double y) {
+  const auto& v = o.vertices;
+  if (v.size() == 1) return jet_value_distance_to_point(x, y, v[0]);
+  if (v.size() == 2) return jet_value_distance_to_segment(x, y, v[0], v[1]);
+  return jet_polygon_nearest(x, y, v).value;
+}
+
 // Builds an obstacle from a set of points: a point when the set is smaller than point_max_extent,
 // a segment along the principal axis when thinner than line_max_width, else the convex hull.
 Obstacle make_obstacle(const std::vector<Eigen::Vector2d>& pts, double half_cell_m, const ObstacleParams& params);

@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <cmath>
+#include <type_traits>
 #include <vector>
 
 #include "bipednav/common/twist.hpp"
@@ -106,8 +107,14 @@ void start_acc_residuals(const TebResidualContext& c, const Twist& v0, const T* 
 template <typename T>
 T obstacle_residual(const TebResidualContext& c, const Obstacle& o, const T* p) {
   using std::sqrt;
+  const double bound = c.limits->min_obstacle_dist_m, eps = c.params->penalty_epsilon;
+  if constexpr (!std::is_same_v<T, double>) {
+    // Most associated obstacles lie beyond the bound, where the penalty is T(0): decided on the distance's
+    // scalar part (bitwise the Jet's, as penalty_below compares it) without its derivatives.
+    if (!(jet_value_obstacle_distance(o, p[0].a, p[1].a) < bound + eps)) return sqrt(c.w->obstacle) * T(0.0);
+  }
   const T d = obstacle_distance(o, p[0], p[1]);
-  return sqrt(c.w->obstacle) * penalty_below(d, c.limits->min_obstacle_dist_m, c.params->penalty_epsilon);
+  return sqrt(c.w->obstacle) * penalty_below(d, bound, eps);
 }
 
 // One pose at time t_s after the band's start against one moving obstacle's prediction (mirrors
@@ -115,6 +122,12 @@ T obstacle_residual(const TebResidualContext& c, const Obstacle& o, const T* p) 
 template <typename T>
 T dynamic_obstacle_residual(const TebResidualContext& c, const TebMovingObstacle& o, double t_s, const T* p) {
   using std::sqrt;
+  if constexpr (!std::is_same_v<T, double>) {
+    // Beyond the bound the penalty is T(0): decided on the distance's scalar part (as obstacle_residual).
+    const double d = o.lead_s > 0.0 ? jet_value_distance_to_segment(p[0].a, p[1].a, o.at(t_s), o.lead_end(t_s))
+                                    : jet_value_distance_to_point(p[0].a, p[1].a, o.at(t_s));
+    if (!(d < o.bound(t_s) + c.params->penalty_epsilon)) return sqrt(c.w->dynamic_obstacle) * T(0.0);
+  }
   const T d = o.lead_s > 0.0 ? distance_to_segment(p[0], p[1], o.at(t_s), o.lead_end(t_s))
                              : distance_to_point(p[0], p[1], o.at(t_s));
   return sqrt(c.w->dynamic_obstacle) * penalty_below(d, o.bound(t_s), c.params->penalty_epsilon);

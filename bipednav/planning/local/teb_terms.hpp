@@ -144,15 +144,83 @@ inline double squared_distance_to_segment(double px, double py, const Eigen::Vec
   return dx * dx + dy * dy + 1e-12;
 }
 
+// The scalar part of distance_to_point on ceres::Jet arguments (px, py the Jets' scalar parts), bitwise.
+inline double jet_value_distance_to_point(double px, double py, const Eigen::Vector2d& c) {
+  const double dx = px - c.x(), dy = py - c.y();
+  return std::sqrt(dx * dx + dy * dy + 1e-12);
+}
+
+// The scalar part of distance_to_segment on ceres::Jet arguments (px, py the Jets' scalar parts), bitwise: a
+// Jet's scalar part follows the double operations of its arithmetic, except that a Jet quotient multiplies by
+// the divisor's reciprocal (so t is not the double version's quotient).
+inline double jet_value_distance_to_segment(double px, double py, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  const Eigen::Vector2d ab = b - a;
+  const double len2 = ab.squaredNorm();
+  if (len2 < 1e-18) return jet_value_distance_to_point(px, py, a);
+  double t = ((px - a.x()) * ab.x() + (py - a.y()) * ab.y()) * (1.0 / len2);
+  if (t < 0.0) t = 0.0;
+  if (t > 1.0) t = 1.0;
+  const double dx = px - (a.x() + t * ab.x()), dy = py - (a.y() + t * ab.y());
+  return std::sqrt(dx * dx + dy * dy + 1e-12);
+}
+
+// distance_to_polygon_all_edges on Jets (>= 3 vertices), decided on the scalar parts: the edge whose Jet it
+// returns (from v[edge] to v[(edge + 1) % size]: the first of the closing edge, then edges 0, 1, ... with
+// the least distance, as its loop keeps them), whether the point is inside, and the returned scalar part.
+struct JetPolygonNearest {
+  std::size_t edge = 0;
+  bool inside = true;
+  double value = 0.0;
+};
+inline JetPolygonNearest jet_polygon_nearest(double px, double py, const std::vector<Eigen::Vector2d>& v) {
+  JetPolygonNearest out;
+  out.edge = v.size() - 1;
+  double best = jet_value_distance_to_segment(px, py, v.back(), v.front());
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const Eigen::Vector2d& a = v[i];
+    const Eigen::Vector2d& b = v[(i + 1) % v.size()];
+    const double cross = (b.x() - a.x()) * (py - a.y()) - (b.y() - a.y()) * (px - a.x());
+    if (cross < 0.0) out.inside = false;
+    if (i + 1 < v.size()) {
+      const double d = jet_value_distance_to_segment(px, py, a, b);
+      if (d < best) best = d, out.edge = i;
+    }
+  }
+  out.value = out.inside ? -best : best;
+  return out;
+}
+
 // Signed distance from (px, py) to a convex polygon (vertices counter-clockwise): negative inside
-// (minus the depth), so the gradient keeps pushing out of an obstacle.
+// (minus the depth), so the gradient keeps pushing out of an obstacle. Every edge's distance in T.
+template <typename T>
+T distance_to_polygon_all_edges(const T& px, const T& py, const std::vector<Eigen::Vector2d>& v) {
+  if (v.size() == 1) return distance_to_point(px, py, v[0]);
+  if (v.size() == 2) return distance_to_segment(px, py, v[0], v[1]);
+  bool inside = true;
+  T best = distance_to_segment(px, py, v.back(), v.front());
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const Eigen::Vector2d& a = v[i];
+    const Eigen::Vector2d& b = v[(i + 1) % v.size()];
+    const T cross = T(b.x() - a.x()) * (py - T(a.y())) - T(b.y() - a.y()) * (px - T(a.x()));
+    if (cross < T(0.0)) inside = false;
+    if (i + 1 < v.size()) {
+      const T d = distance_to_segment(px, py, a, b);
+      if (d < best) best = d;
+    }
+  }
+  return inside ? -best : best;
+}
+
+// distance_to_polygon_all_edges, bitwise, with the work of one edge in T: for doubles one square root (the
+// nearest edge's), for Jets the edges compared on their scalar parts (jet_polygon_nearest) and the derivatives
+// of the nearest one only.
 template <typename T>
 T distance_to_polygon(const T& px, const T& py, const std::vector<Eigen::Vector2d>& v) {
   if (v.size() == 1) return distance_to_point(px, py, v[0]);
   if (v.size() == 2) return distance_to_segment(px, py, v[0], v[1]);
   if constexpr (std::is_same_v<T, double>) {
     // One square root for the nearest edge: the root is monotonic, so the root of the least square is the
-    // least of the edges' distances (bitwise), as the generic code below computes it.
+    // least of the edges' distances (bitwise), as the generic code computes it.
     bool inside = true;
     double best = squared_distance_to_segment(px, py, v.back(), v.front());
     for (std::size_t i = 0; i < v.size(); ++i) {
@@ -167,20 +235,11 @@ T distance_to_polygon(const T& px, const T& py, const std::vector<Eigen::Vector2
     }
     const double d = std::sqrt(best);
     return inside ? -d : d;
+  } else {
+    const JetPolygonNearest n = jet_polygon_nearest(px.a, py.a, v);
+    const T d = distance_to_segment(px, py, v[n.edge], v[(n.edge + 1) % v.size()]);
+    return n.inside ? -d : d;
   }
-  bool inside = true;
-  T best = distance_to_segment(px, py, v.back(), v.front());
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    const Eigen::Vector2d& a = v[i];
-    const Eigen::Vector2d& b = v[(i + 1) % v.size()];
-    const T cross = T(b.x() - a.x()) * (py - T(a.y())) - T(b.y() - a.y()) * (px - T(a.x()));
-    if (cross < T(0.0)) inside = false;
-    if (i + 1 < v.size()) {
-      const T d = distance_to_segment(px, py, a, b);
-      if (d < best) best = d;
-    }
-  }
-  return inside ? -best : best;
 }
 
 // Double-precision conveniences of the terms above, for diagnostics and tests.

@@ -1,6 +1,8 @@
 #include <ceres/jet.h>
 #include <gtest/gtest.h>
 
+#include <cstring>
+#include <numbers>
 #include <random>
 
 #include "bipednav/planning/local/teb_lm.hpp"
@@ -162,6 +164,80 @@ TEST(TebResiduals, ObstacleGradientMatchesAutodiff) {
     const double J[2] = {d < bound ? -wo * g[0] : 0.0, d < bound ? -wo * g[1] : 0.0};
     expect_jacobian(&rj, &r, J, 1, 2, "obstacle trial " + std::to_string(trial));
     if (HasFailure()) return;
+  }
+}
+
+namespace {
+
+using Jet3 = ceres::Jet<double, 3>;
+
+// Bitwise equal values and derivatives (signed zeros and NaNs included).
+bool same_bits(const Jet3& x, const Jet3& y) {
+  return std::memcmp(&x.a, &y.a, sizeof(double)) == 0 && std::memcmp(x.v.data(), y.v.data(), 3 * sizeof(double)) == 0;
+}
+
+}  // namespace
+
+// The Jet polygon distance compares the edges on their scalar parts and differentiates the nearest one only;
+// obstacle_residual and dynamic_obstacle_residual return zero on the scalar part alone beyond their bounds.
+// Both must give bitwise the Jets of the full per-edge evaluation (the optimiser's results depend on every bit),
+// ties between edges included (a square's centre and corner diagonals: several edges at one distance).
+TEST(TebResiduals, JetObstacleShortcutsMatchFullJets) {
+  Fixture f;
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const double wo = std::sqrt(f.w.obstacle), wd = std::sqrt(f.w.dynamic_obstacle);
+  const double eps = f.op.penalty_epsilon, rho = f.lim.min_obstacle_dist_m;
+  int zero = 0, penalised = 0;
+  const auto check = [&](const std::vector<Eigen::Vector2d>& v, double px, double py) {
+    const Jet3 x(px, 0), y(py, 1);
+    const Jet3 full = distance_to_polygon_all_edges(x, y, v);
+    EXPECT_TRUE(same_bits(distance_to_polygon(x, y, v), full)) << px << " " << py << " " << v.size();
+    Obstacle o;
+    o.vertices = v;
+    EXPECT_EQ(jet_value_obstacle_distance(o, px, py), full.a);
+    const Jet3 p[3] = {x, y, Jet3(0.3, 2)};
+    const Jet3 ref = wo * penalty_below(full, rho, eps);
+    EXPECT_TRUE(same_bits(obstacle_residual(f.ctx, o, p), ref)) << px << " " << py;
+    ++(ref.a == 0.0 ? zero : penalised);
+  };
+  for (int t = 0; t < 3000; ++t) {
+    const int k = 1 + static_cast<int>(rng() % 10);
+    const Eigen::Vector2d c(5 * u(rng), 5 * u(rng));
+    const double r = t % 3 == 0 ? 0.05 + 0.2 * std::abs(u(rng)) : 0.02 + std::abs(u(rng));
+    std::vector<Eigen::Vector2d> v;
+    for (int i = 0; i < k; ++i) {
+      const double a = 2 * std::numbers::pi * i / k + 0.1 * u(rng);
+      v.emplace_back(c.x() + r * std::cos(a), c.y() + r * std::sin(a));
+    }
+    if (t % 10 == 0 && k >= 2) v[1] = v[0];  // a degenerate edge
+    for (int q = 0; q < 6; ++q) {
+      const double s = q < 3 ? 2 * r : r + rho + 2 * eps;
+      check(v, c.x() + s * u(rng), c.y() + s * u(rng));
+    }
+    check(v, v[0].x(), v[0].y());
+  }
+  // Exact ties: a square's centre (four edges) and points on the diagonals beyond its corners (two edges).
+  const std::vector<Eigen::Vector2d> sq{{-0.5, -0.5}, {0.5, -0.5}, {0.5, 0.5}, {-0.5, 0.5}};
+  check(sq, 0.0, 0.0);
+  for (const double s : {0.01, 0.05, 0.1, 0.2, 0.3})
+    for (const auto& corner : sq) check(sq, corner.x() * (1 + 2 * s), corner.y() * (1 + 2 * s));
+  EXPECT_GT(zero, 1000);
+  EXPECT_GT(penalised, 1000);
+  // Moving obstacles: a point prediction and a swept segment, the pose near and beyond the bound.
+  for (int t = 0; t < 3000; ++t) {
+    TebMovingObstacle o;
+    o.position = {u(rng), u(rng)};
+    o.velocity = {u(rng), u(rng)};
+    o.clearance_m = 0.3 + 0.3 * std::abs(u(rng));
+    o.growth_mps = 0.1 * std::abs(u(rng));
+    o.lead_s = t % 2 == 0 ? 0.0 : std::abs(u(rng));
+    const double ts = 2.0 * std::abs(u(rng));
+    const Jet3 p[3] = {Jet3(1.5 * u(rng), 0), Jet3(1.5 * u(rng), 1), Jet3(0.1, 2)};
+    const Jet3 d = o.lead_s > 0.0 ? distance_to_segment(p[0], p[1], o.at(ts), o.lead_end(ts))
+                                  : distance_to_point(p[0], p[1], o.at(ts));
+    const Jet3 ref = wd * penalty_below(d, o.bound(ts), eps);
+    EXPECT_TRUE(same_bits(dynamic_obstacle_residual(f.ctx, o, ts, p), ref)) << t;
   }
 }
 
