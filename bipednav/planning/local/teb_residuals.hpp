@@ -69,10 +69,14 @@ void edge_residuals(const TebResidualContext& c, const T* a, const T* b, const T
   using std::sqrt;
   const auto& L = *c.limits;
   const double eps = c.params->penalty_epsilon;
-  const T v = linear_velocity(a[0], a[1], a[2], b[0], b[1], dt[0], c.params->sign_gain);
+  // The headings' cosines and sines once for the three terms that use them.
+  const Heading<T> ha = heading(a[2]), hb = heading(b[2]);
+  const T dx = b[0] - a[0];
+  const T dy = b[1] - a[1];
+  const T v = linear_velocity(ha, dx, dy, dt[0], c.params->sign_gain);
   const T w = angular_velocity(a[2], b[2], dt[0]);
-  r[0] = sqrt(c.w->nh) * nonholonomic_error(a[0], a[1], a[2], b[0], b[1], b[2]);
-  r[1] = sqrt(c.w->back) * backwards_error(a[0], a[1], a[2], b[0], b[1]);
+  r[0] = sqrt(c.w->nh) * nonholonomic_error(ha, hb, dx, dy);
+  r[1] = sqrt(c.w->back) * backwards_error(ha, dx, dy);
   r[2] = sqrt(c.w->vel_x) * penalty_interval(v, -L.max_vel_x_backwards_mps, L.max_vel_x_mps, eps);
   r[3] = sqrt(c.w->vel_th) * penalty_symmetric(w, L.max_vel_theta_radps, eps);
   r[4] = sqrt(c.w->time) * time_error(dt[0]);

@@ -28,15 +28,30 @@ T wrap_angle(T a) {
   return a;
 }
 
-// eq. 5.6-5.7: h_k = (q_k + q_{k+1}) x d_{k,k+1} (z component); zero when both poses lie on a
-// common arc of constant curvature (eq. 5.5).
+// A heading's cosine and sine, for terms that share them: the terms below take them computed once (the
+// same values, bit for bit, as each term computing its own; on Jets each is a sincos and a scaled vector).
 template <typename T>
-T nonholonomic_error(const T& x1, const T& y1, const T& th1, const T& x2, const T& y2, const T& th2) {
+struct Heading {
+  T c, s;
+};
+template <typename T>
+Heading<T> heading(const T& th) {
   using std::cos;
   using std::sin;
+  return {cos(th), sin(th)};
+}
+
+// eq. 5.6-5.7: h_k = (q_k + q_{k+1}) x d_{k,k+1} (z component); zero when both poses lie on a
+// common arc of constant curvature (eq. 5.5). dx = x2 - x1, dy = y2 - y1.
+template <typename T>
+T nonholonomic_error(const Heading<T>& h1, const Heading<T>& h2, const T& dx, const T& dy) {
+  return (h1.c + h2.c) * dy - (h1.s + h2.s) * dx;
+}
+template <typename T>
+T nonholonomic_error(const T& x1, const T& y1, const T& th1, const T& x2, const T& y2, const T& th2) {
   const T dx = x2 - x1;
   const T dy = y2 - y1;
-  return (cos(th1) + cos(th2)) * dy - (sin(th1) + sin(th2)) * dx;
+  return nonholonomic_error(heading(th1), heading(th2), dx, dy);
 }
 
 // eq. 5.10: smooth sign gamma*a / (1 + |gamma*a|) in [-1, 1].
@@ -47,15 +62,18 @@ T smooth_sign(const T& a, double gain) {
   return g / (T(1.0) + abs(g));
 }
 
-// eq. 5.8: signed linear velocity between poses k and k+1 (sign from the heading of pose k).
+// eq. 5.8: signed linear velocity between poses k and k+1 (sign from the heading h1 of pose k; dx = x2 - x1,
+// dy = y2 - y1).
+template <typename T>
+T linear_velocity(const Heading<T>& h1, const T& dx, const T& dy, const T& dt, double sign_gain) {
+  const T forward = h1.c * dx + h1.s * dy;  // <q_k, d_k,k+1>
+  return safe_norm(dx, dy) / dt * smooth_sign(forward, sign_gain);
+}
 template <typename T>
 T linear_velocity(const T& x1, const T& y1, const T& th1, const T& x2, const T& y2, const T& dt, double sign_gain) {
-  using std::cos;
-  using std::sin;
   const T dx = x2 - x1;
   const T dy = y2 - y1;
-  const T forward = cos(th1) * dx + sin(th1) * dy;  // <q_k, d_k,k+1>
-  return safe_norm(dx, dy) / dt * smooth_sign(forward, sign_gain);
+  return linear_velocity(heading(th1), dx, dy, dt, sign_gain);
 }
 
 // eq. 5.9: angular velocity between poses k and k+1.
@@ -91,12 +109,16 @@ T penalty_below(const T& v, double bound, double eps) {
   return v < T(bound + eps) ? T(bound + eps) - v : T(0.0);
 }
 
-// Backwards-walking penalty: positive when pose k+1 lies behind pose k's heading.
+// Backwards-walking penalty: positive when pose k+1 lies behind pose k's heading h1 (dx = x2 - x1, dy = y2 - y1).
+template <typename T>
+T backwards_error(const Heading<T>& h1, const T& dx, const T& dy) {
+  return penalty_below(T(h1.c * dx + h1.s * dy), 0.0, 0.0);
+}
 template <typename T>
 T backwards_error(const T& x1, const T& y1, const T& th1, const T& x2, const T& y2) {
-  using std::cos;
-  using std::sin;
-  return penalty_below(T(cos(th1) * (x2 - x1) + sin(th1) * (y2 - y1)), 0.0, 0.0);
+  const T dx = x2 - x1;
+  const T dy = y2 - y1;
+  return backwards_error(heading(th1), dx, dy);
 }
 
 // Time optimality (eq. 5.4): the residual whose square is dT_k^2.

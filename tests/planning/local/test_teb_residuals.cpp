@@ -241,6 +241,47 @@ TEST(TebResiduals, JetObstacleShortcutsMatchFullJets) {
   }
 }
 
+// edge_residuals computes each heading's cosine and sine once for the non-holonomic, backwards and velocity
+// terms: bitwise the residuals and derivatives of each term computing its own (the formulas written out here).
+TEST(TebResiduals, EdgeResidualsSharedHeadingsMatchPerTermTrig) {
+  Fixture f;
+  Sampler s;
+  using std::cos;
+  using std::sin;
+  using std::sqrt;
+  const auto bits = [](const Jet& x, const Jet& y) {
+    return std::memcmp(&x.a, &y.a, sizeof(double)) == 0 &&
+           std::memcmp(x.v.data(), y.v.data(), Jet::DIMENSION * sizeof(double)) == 0;
+  };
+  for (int trial = 0; trial < 2000; ++trial) {
+    const auto j = jets({s.u(-2, 2), s.u(-2, 2), s.u(-4, 4), s.u(-2, 2), s.u(-2, 2), s.u(-4, 4), s.u(0.01, 0.5)});
+    const Jet *a = &j[0], *b = &j[3], *dt = &j[6];
+    Jet r[5];
+    edge_residuals(f.ctx, a, b, dt, r);
+    const Jet dx = b[0] - a[0], dy = b[1] - a[1];
+    const Jet nh = (cos(a[2]) + cos(b[2])) * dy - (sin(a[2]) + sin(b[2])) * dx;
+    const Jet back = penalty_below(Jet(cos(a[2]) * (b[0] - a[0]) + sin(a[2]) * (b[1] - a[1])), 0.0, 0.0);
+    const Jet forward = cos(a[2]) * dx + sin(a[2]) * dy;
+    const Jet v = safe_norm(dx, dy) / dt[0] * smooth_sign(forward, f.op.sign_gain);
+    EXPECT_TRUE(bits(r[0], sqrt(f.w.nh) * nh)) << trial;
+    EXPECT_TRUE(bits(r[1], sqrt(f.w.back) * back)) << trial;
+    const double eps = f.op.penalty_epsilon;
+    EXPECT_TRUE(
+        bits(r[2], sqrt(f.w.vel_x) * penalty_interval(v, -f.lim.max_vel_x_backwards_mps, f.lim.max_vel_x_mps, eps)))
+        << trial;
+    // The double forms (evaluate_band's) give the Jets' values (no quotient in these two).
+    double rd[5];
+    const double ad[3] = {a[0].a, a[1].a, a[2].a}, bd[3] = {b[0].a, b[1].a, b[2].a}, dtd = dt[0].a;
+    edge_residuals(f.ctx, ad, bd, &dtd, rd);
+    EXPECT_EQ(rd[0], r[0].a);
+    EXPECT_EQ(rd[1], r[1].a);
+    EXPECT_EQ(
+        nonholonomic_error(ad[0], ad[1], ad[2], bd[0], bd[1], bd[2]),
+        (std::cos(ad[2]) + std::cos(bd[2])) * (bd[1] - ad[1]) - (std::sin(ad[2]) + std::sin(bd[2])) * (bd[0] - ad[0]));
+    if (HasFailure()) return;
+  }
+}
+
 // The whole problem's gradient and J^T J of the banded solver against automatic differentiation of the
 // residual blocks assembled densely.
 TEST(TebLm, GradientAndNormalEquationsMatchAutodiff) {
