@@ -220,6 +220,7 @@ void visit_fields(V& v, planning::local::MovingObstacleParams& p) {
   v("min_hits", p.min_hits);
   v("min_moving_speed_mps", p.min_moving_speed_mps);
   v("min_displacement_m", p.min_displacement_m);
+  v("latch_displacement_m", p.latch_displacement_m);
   v("recent_motion", p.recent_motion);
   v("motion_window_s", p.motion_window_s);
   v("moving_pause_s", p.moving_pause_s);

@@ -66,6 +66,8 @@ void MovingObstacleParams::validate() const {
           ">= 0");
   require(std::isfinite(min_displacement_m) && min_displacement_m >= 0.0, "moving_obstacles.min_displacement_m",
           ">= 0");
+  require(std::isfinite(latch_displacement_m) && latch_displacement_m >= 0.0, "moving_obstacles.latch_displacement_m",
+          ">= 0");
   require(positive(motion_window_s), "moving_obstacles.motion_window_s", "> 0");
   require(std::isfinite(moving_pause_s) && moving_pause_s >= 0.0, "moving_obstacles.moving_pause_s", ">= 0");
   require(positive(max_prediction_s), "moving_obstacles.max_prediction_s", "> 0");
@@ -396,11 +398,17 @@ double floor_radius(TrackedObstacle& t, double radius_m, double stamp_s, double 
 bool MovingObstacleTracker::is_moving(const TrackedObstacle& t) const {
   if (params_.recent_motion) return t.moving;
   return t.hits >= params_.min_hits && t.velocity.norm() >= params_.min_moving_speed_mps &&
-         (t.position - t.origin).norm() >= params_.min_displacement_m;
+         (t.displaced || (t.position - t.origin).norm() >= params_.min_displacement_m);
 }
 
 void MovingObstacleTracker::update_motion(TrackedObstacle& t, double stamp_s) const {
-  if (!params_.recent_motion) return;
+  if (!params_.recent_motion) {
+    const double latch = params_.latch_displacement_m;
+    if (latch > 0.0 && !t.displaced && t.hits >= params_.min_hits &&
+        t.velocity.norm() >= params_.min_moving_speed_mps && (t.position - t.origin).squaredNorm() >= latch * latch)
+      t.displaced = true;
+    return;
+  }
   // The window's samples and the latest one before it (where the track was motion_window_s ago, or
   // when last seen before a longer gap).
   auto& recent = t.recent;
@@ -559,6 +567,7 @@ void MovingObstacleTracker::update_blobs(const std::vector<Blob>& blobs, double 
         const TrackedObstacle& l = lost_[best].first;
         t.id = l.id;
         t.origin = l.origin;
+        t.displaced = l.displaced;
         t.hits = std::max(t.hits, l.hits);
         t.velocity = l.velocity;
         t.max_radius_m = std::max(t.max_radius_m, l.max_radius_m);
