@@ -78,11 +78,6 @@ planning::PlanResult NavigationServer::get_path(const Pose2& goal) {
   return last_plan_;
 }
 
-bool NavigationServer::command_on_clear_trajectory() const {
-  return clear_cmd_stamp_s_ == view_.now_s && cmd_.linear_x == clear_cmd_.linear_x &&
-         cmd_.linear_y == clear_cmd_.linear_y && cmd_.angular_z == clear_cmd_.angular_z;
-}
-
 ActionStep NavigationServer::exe_path(const Path& path, bool first) {
   if (first) {
     progress_.reset();
@@ -116,10 +111,6 @@ ActionStep NavigationServer::exe_path(const Path& path, bool first) {
   last_ctrl_ = r.result;
   trajectory_ = r.trajectory;
   cmd_ = r.result.ok() ? r.cmd : Twist{};
-  if (r.result.ok() && local_planner_->last_yield().trajectory_clear) {
-    clear_cmd_stamp_s_ = view_.now_s;
-    clear_cmd_ = cmd_;
-  }
   if (!r.result.ok()) {
     if (++ctrl_failures_ > params_.controller_failures_allowed) return {ActionStep::State::FAILED, r.result};
     return {};

@@ -92,9 +92,6 @@ class NavigationServer {
 
   const Twist& command() const { return cmd_; }
   const Path& local_trajectory() const { return trajectory_; }
-  // Whether command() is the local planner's of this cycle, kept by its yield step because the
-  // planner's timed trajectory is clear (DynamicAvoidanceParams::keep_clear_trajectory).
-  bool command_on_clear_trajectory() const;
   const planning::PlanResult& last_plan() const { return last_plan_; }
   std::size_t plans() const { return plans_; }
   std::size_t recoveries() const { return recoveries_; }
@@ -119,8 +116,6 @@ class NavigationServer {
   mapping::ChangeSet pending_changes_;
   Twist cmd_;
   Path trajectory_;
-  double clear_cmd_stamp_s_ = -1e300;  // when exe_path's command was kept on a clear trajectory
-  Twist clear_cmd_;
   planning::PlanResult last_plan_;
   Result last_ctrl_;
   int ctrl_failures_ = 0;

@@ -312,8 +312,6 @@ Twist Navigator::yield_to_moving_obstacles(const Twist& cmd) const {
   // turning, waiting), which know nothing of moving obstacles. Never on stale perception: with a
   // sensor silent or localization unhealthy the tree's stop stands.
   if (!params_.moving_obstacles.enabled || !sensors_alive() || !localizer_.healthy(now_s_)) return cmd;
-  // keep_clear_trajectory: the local planner kept this command on its clear timed trajectory.
-  if (params_.server.local.avoidance.keep_clear_trajectory && server_->command_on_clear_trajectory()) return cmd;
   const auto moving = moving_->moving(now_s_);
   if (moving.empty()) return cmd;
   const planning::local::CommandLimits lim{robot_.max_vel_x_mps, robot_.max_vel_x_backwards_mps,

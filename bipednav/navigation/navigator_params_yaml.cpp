@@ -361,7 +361,6 @@ void visit_fields(V& v, planning::local::DynamicAvoidanceParams& p) {
   v("static_check_s", p.static_check_s);
   v("exit_swept_corridor", p.exit_swept_corridor);
   v("reverse_at_structure", p.reverse_at_structure);
-  v("keep_clear_trajectory", p.keep_clear_trajectory);
 }
 
 template <class V>

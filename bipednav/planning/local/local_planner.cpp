@@ -18,7 +18,7 @@ void LocalPlannerParams::validate() const {
 }
 
 void LocalPlanner::yield(LocalPlanResult& r, const Pose2& pose, const Twist& current, const mapping::Costmap2D& costmap,
-                         const CommandLimits& lim, double period_s, double now_s, bool timed) {
+                         const CommandLimits& lim, double period_s, double now_s) {
   last_yield_ = {};
   last_yield_.cmd = r.cmd;
   if (!moving_ || !moving_->params().enabled) return;
@@ -30,8 +30,7 @@ void LocalPlanner::yield(LocalPlanResult& r, const Pose2& pose, const Twist& cur
       r.result.outcome != Outcome::OSCILLATION)
     return;
   const Twist cmd = failed ? Twist{} : r.cmd;
-  last_yield_ = yield_to_moving_obstacles(cmd, pose, current, moving, costmap, lim, period_s, now_s, avoidance_,
-                                          timed && !failed ? &r.trajectory : nullptr);
+  last_yield_ = yield_to_moving_obstacles(cmd, pose, current, moving, costmap, lim, period_s, now_s, avoidance_);
   if (!last_yield_.modified) return;
   if (failed) {
     // Standing still would be run into: move away instead of failing.

@@ -47,10 +47,9 @@ class LocalPlanner {
  protected:
   // Replaces r.cmd by a command that yields to the predicted moving obstacles (see
   // yield_to_moving_obstacles); a failed cycle whose zero command would be run into becomes a
-  // SUCCESS with the evasive command. `timed`: r.trajectory is the planned timed trajectory the
-  // command starts (DynamicAvoidanceParams::keep_clear_trajectory consults it).
+  // SUCCESS with the evasive command.
   void yield(LocalPlanResult& r, const Pose2& pose, const Twist& current, const mapping::Costmap2D& costmap,
-             const CommandLimits& lim, double period_s, double now_s, bool timed = false);
+             const CommandLimits& lim, double period_s, double now_s);
 
   std::shared_ptr<const MovingObstacleTracker> moving_;
   DynamicAvoidanceParams avoidance_;

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
-#include <optional>
 #include <string>
 #include <tuple>
 #include <unordered_map>
@@ -662,57 +661,7 @@ RolloutCheck rollout_check(const Pose2& pose, const Twist& current, const Twist&
   return out;
 }
 
-// keep_clear_trajectory: the first time within the horizon at which the timed trajectory (sampled
-// at sim_step_s, linearly between its poses, at its last pose after its end) is within reach of a
-// prediction while the two close in, as rollout_check tests a rollout; nullopt for a trajectory that
-// cannot be used (no or non-monotonic times, not starting within 0.1 m of the robot).
-std::optional<double> trajectory_ttc(const Path& traj, const Pose2& pose, const std::vector<TrackedObstacle>& moving,
-                                     double now_s, const DynamicAvoidanceParams& p, const std::vector<double>* turns) {
-  const std::size_t m = traj.poses.size();
-  if (m == 0 || traj.times_s.size() != m) return std::nullopt;
-  if ((traj.poses.front().position() - pose.position()).norm() > 0.1) return std::nullopt;
-  for (std::size_t j = 0; j < m; ++j) {
-    const double tj = traj.times_s[j];
-    if (!std::isfinite(tj) || !traj.poses[j].is_finite() || (j > 0 && tj < traj.times_s[j - 1])) return std::nullopt;
-  }
-  const double t0 = traj.times_s.front();
-  const auto at = [&](std::size_t i, double dt) -> Eigen::Vector2d {
-    const double tt = turns ? (*turns)[i] : kInf;
-    if (dt <= tt) return moving[i].predict(now_s + dt);
-    return moving[i].predict(now_s + tt) - moving[i].velocity * (dt - tt);
-  };
-  std::size_t seg = 0;
-  const auto robot_at = [&](double t) -> Eigen::Vector2d {
-    const double tq = t0 + t;
-    while (seg + 1 < m && traj.times_s[seg + 1] <= tq) ++seg;
-    if (seg + 1 >= m) return traj.poses.back().position();
-    const double ta = traj.times_s[seg], tb = traj.times_s[seg + 1];
-    const double u = tb > ta ? std::clamp((tq - ta) / (tb - ta), 0.0, 1.0) : 1.0;
-    return (1.0 - u) * traj.poses[seg].position() + u * traj.poses[seg + 1].position();
-  };
-  std::vector<double> prev(moving.size());
-  for (std::size_t i = 0; i < moving.size(); ++i) prev[i] = (at(i, 0.0) - pose.position()).norm();
-  const int n = static_cast<int>(std::ceil(p.horizon_s / p.sim_step_s - 1e-9));
-  for (int k = 1; k <= n; ++k) {
-    const double t = k * p.sim_step_s;
-    const Eigen::Vector2d r = robot_at(t);
-    for (std::size_t i = 0; i < moving.size(); ++i) {
-      const double d = (at(i, t) - r).norm();
-      const double reach = p.robot_radius_m + moving[i].radius_m + p.safety_margin_m + p.prediction_growth_mps * t;
-      if (d < reach && d < prev[i] - 1e-6) return t;
-      prev[i] = d;
-    }
-  }
-  return kInf;
-}
-
 }  // namespace
-
-bool timed_trajectory_clear(const Path& trajectory, const Pose2& pose, const std::vector<TrackedObstacle>& moving,
-                            double now_s, const DynamicAvoidanceParams& params) {
-  const auto ttc = trajectory_ttc(trajectory, pose, moving, now_s, params, nullptr);
-  return ttc && !std::isfinite(*ttc);
-}
 
 double time_to_collision(const Pose2& pose, const Twist& cmd, const std::vector<TrackedObstacle>& moving, double now_s,
                          const DynamicAvoidanceParams& params) {
@@ -724,7 +673,7 @@ double time_to_collision(const Pose2& pose, const Twist& cmd, const std::vector<
 YieldDecision yield_to_moving_obstacles(const Twist& cmd, const Pose2& pose, const Twist& current,
                                         const std::vector<TrackedObstacle>& moving, const mapping::Costmap2D& costmap,
                                         const CommandLimits& lim, double period_s, double now_s,
-                                        const DynamicAvoidanceParams& p, const Path* timed_trajectory) {
+                                        const DynamicAvoidanceParams& p) {
   YieldDecision out;
   out.cmd = out.target = cmd;
   out.ttc_s = kInf;
@@ -756,13 +705,6 @@ YieldDecision yield_to_moving_obstacles(const Twist& cmd, const Pose2& pose, con
   }
   out.ttc_s = rollout_check(pose, cur, cmd, moving, lim, now_s, p, nullptr, false, turns).ttc_s;
   if (!std::isfinite(out.ttc_s)) return out;
-  if (p.keep_clear_trajectory && timed_trajectory != nullptr) {
-    const auto ttc = trajectory_ttc(*timed_trajectory, pose, moving, now_s, p, turns);
-    if (ttc && !std::isfinite(*ttc)) {
-      out.trajectory_clear = true;
-      return out;
-    }
-  }
 
   // Candidates: the command slowed along its arc, then a coarse grid of forward, turning and
   // backing commands.

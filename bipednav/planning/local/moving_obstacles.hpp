@@ -5,7 +5,6 @@
 #include <string>
 #include <vector>
 
-#include "bipednav/common/path.hpp"
 #include "bipednav/common/pose2.hpp"
 #include "bipednav/common/robot_profile.hpp"
 #include "bipednav/common/se3.hpp"
@@ -375,23 +374,6 @@ struct DynamicAvoidanceParams {
   // but other seeds: 15, 18, 19 (cube_1, cube_1, cube_2 contacts off) succeed, 3 (NO_PATH_FOUND
   // after touching cube_2), 4 and 9 (cube_2) fail; digit_lab_dynamic 10/10 as off (session 15).
   bool reverse_at_structure = false;
-  // The planner's own timed trajectory before the constant-command rollout's verdict: when a
-  // local planner that plans in time (TEB) hands its timed trajectory to the yield step, a command
-  // whose rollout would be run into is kept when that trajectory (interpolated at sim_step_s,
-  // standing at its last pose after its end) comes within reach of no prediction while closing in
-  // over horizon_s (the reach and test of the rollout); the navigator's final check keeps such a
-  // command too. Cause addressed: hexagon_dynamic/turtlebot3 seed 17, TEB's turn held for 3 s is a
-  // 0.24 m circle that curls back into the box's lane, so a command whose band bent away from the
-  // box was replaced by a slower or backing one; the robot dithered at the box's corner (7 flips)
-  // and touched it at 8.84 s. The path tracker's arc is the command held, so it hands none.
-  // Off: on for the TurtleBot3 (main 088d42a), seed 17 succeeds (33.2 s, driving on north past the
-  // box's corner), but hexagon_dynamic seeds 1-20 15/20 (2, 5, 11, 14 PAT_EXCEEDED, 8 and 14 touch
-  // the box) against 17/20 off (16, 17, 20), digit_lab_dynamic 17/20 (12, 14, 15 touch the person)
-  // against 20/20, three_rooms seeds 1-10 8/10 (3 touches cube_1, 6 cube_3) against 10/10. At seed
-  // 8 the kept bands (8 s long) began by turning in place in the box's lane and were re-planned
-  // each cycle: the robot dithered at the corner as seed 17 did off (lagging the band by 0.5 or
-  // 1 s in the test saved seed 8 but not 17; not screened).
-  bool keep_clear_trajectory = false;
 
   void validate() const;
 };
@@ -406,24 +388,14 @@ struct YieldDecision {
   Twist target;           // the chosen candidate before the acceleration limits
   bool modified = false;  // the command was replaced
   double ttc_s = 0.0;     // time to collision of the returned command (inf: none predicted)
-  // keep_clear_trajectory: the command was kept because the planner's timed trajectory is clear
-  // although its rollout is run into.
-  bool trajectory_clear = false;
 };
-
-// Whether a timed trajectory (map frame, times since now_s, starting at the robot) comes within reach
-// of no moving obstacle's prediction while closing in over horizon_s (keep_clear_trajectory).
-// False for a trajectory without times or one not starting within 0.1 m of `pose`.
-bool timed_trajectory_clear(const Path& trajectory, const Pose2& pose, const std::vector<TrackedObstacle>& moving,
-                            double now_s, const DynamicAvoidanceParams& params);
 
 // Keeps `cmd` when no collision with a moving obstacle is predicted, else returns the safest
 // candidate (see DynamicAvoidanceParams). The result is within the velocity and acceleration
-// limits from `current`. `timed_trajectory`: the planner's trajectory for `cmd`, consulted with
-// keep_clear_trajectory.
+// limits from `current`.
 YieldDecision yield_to_moving_obstacles(const Twist& cmd, const Pose2& pose, const Twist& current,
                                         const std::vector<TrackedObstacle>& moving, const mapping::Costmap2D& costmap,
                                         const CommandLimits& lim, double period_s, double now_s,
-                                        const DynamicAvoidanceParams& params, const Path* timed_trajectory = nullptr);
+                                        const DynamicAvoidanceParams& params);
 
 }  // namespace bipednav::planning::local

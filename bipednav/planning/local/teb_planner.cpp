@@ -52,7 +52,7 @@ LocalPlanResult TebPlanner::finish(LocalPlanResult r, const Twist& desired, cons
 LocalPlanResult TebPlanner::compute(const Pose2& T_map_base, const Twist& current_velocity, const Path& global_plan,
                                     const mapping::Costmap2D& local_costmap, double now_s) {
   LocalPlanResult r = plan(T_map_base, current_velocity, global_plan, local_costmap, now_s);
-  yield(r, T_map_base, current_velocity, local_costmap, command_limits(), params_.control_period_s, now_s, true);
+  yield(r, T_map_base, current_velocity, local_costmap, command_limits(), params_.control_period_s, now_s);
   return r;
 }
 

@@ -3,7 +3,6 @@
 #include <cmath>
 #include <limits>
 #include <memory>
-#include <numbers>
 #include <optional>
 
 #include "bipednav/planning/local/local_planner.hpp"
@@ -378,82 +377,6 @@ TEST(MovingObstacles, OfSeveralSafeCommandsTheClosestToThePlannersIsKept) {
   // Still moving forward (slower or veering away), neither stopping nor backing off.
   EXPECT_GT(y.target.linear_x, 0.0) << y.target.linear_x << " " << y.target.angular_z;
   EXPECT_FALSE(y.target.linear_x == cmd.linear_x && y.target.angular_z == cmd.angular_z);
-}
-
-namespace {
-
-// A TEB-like timed trajectory from `pose`: turning at w until the heading reaches `final_yaw`,
-// then straight on, at v, poses every 0.1 s for duration_s.
-Path turn_then_straight(Pose2 pose, double v, double w, double final_yaw, double duration_s) {
-  Path traj;
-  double t = 0.0;
-  traj.poses.push_back(pose);
-  traj.times_s.push_back(t);
-  while (t < duration_s - 1e-9) {
-    const double left = final_yaw - pose.theta;
-    const double dyaw = std::abs(left) < std::abs(0.1 * w) ? left : 0.1 * w;
-    pose = pose * Pose2{0.1 * v, 0.0, dyaw};
-    t += 0.1;
-    traj.poses.push_back(pose);
-    traj.times_s.push_back(t);
-  }
-  return traj;
-}
-
-}  // namespace
-
-TEST(MovingObstacles, KeepClearTrajectoryKeepsATimedPathThatBendsAwayFromTheMover) {
-  // A TurtleBot3 heading -30 deg straightens up with a left turn (0.2 m/s, 0.8 rad/s) and drives on
-  // along y = 0; a box (radius 0.15 m) comes down a lane at y = 0.7 at 0.3 m/s (hexagon_dynamic seed
-  // 17: the band bent away from the box). The left turn held for 3 s is a circle of radius 0.25 m
-  // that curls up to within 0.45 m of the box's lane: the rollout is run into and the yield replaces
-  // the command; the planner's timed trajectory never comes within reach, so it is kept with
-  // keep_clear_trajectory. A trajectory that heads into the lane is still vetoed.
-  const auto map = test::empty_costmap(0.0, 0.0, 8.0);
-  const CommandLimits lim{0.26, 0.26, 1.82, 2.5, 3.2};
-  TrackedObstacle box;
-  box.position = {1.2, 0.7};
-  box.velocity = {-0.3, 0.0};
-  box.radius_m = 0.15;
-  const std::vector<TrackedObstacle> moving{box};
-  DynamicAvoidanceParams p;
-  p.robot_radius_m = 0.2;
-  const Pose2 pose{0.0, 0.0, -std::numbers::pi / 6.0};
-  const Twist cmd{0.2, 0.0, 0.8};
-  const Path bends_away = turn_then_straight(pose, 0.2, 0.8, 0.0, 4.0);
-  ASSERT_NEAR(bends_away.poses.back().y, -0.03, 0.02);
-  ASSERT_LT(time_to_collision(pose, cmd, moving, 0.0, p), p.horizon_s);
-  EXPECT_TRUE(timed_trajectory_clear(bends_away, pose, moving, 0.0, p));
-
-  ASSERT_FALSE(p.keep_clear_trajectory);
-  const auto off = yield_to_moving_obstacles(cmd, pose, cmd, moving, map, lim, 0.1, 0.0, p, &bends_away);
-  EXPECT_TRUE(off.modified);
-  EXPECT_FALSE(off.trajectory_clear);
-
-  p.keep_clear_trajectory = true;
-  const auto on = yield_to_moving_obstacles(cmd, pose, cmd, moving, map, lim, 0.1, 0.0, p, &bends_away);
-  EXPECT_FALSE(on.modified);
-  EXPECT_TRUE(on.trajectory_clear);
-  EXPECT_EQ(on.cmd.linear_x, cmd.linear_x);
-  EXPECT_EQ(on.cmd.angular_z, cmd.angular_z);
-
-  // Into the lane: turning on to +60 deg meets the box.
-  const Path into_lane = turn_then_straight(pose, 0.2, 0.8, std::numbers::pi / 3.0, 4.0);
-  EXPECT_FALSE(timed_trajectory_clear(into_lane, pose, moving, 0.0, p));
-  const auto vetoed = yield_to_moving_obstacles(cmd, pose, cmd, moving, map, lim, 0.1, 0.0, p, &into_lane);
-  EXPECT_TRUE(vetoed.modified);
-  EXPECT_FALSE(vetoed.trajectory_clear);
-  // Ending early: standing at its last pose, in the box's way (the box reaches x = 0.3 at 3 s).
-  const Path stops_short = turn_then_straight(pose, 0.2, 0.8, 0.0, 1.0);
-  Path in_lane = stops_short;
-  for (auto& q : in_lane.poses) q.y += 0.55;
-  EXPECT_FALSE(timed_trajectory_clear(in_lane, in_lane.poses.front(), moving, 0.0, p));
-  // Unusable trajectories: no times, or not starting at the robot.
-  Path untimed = bends_away;
-  untimed.times_s.clear();
-  EXPECT_FALSE(timed_trajectory_clear(untimed, pose, moving, 0.0, p));
-  EXPECT_TRUE(yield_to_moving_obstacles(cmd, pose, cmd, moving, map, lim, 0.1, 0.0, p, &untimed).modified);
-  EXPECT_FALSE(timed_trajectory_clear(bends_away, Pose2{0.0, 0.5, 0.0}, moving, 0.0, p));
 }
 
 TEST(MovingObstacles, ClusterBlobsKeepTheHighestPointAndRejectMismatchedHeights) {
