@@ -843,9 +843,10 @@ TEST(MovingObstacles, LatchedDisplacementKeepsALoopingBoxMovingPastItsTrackStart
   // the bottom edge: one lap later it passes where its track began at full speed
   // (hexagon_dynamic/turtlebot3 seed 20's box). From its first centroid alone it is static within
   // min_displacement_m of it; with latch_displacement_m it stays moving.
-  MovingObstacleParams latched = enabled_tracking();
+  MovingObstacleParams latched = enabled_tracking(), unlatched = enabled_tracking();
   latched.latch_displacement_m = 1.0;
-  MovingObstacleTracker on(latched), off(enabled_tracking());
+  unlatched.latch_displacement_m = 0.0;
+  MovingObstacleTracker on(latched), off(unlatched);
   const double side = 1.5, speed = 0.5;
   const Eigen::Vector2d centre(2.0, 0.0);
   const auto box_at = [&](double t) {  // counter-clockwise from the bottom edge's middle
@@ -895,9 +896,10 @@ TEST(MovingObstacles, WanderingCentroidShorterThanTheLatchDistanceNeverLatches) 
   // wall at up to 0.24 m/s (fast and farther than min_displacement_m from its origin at times, so it
   // counts as moving then), never 1 m from where its track began: it never latches, and the tracker
   // with latch_displacement_m classes it as the one without does at every cycle.
-  MovingObstacleParams latched = enabled_tracking();
+  MovingObstacleParams latched = enabled_tracking(), unlatched = enabled_tracking();
   latched.latch_displacement_m = 1.0;
-  MovingObstacleTracker on(latched), off(enabled_tracking());
+  unlatched.latch_displacement_m = 0.0;
+  MovingObstacleTracker on(latched), off(unlatched);
   int moving_cycles = 0, static_cycles_after_moving = 0;
   for (int k = 0; k <= 300; ++k) {
     const double t = 0.1 * k;
