@@ -186,9 +186,10 @@ inline double jet_value_distance_to_segment(double px, double py, const Eigen::V
   return std::sqrt(dx * dx + dy * dy + 1e-12);
 }
 
-// distance_to_polygon_all_edges on Jets (>= 3 vertices), decided on the scalar parts: the edge whose Jet it
+// distance_to_polygon on Jets (>= 3 vertices), decided on the scalar parts: the edge whose Jet it
 // returns (from v[edge] to v[(edge + 1) % size]: the first of the closing edge, then edges 0, 1, ... with
-// the least distance, as its loop keeps them), whether the point is inside, and the returned scalar part.
+// the least distance, the edge a loop over every edge keeps), whether the point is inside, and the returned
+// scalar part.
 struct JetPolygonNearest {
   std::size_t edge = 0;
   bool inside = true;
@@ -213,29 +214,10 @@ inline JetPolygonNearest jet_polygon_nearest(double px, double py, const std::ve
 }
 
 // Signed distance from (px, py) to a convex polygon (vertices counter-clockwise): negative inside
-// (minus the depth), so the gradient keeps pushing out of an obstacle. Every edge's distance in T.
-template <typename T>
-T distance_to_polygon_all_edges(const T& px, const T& py, const std::vector<Eigen::Vector2d>& v) {
-  if (v.size() == 1) return distance_to_point(px, py, v[0]);
-  if (v.size() == 2) return distance_to_segment(px, py, v[0], v[1]);
-  bool inside = true;
-  T best = distance_to_segment(px, py, v.back(), v.front());
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    const Eigen::Vector2d& a = v[i];
-    const Eigen::Vector2d& b = v[(i + 1) % v.size()];
-    const T cross = T(b.x() - a.x()) * (py - T(a.y())) - T(b.y() - a.y()) * (px - T(a.x()));
-    if (cross < T(0.0)) inside = false;
-    if (i + 1 < v.size()) {
-      const T d = distance_to_segment(px, py, a, b);
-      if (d < best) best = d;
-    }
-  }
-  return inside ? -best : best;
-}
-
-// distance_to_polygon_all_edges, bitwise, with the work of one edge in T: for doubles one square root (the
-// nearest edge's), for Jets the edges compared on their scalar parts (jet_polygon_nearest) and the derivatives
-// of the nearest one only.
+// (minus the depth), so the gradient keeps pushing out of an obstacle. Bitwise the least of every edge's
+// distance_to_segment in T (the reference in test_teb_residuals.cpp), with the work of one edge in T: for
+// doubles one square root (the nearest edge's), for Jets the edges compared on their scalar parts
+// (jet_polygon_nearest) and the derivatives of the nearest one only.
 template <typename T>
 T distance_to_polygon(const T& px, const T& py, const std::vector<Eigen::Vector2d>& v) {
   if (v.size() == 1) return distance_to_point(px, py, v[0]);

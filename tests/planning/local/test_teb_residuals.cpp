@@ -27,6 +27,27 @@ struct Fixture {
   }
 };
 
+// The polygon distance with every edge's distance in T, as distance_to_polygon computed it before it
+// compared the edges on their scalar parts: the reference its Jets must equal bit for bit.
+template <typename T>
+T distance_to_polygon_all_edges(const T& px, const T& py, const std::vector<Eigen::Vector2d>& v) {
+  if (v.size() == 1) return distance_to_point(px, py, v[0]);
+  if (v.size() == 2) return distance_to_segment(px, py, v[0], v[1]);
+  bool inside = true;
+  T best = distance_to_segment(px, py, v.back(), v.front());
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const Eigen::Vector2d& a = v[i];
+    const Eigen::Vector2d& b = v[(i + 1) % v.size()];
+    const T cross = T(b.x() - a.x()) * (py - T(a.y())) - T(b.y() - a.y()) * (px - T(a.x()));
+    if (cross < T(0.0)) inside = false;
+    if (i + 1 < v.size()) {
+      const T d = distance_to_segment(px, py, a, b);
+      if (d < best) best = d;
+    }
+  }
+  return inside ? -best : best;
+}
+
 // Jets for the variables vars[0..n): value and unit derivative.
 std::vector<Jet> jets(const std::vector<double>& vars) {
   std::vector<Jet> j(vars.size());
