@@ -13,6 +13,7 @@ struct Path {
   std::vector<Pose2> poses;
   std::vector<double> times_s;  // empty, or one time since the start per pose
 
+  bool operator==(const Path&) const = default;
   bool empty() const { return poses.empty(); }
   std::size_t size() const { return poses.size(); }
 

@@ -14,6 +14,7 @@ struct Pose2 {
   double theta = 0.0;
 
   Eigen::Vector2d position() const { return {x, y}; }
+  bool operator==(const Pose2&) const = default;
 
   // this * other: other expressed in this frame, returned in the parent frame.
   Pose2 operator*(const Pose2& o) const {

@@ -352,7 +352,10 @@ void Navigator::control() {
   Stopwatch sw;
   const BtStatus s = tree_->tick(now_s_);
   status_.active_leaf = tree_->active_leaf();
-  if (auto p = tree_->blackboard()->get<Path>("path")) global_path_ = *p;
+  if (auto p = tree_->blackboard()->get<Path>("path"); p && *p != global_path_) {
+    global_path_ = std::move(*p);
+    ++global_path_version_;
+  }
   cmd_ = yield_to_moving_obstacles(server_->command());
   if (s == BtStatus::SUCCESS || s == BtStatus::FAILURE) finish(s);
   timings_.control_ms = sw.elapsed_ms();

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -114,6 +115,8 @@ class Navigator {
   const mapping::LocalCostmap& local_map() const { return local_; }
   const mapping::GlobalCostmap& global_map() const { return global_; }
   const Path& global_path() const { return global_path_; }
+  // Counts the changes of global_path(): equal versions mean the same path.
+  std::uint64_t global_path_version() const { return global_path_version_; }
   const Path& local_trajectory() const { return server_->local_trajectory(); }
   const perception::PerceptionOutput& last_perception() const { return perception_out_; }
   const std::optional<Pose2>& goal() const { return goal_; }
@@ -167,6 +170,7 @@ class Navigator {
   std::size_t depth_frames_skipped_ = 0;
   std::optional<Pose2> goal_;
   Path global_path_;
+  std::uint64_t global_path_version_ = 0;
   NavStatus status_;
   NavigatorTimings timings_;
   NavigatorCpu cpu_;

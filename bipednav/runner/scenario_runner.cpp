@@ -90,6 +90,7 @@ RunResult run_scenario(const sim::Scenario& scenario, const RunOptions& o) {
   Twist cmd;
   Pose2 last = sim.true_pose();
   Path last_path;
+  std::uint64_t last_path_version = 0;  // the navigator's global path version last compared
   double next_trace = 0.0;
   Stopwatch wall;
   const double cpu_loop_ms = process_cpu_ms();
@@ -113,11 +114,15 @@ RunResult run_scenario(const sim::Scenario& scenario, const RunOptions& o) {
       out.trace.push_back({sim.now_s(), sim.true_pose(), nav.pose(), cmd, nav.status().active_leaf, sim.actor_poses()});
       bar.update(static_cast<std::size_t>(sim.now_s() * 10));
     }
-    if (path_departs(last_path, nav.global_path())) {
-      const bool spaced = out.snapshots.empty() || sim.now_s() - out.snapshots.back().t_s >= o.snapshot_spacing_s;
-      if (out.snapshots.size() < o.max_snapshots && !last_path.empty() && spaced)
-        out.snapshots.push_back(snapshot(sim.now_s(), nav, sim));
-      last_path = nav.global_path();
+    // An unchanged path compares as it did last time (not departed: a departed path becomes last_path).
+    if (nav.global_path_version() != last_path_version) {
+      last_path_version = nav.global_path_version();
+      if (path_departs(last_path, nav.global_path())) {
+        const bool spaced = out.snapshots.empty() || sim.now_s() - out.snapshots.back().t_s >= o.snapshot_spacing_s;
+        if (out.snapshots.size() < o.max_snapshots && !last_path.empty() && spaced)
+          out.snapshots.push_back(snapshot(sim.now_s(), nav, sim));
+        last_path = nav.global_path();
+      }
     }
     sim.recycle(std::move(frame));  // its clouds' buffers hold the next frames' clouds
     const bool more_goals = next_goal < goals.size();
