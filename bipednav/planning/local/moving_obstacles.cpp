@@ -1,5 +1,7 @@
 #include "bipednav/planning/local/moving_obstacles.hpp"
 
+#include <immintrin.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -190,6 +192,69 @@ void DynamicAvoidanceParams::validate() const {
   require(positive(static_check_s), "dynamic_avoidance.static_check_s", "> 0");
 }
 
+namespace {
+
+// cluster_blobs' binning of the points in range, four at a time: the same finite test, squared
+// distance, quotient and floor as the scalar loop (IEEE division, subtraction, product and sum
+// without contraction, and floor are exact operations: the lanes give the scalar's bits). A block
+// whose kept bins do not fit an int32 is left to the scalar loop (returns its index).
+#define BIPEDNAV_BLOB_AVX2 __attribute__((target("avx2")))
+BIPEDNAV_BLOB_AVX2 std::size_t blob_bins_avx2(const Eigen::Vector2d* points, std::size_t n,
+                                              const Eigen::Vector2d& center, double r2max, double cell, long* bx,
+                                              long* by, std::size_t* kept, std::size_t& m) {
+  static_assert(sizeof(Eigen::Vector2d) == 2 * sizeof(double));
+  const __m256d cx = _mm256_set1_pd(center.x()), cy = _mm256_set1_pd(center.y());
+  const __m256d r2 = _mm256_set1_pd(r2max), c = _mm256_set1_pd(cell), zero = _mm256_setzero_pd();
+  const __m256d lo = _mm256_set1_pd(-2147483648.0), hi = _mm256_set1_pd(2147483647.0);
+  std::size_t i = 0;
+  for (; i + 4 <= n; i += 4) {
+    const double* d = points[i].data();
+    const __m256d a = _mm256_loadu_pd(d), b = _mm256_loadu_pd(d + 4);         // x0 y0 x1 y1 | x2 y2 x3 y3
+    const __m256d x = _mm256_permute4x64_pd(_mm256_unpacklo_pd(a, b), 0xD8);  // x0 x1 x2 x3
+    const __m256d y = _mm256_permute4x64_pd(_mm256_unpackhi_pd(a, b), 0xD8);
+    // p.allFinite(): x - x and y - y are 0 (NaN for an infinity or a NaN).
+    const __m256d finite = _mm256_and_pd(_mm256_cmp_pd(_mm256_sub_pd(x, x), zero, _CMP_EQ_OQ),
+                                         _mm256_cmp_pd(_mm256_sub_pd(y, y), zero, _CMP_EQ_OQ));
+    const __m256d dx = _mm256_sub_pd(x, cx), dy = _mm256_sub_pd(y, cy);
+    const __m256d s = _mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy));
+    const int keep = _mm256_movemask_pd(_mm256_and_pd(finite, _mm256_cmp_pd(s, r2, _CMP_NGT_UQ)));  // !(s > r2max)
+    if (keep == 0) continue;
+    const __m256d qx = _mm256_floor_pd(_mm256_div_pd(x, c)), qy = _mm256_floor_pd(_mm256_div_pd(y, c));
+    const __m256d fits =
+        _mm256_and_pd(_mm256_and_pd(_mm256_cmp_pd(qx, lo, _CMP_GE_OQ), _mm256_cmp_pd(qx, hi, _CMP_LE_OQ)),
+                      _mm256_and_pd(_mm256_cmp_pd(qy, lo, _CMP_GE_OQ), _mm256_cmp_pd(qy, hi, _CMP_LE_OQ)));
+    if ((_mm256_movemask_pd(fits) & keep) != keep) return i;
+    alignas(16) std::int32_t xi[4], yi[4];
+    _mm_store_si128(reinterpret_cast<__m128i*>(xi), _mm256_cvttpd_epi32(qx));
+    _mm_store_si128(reinterpret_cast<__m128i*>(yi), _mm256_cvttpd_epi32(qy));
+    for (int l = 0; l < 4; ++l) {
+      if (!(keep & (1 << l))) continue;
+      bx[m] = xi[l], by[m] = yi[l], kept[m] = i + static_cast<std::size_t>(l);
+      ++m;
+    }
+  }
+  return i;
+}
+
+bool blob_cpu_has_avx2() {
+  static const bool has = __builtin_cpu_supports("avx2");
+  return has;
+}
+
+// cluster_blobs' buffers, kept between calls (it runs at the local map's rate on tens of
+// thousands of points).
+struct BlobScratch {
+  std::vector<long> bx, by;
+  std::vector<std::size_t> in_range, order, stack, members;
+  std::vector<std::uint32_t> start;
+  std::vector<std::int32_t> grid;  // dense: cell index per bin, -1 when empty
+  std::vector<std::pair<std::size_t, std::size_t>> cells;
+  std::vector<std::pair<long, long>> cell_xy;
+  std::vector<char> seen;
+};
+
+}  // namespace
+
 std::vector<Blob> cluster_blobs(const std::vector<Eigen::Vector2d>& points, const Eigen::Vector2d& center,
                                 const MovingObstacleParams& params, const std::vector<double>& heights,
                                 const StaticStructure* structure) {
@@ -199,39 +264,52 @@ std::vector<Blob> cluster_blobs(const std::vector<Eigen::Vector2d>& points, cons
   std::vector<Blob> out;
   const double cell = params.cluster_cell_m;
   const double r2max = params.max_range_m * params.max_range_m;
+  thread_local BlobScratch w;
   // The bins of the points in range, in point order.
-  std::vector<long> bx, by;
-  std::vector<std::size_t> in_range;
-  bx.reserve(points.size());
-  by.reserve(points.size());
-  in_range.reserve(points.size());
-  long x_lo = 0, x_hi = -1, y_lo = 0, y_hi = -1;
-  for (std::size_t i = 0; i < points.size(); ++i) {
+  std::vector<long>&bx = w.bx, &by = w.by;
+  std::vector<std::size_t>& in_range = w.in_range;
+  bx.resize(points.size());
+  by.resize(points.size());
+  in_range.resize(points.size());
+  std::size_t m = 0, first = 0;
+  if (blob_cpu_has_avx2())
+    first = blob_bins_avx2(points.data(), points.size(), center, r2max, cell, bx.data(), by.data(), in_range.data(), m);
+  for (std::size_t i = first; i < points.size(); ++i) {
     const Eigen::Vector2d& p = points[i];
     if (!p.allFinite() || (p - center).squaredNorm() > r2max) continue;
-    const auto x = static_cast<long>(std::floor(p.x() / cell)), y = static_cast<long>(std::floor(p.y() / cell));
-    if (in_range.empty()) x_lo = x_hi = x, y_lo = y_hi = y;
-    x_lo = std::min(x_lo, x), x_hi = std::max(x_hi, x), y_lo = std::min(y_lo, y), y_hi = std::max(y_hi, y);
-    bx.push_back(x);
-    by.push_back(y);
-    in_range.push_back(i);
+    bx[m] = static_cast<long>(std::floor(p.x() / cell)), by[m] = static_cast<long>(std::floor(p.y() / cell));
+    in_range[m++] = i;
+  }
+  bx.resize(m);
+  by.resize(m);
+  in_range.resize(m);
+  long x_lo = 0, x_hi = -1, y_lo = 0, y_hi = -1;
+  if (m > 0) {
+    x_lo = x_hi = bx[0], y_lo = y_hi = by[0];
+    for (std::size_t k = 1; k < m; ++k)
+      x_lo = std::min(x_lo, bx[k]), x_hi = std::max(x_hi, bx[k]), y_lo = std::min(y_lo, by[k]),
+      y_hi = std::max(y_hi, by[k]);
   }
   if (in_range.empty()) return out;
   // Cells in a fixed order, (x, y) ascending, each a [begin, end) range of `order` (point indices,
   // ascending within a cell). The bins span a small window (max_range_m around the robot): a
   // counting sort over it; a hash of the bins when the window is too large for that.
-  std::vector<std::size_t> order(in_range.size());
-  std::vector<std::pair<std::size_t, std::size_t>> cells;
-  std::vector<std::pair<long, long>> cell_xy;
+  std::vector<std::size_t>& order = w.order;
+  order.resize(in_range.size());
+  std::vector<std::pair<std::size_t, std::size_t>>& cells = w.cells;
+  std::vector<std::pair<long, long>>& cell_xy = w.cell_xy;
+  cells.clear();
+  cell_xy.clear();
   const auto span_x = static_cast<unsigned long>(x_hi - x_lo), span_y = static_cast<unsigned long>(y_hi - y_lo);
   const std::size_t grid_limit = std::max<std::size_t>(1 << 16, 8 * in_range.size());
   const bool dense = span_x < grid_limit && span_y < grid_limit && (span_x + 1) * (span_y + 1) <= grid_limit;
   const auto H = static_cast<std::size_t>(span_y + 1);
-  std::vector<std::int32_t> grid;  // dense: cell index per bin, -1 when empty
+  std::vector<std::int32_t>& grid = w.grid;  // dense: cell index per bin, -1 when empty
   std::unordered_map<std::uint64_t, std::size_t> cell_of;
   if (dense) {
     const std::size_t W = static_cast<std::size_t>(span_x + 1);
-    std::vector<std::uint32_t> start(W * H + 1, 0);
+    std::vector<std::uint32_t>& start = w.start;
+    start.assign(W * H + 1, 0);
     const auto bin = [&](std::size_t k) {
       return static_cast<std::size_t>(bx[k] - x_lo) * H + static_cast<std::size_t>(by[k] - y_lo);
     };
@@ -271,8 +349,9 @@ std::vector<Blob> cluster_blobs(const std::vector<Eigen::Vector2d>& points, cons
     const auto it = cell_of.find(cell_key(x, y));
     return it == cell_of.end() ? -1 : static_cast<std::int64_t>(it->second);
   };
-  std::vector<char> seen(cells.size(), 0);
-  std::vector<std::size_t> stack, members;
+  std::vector<char>& seen = w.seen;
+  seen.assign(cells.size(), 0);
+  std::vector<std::size_t>&stack = w.stack, &members = w.members;
   for (std::size_t c0 = 0; c0 < cells.size(); ++c0) {
     if (seen[c0]) continue;
     seen[c0] = 1;
