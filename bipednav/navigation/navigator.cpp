@@ -173,9 +173,35 @@ void append_points(std::vector<mapping::Observation>& obs, const std::vector<per
   }
   const Eigen::Matrix3f R = T_map_base.linear().cast<float>();
   const Eigen::Vector3f t = T_map_base.translation().cast<float>();
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
-    const std::size_t k = first + (i < source_of.size() ? source_of[i] : 0);
-    if (k < obs.size()) obs[k].points_map.push_back(R * cloud.points[i] + t);
+  // The cloud in runs of one source (each sensor's points are contiguous): each observation's
+  // points counted, then written in place run by run (the same points in the same order as
+  // appending them one by one, without a capacity test and a size update per point).
+  struct Run {
+    std::size_t begin, end, k;
+  };
+  thread_local std::vector<Run> runs;
+  thread_local std::vector<std::size_t> fill;
+  runs.clear();
+  const std::size_t n_src = obs.size() - first;
+  fill.assign(n_src, 0);
+  const auto src = [&](std::size_t i) -> std::size_t { return i < source_of.size() ? source_of[i] : 0; };
+  for (std::size_t i = 0; i < cloud.size();) {
+    const std::size_t k = src(i);
+    std::size_t j = i + 1;
+    while (j < cloud.size() && src(j) == k) ++j;
+    if (k < n_src) runs.push_back({i, j, k}), fill[k] += j - i;
+    i = j;
+  }
+  for (std::size_t k = 0; k < n_src; ++k) {
+    std::vector<Eigen::Vector3f>& v = obs[first + k].points_map;
+    const std::size_t old = v.size();
+    v.resize(old + fill[k]);
+    fill[k] = old;  // from here: the next slot to write
+  }
+  for (const Run& r : runs) {
+    Eigen::Vector3f* o = obs[first + r.k].points_map.data() + fill[r.k];
+    for (std::size_t i = r.begin; i < r.end; ++i) *o++ = R * cloud.points[i] + t;
+    fill[r.k] += r.end - r.begin;
   }
 }
 
@@ -239,11 +265,12 @@ void Navigator::track_moving_obstacles() {
   std::size_t total = 0;
   for (const auto& o : local_obs_)
     if (o.marking) total += o.points_map.size();
-  pts.reserve(total);
-  heights.reserve(total);
+  pts.resize(total);
+  heights.resize(total);
+  std::size_t filled = 0;
   for (const auto& o : local_obs_) {
     if (!o.marking) continue;
-    for (const auto& p : o.points_map) pts.emplace_back(p.x(), p.y()), heights.push_back(p.z());
+    for (const auto& p : o.points_map) pts[filled] = Eigen::Vector2d(p.x(), p.y()), heights[filled++] = p.z();
   }
   if (pts.empty()) return;
   moving_->set_static_structure(global_.occupancy(), now_s_);  // walls' pieces are not movers

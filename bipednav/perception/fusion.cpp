@@ -11,13 +11,17 @@ std::size_t append_sensor_cloud(FusedCloud& out, const PointCloud& in, const SE3
   out.sources.push_back({name, T_base_sensor.translation(), max_range_m});
   const Eigen::Matrix3f R = T_base_sensor.linear().cast<float>();
   const Eigen::Vector3f t = T_base_sensor.translation().cast<float>();
-  out.cloud.points.reserve(out.cloud.size() + in.size());
-  out.source.reserve(out.cloud.size() + in.size());
+  // The kept points written in place (room for all, trimmed after), their source ids after them.
+  const std::size_t first = out.cloud.size();
+  out.cloud.points.resize(first + in.size());
+  Eigen::Vector3f* o = out.cloud.points.data() + first;
   for (const Eigen::Vector3f& p : in.points) {
     if (!p.allFinite() || (crop && !crop->keep(p))) continue;
-    out.cloud.points.push_back(R * p + t);
-    out.source.push_back(id);
+    *o++ = R * p + t;
   }
+  const auto kept = static_cast<std::size_t>(o - (out.cloud.points.data() + first));
+  out.cloud.points.resize(first + kept);
+  out.source.resize(out.source.size() + kept, id);
   return id;
 }
 

@@ -93,17 +93,30 @@ void PerceptionPipeline::classify(const FusedCloud& fused, double robot_height_m
   const auto t = static_cast<float>(params_.ransac.distance_threshold_m);
   const auto h_min = static_cast<float>(params_.min_obstacle_height_m);
   const auto h_max = static_cast<float>(robot_height_m + params_.obstacle_height_margin_m);
-  for (std::size_t i = 0; i < fused.size(); ++i) {
+  // Written in place (room for every point, trimmed after): the points appended in order.
+  const std::size_t n = fused.size();
+  const std::size_t g0 = out.ground.size(), gs0 = out.ground_source.size();
+  const std::size_t o0 = out.obstacles.size(), os0 = out.obstacle_source.size();
+  out.ground.points.resize(g0 + n);
+  out.ground_source.resize(gs0 + n);
+  out.obstacles.points.resize(o0 + n);
+  out.obstacle_source.resize(os0 + n);
+  std::size_t g = 0, o = 0;
+  for (std::size_t i = 0; i < n; ++i) {
     const Eigen::Vector3f& p = fused.cloud.points[i];
     const float h = signed_distance(pl, p);
     if (std::fabs(h) < t) {
-      out.ground.points.push_back(p);
-      out.ground_source.push_back(fused.source[i]);
+      out.ground.points[g0 + g] = p;
+      out.ground_source[gs0 + g++] = fused.source[i];
     } else if (h >= h_min && h <= h_max) {
-      out.obstacles.points.push_back(p);
-      out.obstacle_source.push_back(fused.source[i]);
+      out.obstacles.points[o0 + o] = p;
+      out.obstacle_source[os0 + o++] = fused.source[i];
     }
   }
+  out.ground.points.resize(g0 + g);
+  out.ground_source.resize(gs0 + g);
+  out.obstacles.points.resize(o0 + o);
+  out.obstacle_source.resize(os0 + o);
   out.ground_inliers = out.ground.size();
 }
 
