@@ -1,7 +1,9 @@
 #include "bipednav/localization/loam_features.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <utility>
 
 #include "bipednav/common/error.hpp"
@@ -70,9 +72,16 @@ void mark_neighbours(const RingGeometry& ring, int i, const FeatureParams& p, st
 // their scores beside them. Candidates already picked (unreliable, or next to a selected feature) are skipped wherever
 // they come, so only the others are sorted. Equal scores keep the order a chunked partial sort of `candidates` gives
 // them (the order these features were selected in before; ties are rare), so that path stays for them.
+//
+// The sort runs on one 64-bit word per candidate: the score's bits in an order-preserving form, their
+// low 16 bits replaced by the candidate's index. When no two words share their score part (so no two
+// scores are equal either), their order is the scores' order, the one std::sort of the (score,
+// index) pairs gives; a shared score part (a tie, or scores that differ only in the dropped bits),
+// an index beyond 16 bits or a NaN falls back to the pairs (and to the tie path).
 void select(std::vector<int>& candidates, const std::vector<double>& c, bool edges, const RingGeometry& ring,
             const FeatureParams& p, std::vector<char>& picked, std::vector<std::pair<double, int>>& scored,
-            const PointCloud& sweep, const std::uint32_t* idx, PointCloud& sharp_out, PointCloud& map_out) {
+            std::vector<std::uint64_t>& packed, const PointCloud& sweep, const std::uint32_t* idx,
+            PointCloud& sharp_out, PointCloud& map_out) {
   const int max_sharp = edges ? p.max_edges_per_region : p.max_planars_per_region;
   const auto max_map = static_cast<std::size_t>(max_sharp * p.map_feature_factor);
   int sharp = 0;
@@ -88,6 +97,28 @@ void select(std::vector<int>& candidates, const std::vector<double>& c, bool edg
     picked[static_cast<std::size_t>(i)] = 1;
     mark_neighbours(ring, i, p, picked);
   };
+  constexpr std::uint64_t kIndexBits = 16, kIndexMask = (std::uint64_t{1} << kIndexBits) - 1;
+  bool packable = ring.range.size() <= kIndexMask + 1;
+  packed.clear();
+  for (const int i : candidates) {
+    if (!packable) break;
+    if (picked[static_cast<std::size_t>(i)]) continue;
+    const double ci = c[static_cast<std::size_t>(i)];
+    const double score = (edges ? -ci : ci) + 0.0;  // -0 as +0: equal scores, equal words
+    packable = score == score;
+    const auto u = std::bit_cast<std::uint64_t>(score);
+    const std::uint64_t key = (u >> 63) != 0 ? ~u : u | (std::uint64_t{1} << 63);  // ascending with the score
+    packed.push_back((key & ~kIndexMask) | static_cast<std::uint64_t>(i));
+  }
+  if (packable) {
+    std::sort(packed.begin(), packed.end());
+    for (std::size_t n = 1; n < packed.size() && packable; ++n)
+      packable = (packed[n - 1] >> kIndexBits) != (packed[n] >> kIndexBits);
+  }
+  if (packable) {
+    for (std::size_t n = 0; n < packed.size() && map < max_map; ++n) consider(static_cast<int>(packed[n] & kIndexMask));
+    return;
+  }
   scored.clear();
   for (const int i : candidates) {
     if (picked[static_cast<std::size_t>(i)]) continue;  // skipped wherever it would come
@@ -153,6 +184,7 @@ struct RingScratch {
   RingGeometry ring;
   std::vector<int> sharp, flat;
   std::vector<std::pair<double, int>> scored;
+  std::vector<std::uint64_t> packed;
 };
 
 void process_ring(const PointCloud& sweep, const std::uint32_t* idx, std::size_t count, const FeatureParams& p,
@@ -185,8 +217,8 @@ void process_ring(const PointCloud& sweep, const std::uint32_t* idx, std::size_t
       else if (ci >= 0.0 && ci < p.planar_threshold)
         flat.push_back(i);
     }
-    select(sharp, c, true, ring, p, picked, w.scored, sweep, idx, out.edges, out.map_edges);
-    select(flat, c, false, ring, p, picked, w.scored, sweep, idx, out.planars, out.map_planars);
+    select(sharp, c, true, ring, p, picked, w.scored, w.packed, sweep, idx, out.edges, out.map_edges);
+    select(flat, c, false, ring, p, picked, w.scored, w.packed, sweep, idx, out.planars, out.map_planars);
   }
 }
 
