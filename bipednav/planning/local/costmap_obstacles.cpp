@@ -24,7 +24,39 @@ struct LethalScratch {
   std::vector<std::pair<std::pair<long, long>, std::size_t>> keyed;  // (block, position in cells)
   std::vector<Eigen::Vector2d> centres;                              // one component's cell centres
   std::vector<Eigen::Vector2d> pts;                                  // one block's cell centres
+  std::vector<std::uint32_t> bucket_start;                           // sort_by_block's counts
+  std::vector<std::pair<std::pair<long, long>, std::size_t>> sorted;
 };
+
+// std::sort of s.keyed (block, then position), by a counting sort over the component's block window:
+// the positions come in ascending order, so a stable placement by block gives the same order. A
+// window of more than 4096 blocks is left to std::sort.
+void sort_by_block(LethalScratch& s) {
+  if (s.keyed.empty()) return;
+  long x_lo = s.keyed[0].first.first, x_hi = x_lo, y_lo = s.keyed[0].first.second, y_hi = y_lo;
+  bool ascending = true;
+  for (std::size_t k = 0; k < s.keyed.size(); ++k) {
+    const auto& [b, j] = s.keyed[k];
+    x_lo = std::min(x_lo, b.first), x_hi = std::max(x_hi, b.first);
+    y_lo = std::min(y_lo, b.second), y_hi = std::max(y_hi, b.second);
+    if (k > 0 && j <= s.keyed[k - 1].second) ascending = false;
+  }
+  const auto w = static_cast<unsigned long>(x_hi - x_lo), h = static_cast<unsigned long>(y_hi - y_lo);
+  if (!ascending || w >= 4096 || h >= 4096 || (w + 1) * (h + 1) > 4096) {
+    std::sort(s.keyed.begin(), s.keyed.end());
+    return;
+  }
+  const std::size_t H = h + 1, buckets = (w + 1) * H;
+  const auto bucket = [&](const std::pair<long, long>& b) {
+    return static_cast<std::size_t>(b.first - x_lo) * H + static_cast<std::size_t>(b.second - y_lo);
+  };
+  s.bucket_start.assign(buckets + 1, 0);
+  for (const auto& e : s.keyed) ++s.bucket_start[bucket(e.first) + 1];
+  for (std::size_t b = 0; b < buckets; ++b) s.bucket_start[b + 1] += s.bucket_start[b];
+  s.sorted.resize(s.keyed.size());
+  for (const auto& e : s.keyed) s.sorted[s.bucket_start[bucket(e.first)]++] = e;
+  s.keyed.swap(s.sorted);
+}
 
 // 8-connected components of the lethal cells into s.cells / s.comp_end: components in the order of their
 // first cell in scan order, each component's cells in scan order.
@@ -164,7 +196,7 @@ std::vector<Obstacle> extract_obstacles(const mapping::Costmap2D& costmap, const
                           static_cast<long>(std::floor(c.y() / params.cluster_block_m))},
                          j});
     }
-    std::sort(s.keyed.begin(), s.keyed.end());
+    sort_by_block(s);
     for (std::size_t k = 0; k < s.keyed.size();) {
       s.pts.clear();
       std::size_t l = k;
