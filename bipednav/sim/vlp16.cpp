@@ -104,17 +104,30 @@ void Vlp16::fire_columns(int first, int n, const RayCaster& caster, const PoseAt
     caster.cast_packet(packet, max_range, &ranges_[b], true);
   }
   // Output in firing order: column by column, rings bottom to top.
+  // Written in place (room for every beam, trimmed after): the points appended in order.
   const auto sigma = static_cast<float>(params_.range_noise_stddev_m);
+  const double range_lo = params_.min_range_m, range_hi = params_.max_range_m;
+  const std::size_t base = current_.points.size(), room = static_cast<std::size_t>(n) * static_cast<std::size_t>(rings);
+  current_.points.resize(base + room);
+  current_.time_offsets_s.resize(base + room);
+  current_.rings.resize(base + room);
+  Eigen::Vector3f* points = current_.points.data() + base;
+  float* times = current_.time_offsets_s.data() + base;
+  std::uint16_t* ring_of = current_.rings.data() + base;
+  std::size_t m = 0;
   for (int k = 0; k < n; ++k)
     for (int r = 0; r < rings; ++r) {
       const std::size_t i = static_cast<std::size_t>(r) * W + static_cast<std::size_t>(k);
       const float range = ranges_[i];
-      if (!(range >= params_.min_range_m && range <= params_.max_range_m)) continue;
+      if (!(range >= range_lo && range <= range_hi)) continue;
       const float noisy = range + sigma * noise_();
-      current_.points.emplace_back(packet_beam_x_[i] * noisy, packet_beam_y_[i] * noisy, packet_beam_z_[i] * noisy);
-      current_.time_offsets_s.push_back(dt[k]);
-      current_.rings.push_back(static_cast<std::uint16_t>(r));
+      points[m] = Eigen::Vector3f(packet_beam_x_[i] * noisy, packet_beam_y_[i] * noisy, packet_beam_z_[i] * noisy);
+      times[m] = dt[k];
+      ring_of[m++] = static_cast<std::uint16_t>(r);
     }
+  current_.points.resize(base + m);
+  current_.time_offsets_s.resize(base + m);
+  current_.rings.resize(base + m);
 }
 
 std::optional<PointCloud> Vlp16::fire_until(double t_end_s, const RayCaster& caster, const PoseAt& T_world_sensor_at) {
