@@ -199,14 +199,17 @@ void HomotopyPlanner::reset() {
   selected_id_ = 0;
 }
 
-void HomotopyPlanner::warm_start(const Pose2& start, const Pose2& goal, const std::vector<Eigen::Vector2d>& centroids) {
+void HomotopyPlanner::warm_start(const Pose2& start, const Pose2& goal, const std::vector<Eigen::Vector2d>& centroids,
+                                 std::vector<std::vector<double>>& signatures) {
   std::erase_if(bands_, [&](BandCandidate& b) { return !warm_start_band(b.band, start, goal, params_.band); });
   // The selected band first, so it survives when another band fell into its class.
   std::stable_partition(bands_.begin(), bands_.end(), [&](const BandCandidate& b) { return b.id == selected_id_; });
-  drop_duplicates(centroids, false);
+  drop_duplicates(centroids, false, &signatures);
 }
 
-void HomotopyPlanner::drop_duplicates(const std::vector<Eigen::Vector2d>& centroids, bool by_cost) {
+void HomotopyPlanner::drop_duplicates(const std::vector<Eigen::Vector2d>& centroids, bool by_cost,
+                                      std::vector<std::vector<double>>* kept) {
+  if (kept) kept->clear();
   if (bands_.size() < 2) return;  // nothing to compare: every band stays, in its order
   std::vector<std::size_t> order(bands_.size());
   std::iota(order.begin(), order.end(), 0);
@@ -231,18 +234,23 @@ void HomotopyPlanner::drop_duplicates(const std::vector<Eigen::Vector2d>& centro
     if (keep[i]) out.push_back(std::move(bands_[i]));
   }
   bands_ = std::move(out);
+  if (kept && !by_cost) *kept = std::move(kept_sig);  // in band order: `order` is the identity
 }
 
 void HomotopyPlanner::add_candidates(const Pose2& start, const Pose2& goal, const std::vector<Eigen::Vector2d>& via,
                                      const std::vector<Obstacle>& obstacles,
-                                     const std::vector<Eigen::Vector2d>& centroids) {
+                                     const std::vector<Eigen::Vector2d>& centroids,
+                                     std::vector<std::vector<double>>* signatures) {
   if (bands_.empty())
     bands_.push_back({next_id_++, init_band(start, via, goal, params_.limits, params_.band), {}, false});
   if (!params_.homotopy.enabled) return;
   const int free_slots = params_.homotopy.max_classes - static_cast<int>(bands_.size());
   if (free_slots <= 0) return;
   std::vector<std::vector<double>> known;
-  for (const auto& b : bands_) known.push_back(winding_signature(band_polyline(b.band), centroids));
+  if (signatures != nullptr && !signatures->empty() && signatures->size() == bands_.size())
+    known = std::move(*signatures);  // warm_start's, of these bands and centroids
+  else
+    for (const auto& b : bands_) known.push_back(winding_signature(band_polyline(b.band), centroids));
   for (const auto& path : candidate_paths(start, goal, obstacles, centroids, params_.limits.min_obstacle_dist_m, known,
                                           free_slots, params_.homotopy)) {
     const std::vector<Eigen::Vector2d> inner(path.begin() + 1, path.end() - 1);
@@ -295,8 +303,9 @@ const BandCandidate* HomotopyPlanner::plan(const Pose2& start, const Pose2& goal
     if (distance_to_segment(o.centroid.x(), o.centroid.y(), start.position(), goal.position()) - o.radius_m < reach)
       centroids.push_back(o.centroid);
   }
-  warm_start(start, goal, centroids);
-  add_candidates(start, goal, via_points, obstacles, centroids);
+  std::vector<std::vector<double>> signatures;
+  warm_start(start, goal, centroids, signatures);
+  add_candidates(start, goal, via_points, obstacles, centroids, &signatures);
   optimise_all(start_velocity, via_points, obstacles);
   std::erase_if(bands_, [](const BandCandidate& b) { return !b.ok; });
   drop_duplicates(centroids, true);

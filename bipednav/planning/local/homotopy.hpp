@@ -61,11 +61,18 @@ class HomotopyPlanner {
   void set_moving_obstacles(std::vector<TebMovingObstacle> moving) { moving_ = std::move(moving); }
 
  private:
-  void warm_start(const Pose2& start, const Pose2& goal, const std::vector<Eigen::Vector2d>& centroids);
+  // warm_start leaves the kept bands' winding signatures in `signatures` (one per band, in order) when
+  // it computed them (two bands or more), else empties it; add_candidates uses them when given.
+  void warm_start(const Pose2& start, const Pose2& goal, const std::vector<Eigen::Vector2d>& centroids,
+                  std::vector<std::vector<double>>& signatures);
   void add_candidates(const Pose2& start, const Pose2& goal, const std::vector<Eigen::Vector2d>& via,
-                      const std::vector<Obstacle>& obstacles, const std::vector<Eigen::Vector2d>& centroids);
+                      const std::vector<Obstacle>& obstacles, const std::vector<Eigen::Vector2d>& centroids,
+                      std::vector<std::vector<double>>* signatures = nullptr);
   void optimise_all(const Twist& v0, const std::vector<Eigen::Vector2d>& via, const std::vector<Obstacle>& obstacles);
-  void drop_duplicates(const std::vector<Eigen::Vector2d>& centroids, bool by_cost);
+  // With `kept` (and not by_cost): the kept bands' signatures in band order, or empty when there was
+  // nothing to compare (fewer than two bands).
+  void drop_duplicates(const std::vector<Eigen::Vector2d>& centroids, bool by_cost,
+                       std::vector<std::vector<double>>* kept = nullptr);
   const BandCandidate* select();
 
   TebParams params_;
