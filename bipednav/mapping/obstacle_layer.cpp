@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 #include "bipednav/common/error.hpp"
 #include "bipednav/mapping/ray_trace.hpp"
@@ -110,16 +112,18 @@ void ObstacleLayer::expire(Costmap2D& grid, CellRect& changed) {
   const GridGeometry& g = grid.geometry();
   std::uint8_t* cells = grid.data().data();
   const int lifetime = params_.mark_lifetime_updates;
-  for (int y = 0; y < g.height; ++y) {
-    for (int x = 0; x < g.width; ++x) {
-      const std::size_t i = g.index(x, y);
-      if (cells[i] != kLethal) continue;
-      Mark& m = marks_[i];
-      if (m.passes <= lifetime) continue;  // also the permanent ones (-1)
-      cells[i] = kUnknown;                 // no longer known: neither an obstacle nor seen free
-      m = {};
-      changed.include(x, y);
-    }
+  // The lethal cells in index (row-major) order, found by memchr: most cells are not lethal.
+  const std::size_t n = g.width > 0 && g.height > 0 ? static_cast<std::size_t>(g.width) * g.height : 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const void* next = std::memchr(cells + i, kLethal, n - i);
+    if (next == nullptr) break;
+    i = static_cast<std::size_t>(static_cast<const std::uint8_t*>(next) - cells);
+    Mark& m = marks_[i];
+    if (m.passes <= lifetime) continue;  // also the permanent ones (-1)
+    cells[i] = kUnknown;                 // no longer known: neither an obstacle nor seen free
+    m = {};
+    const Cell c = g.cell_of(i);
+    changed.include(c.x, c.y);
   }
 }
 
