@@ -47,7 +47,8 @@ struct NavigatorParams {
   // after this one arrived, and the update is the local map gate's next slot. A frame whose
   // successor is late (dropped, delayed) leaves that update without the camera. At 15 Hz cameras
   // and a 10 Hz map one frame in three is skipped (perception and the local map's rays and marks).
-  // Off by default: the loops' outcomes change. hexagon_static/turtlebot3 seed 1, 3 interleaved
+  // On for wheeled robots (for_robot, session 18's fast profile, with its screens); off here and
+  // for walkers. Measured alone (session 16): hexagon_static/turtlebot3 seed 1, 3 interleaved
   // runs each (loaded machine): perception 1058 -> 602 ms, local map 669 -> 459 ms, cpu_s 6.17 ->
   // 4.73 s, but the run itself changes (27.4 s instead of 34.6 s simulated); per simulated second
   // perception -28 %, local map -13 %. TurtleBot3 seeds 1-10 with it alone: hexagon_dynamic 6/10
