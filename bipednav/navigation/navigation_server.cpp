@@ -216,7 +216,10 @@ Result NavigationServer::goal_valid(const Pose2& goal) const {
   const auto c = map.geometry().world_to_cell(goal.x, goal.y);
   if (!c) return {Outcome::PLAN_OUT_OF_MAP, "the goal is outside the global map"};
   const std::uint8_t cost = map.cost(*c);
-  if (cost == mapping::kLethal || cost == mapping::kInscribed)
+  // An inscribed goal with a free cell within the planner's goal tolerance stays valid: the path
+  // ends there (GlobalPlannerParams::goal_tolerance_m).
+  if (cost == mapping::kLethal ||
+      (cost == mapping::kInscribed && !planning::goal_search_cell(map, goal, params_.global)))
     return {Outcome::BLOCKED_GOAL, "the goal lies in or too close to an obstacle"};
   return {Outcome::SUCCESS, ""};
 }

@@ -252,6 +252,7 @@ template <class V>
 void visit_fields(V& v, planning::GlobalPlannerParams& p) {
   v.group("cost", p.cost);
   v("allow_start_in_inscribed", p.allow_start_in_inscribed);
+  v("goal_tolerance_m", p.goal_tolerance_m);
   v("max_planning_time_ms", p.max_planning_time_ms);
   v("verify_changes", p.verify_changes);
 }

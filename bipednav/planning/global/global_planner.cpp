@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <limits>
 #include <utility>
 
 #include "bipednav/common/error.hpp"
@@ -15,6 +16,8 @@ void GlobalPlannerParams::validate() const {
   cost.validate();
   require(std::isfinite(max_planning_time_ms) && max_planning_time_ms >= 0.0, "max_planning_time_ms",
           "a finite value >= 0 (0 = no limit)");
+  require(std::isfinite(goal_tolerance_m) && goal_tolerance_m >= 0.0 && goal_tolerance_m <= 1.0, "goal_tolerance_m",
+          "in [0, 1] m");
 }
 
 namespace {
@@ -80,6 +83,33 @@ std::vector<std::string> global_planner_names() {
   return out;
 }
 
+std::optional<mapping::Cell> goal_search_cell(const mapping::Costmap2D& map, const Pose2& goal,
+                                              const GlobalPlannerParams& params) {
+  const auto& g = map.geometry();
+  if (!goal.is_finite() || map.data().size() != g.size()) return std::nullopt;
+  const auto t = g.world_to_cell(goal.x, goal.y);
+  if (!t) return std::nullopt;
+  const std::uint8_t gc = map.cost(*t);
+  if (std::isfinite(cell_factor(gc, params.cost))) return t;
+  if (gc != mapping::kInscribed || params.goal_tolerance_m <= 0.0) return std::nullopt;
+  const int r = static_cast<int>(std::ceil(params.goal_tolerance_m / g.resolution_m)) + 1;
+  const double tol2 = params.goal_tolerance_m * params.goal_tolerance_m;
+  std::optional<mapping::Cell> best;
+  double best_d2 = std::numeric_limits<double>::infinity();
+  for (int y = t->y - r; y <= t->y + r; ++y)
+    for (int x = t->x - r; x <= t->x + r; ++x) {
+      const mapping::Cell c{x, y};
+      if (!g.in_bounds(c) || !std::isfinite(cell_factor(map.cost(c), params.cost))) continue;
+      const Eigen::Vector2d p = g.cell_center(c);
+      const double d2 = (p.x() - goal.x) * (p.x() - goal.x) + (p.y() - goal.y) * (p.y() - goal.y);
+      if (d2 <= tol2 && d2 < best_d2) {
+        best = c;
+        best_d2 = d2;
+      }
+    }
+  return best;
+}
+
 std::optional<Endpoints> resolve_endpoints(const mapping::Costmap2D& map, const Pose2& start, const Pose2& goal,
                                            const GlobalPlannerParams& params, Result& failure) {
   const auto& g = map.geometry();
@@ -92,11 +122,19 @@ std::optional<Endpoints> resolve_endpoints(const mapping::Costmap2D& map, const 
   const auto t = locate(g, goal, "goal", failure);
   if (!t) return std::nullopt;
   const std::uint8_t sc = map.cost(*s), gc = map.cost(*t);
-  if (!std::isfinite(cell_factor(gc, params.cost))) {
-    failure = {Outcome::BLOCKED_GOAL, "goal cell " + cell_str(*t) + " has cost " + cost_str(gc)};
+  const auto goal_cell = goal_search_cell(map, goal, params);
+  if (!goal_cell) {
+    std::string why = "goal cell " + cell_str(*t) + " has cost " + cost_str(gc);
+    if (gc == mapping::kInscribed && params.goal_tolerance_m > 0.0) {
+      char buf[96];
+      std::snprintf(buf, sizeof(buf), " and no traversable cell lies within goal_tolerance_m = %.3f m",
+                    params.goal_tolerance_m);
+      why += buf;
+    }
+    failure = {Outcome::BLOCKED_GOAL, why};
     return std::nullopt;
   }
-  Endpoints e{g.index(*s), g.index(*t), false};
+  Endpoints e{g.index(*s), g.index(*goal_cell), false};
   if (!std::isfinite(cell_factor(sc, params.cost))) {
     if (sc == mapping::kLethal || !params.allow_start_in_inscribed) {
       failure = {Outcome::BLOCKED_START, "start cell " + cell_str(*s) + " has cost " + cost_str(sc) +
@@ -114,6 +152,12 @@ Path make_world_path(const mapping::GridGeometry& geometry, const std::vector<st
   path.poses.push_back(start);
   for (std::size_t i = 1; i + 1 < cells.size(); ++i) {
     const Eigen::Vector2d c = geometry.cell_center(geometry.cell_of(cells[i]));
+    path.poses.push_back({c.x(), c.y(), 0.0});
+  }
+  // A search that ended short of the goal's own cell (goal_tolerance_m) passes its last cell.
+  const auto goal_cell = geometry.world_to_cell(goal.x, goal.y);
+  if (cells.size() > 1 && (!goal_cell || geometry.index(*goal_cell) != cells.back())) {
+    const Eigen::Vector2d c = geometry.cell_center(geometry.cell_of(cells.back()));
     path.poses.push_back({c.x(), c.y(), 0.0});
   }
   path.poses.push_back(goal);

@@ -20,6 +20,13 @@ struct GlobalPlannerParams {
   // Lets the search leave a start cell that is inscribed or unknown (the robot standing close to
   // an obstacle); a lethal start cell is always BLOCKED_START.
   bool allow_start_in_inscribed = true;
+  // A goal whose cell is inscribed (the robot's centre may not stand there) but not lethal is
+  // planned to the traversable cell nearest to it whose centre lies within this distance, as
+  // NavFn's and Smac's `tolerance` do; the path still ends at the goal pose, so the controller
+  // and the goal checker keep aiming at the goal itself. A map that thickens a wall by a cell next
+  // to a goal near it then no longer ends the run in BLOCKED_GOAL. 0 = an inscribed goal is
+  // BLOCKED_GOAL; a lethal goal cell always is.
+  double goal_tolerance_m = 0.1;
   double max_planning_time_ms = 0.0;  // 0 = no limit; otherwise PLAN_PAT_EXCEEDED past it
   // D* Lite: compare its map snapshot with the given map and repair cells missing from the
   // change set (costs one pass over the grid's bytes).
@@ -56,6 +63,13 @@ std::vector<std::string> global_planner_names();
 
 // ---- helpers shared by the implementations ----
 
+// The cell a search for `goal` ends in: the goal's own cell when the cost model can enter it;
+// for an inscribed (not lethal) goal cell, the enterable cell whose centre is nearest to the goal
+// point within params.goal_tolerance_m (ties: the first in row-major order); nullopt otherwise,
+// and when the goal is off the map.
+std::optional<mapping::Cell> goal_search_cell(const mapping::Costmap2D& map, const Pose2& goal,
+                                              const GlobalPlannerParams& params);
+
 // Start and goal resolved to cells, or the failure outcome explaining why not.
 struct Endpoints {
   std::size_t start = 0;
@@ -66,7 +80,8 @@ std::optional<Endpoints> resolve_endpoints(const mapping::Costmap2D& map, const 
                                            const GlobalPlannerParams& params, Result& failure);
 
 // World path from a cell path: the start pose, the centres of the cells between, the goal pose;
-// intermediate yaws point to the next pose, the goal keeps its yaw.
+// intermediate yaws point to the next pose, the goal keeps its yaw. When the search ended in a
+// cell other than the goal's (goal_tolerance_m), that cell's centre comes before the goal pose.
 Path make_world_path(const mapping::GridGeometry& geometry, const std::vector<std::size_t>& cells, const Pose2& start,
                      const Pose2& goal);
 

@@ -140,6 +140,57 @@ TEST_P(Outcomes, BlockedGoal) {
   EXPECT_TRUE(mentions(r.result, "unknown")) << r.result.message;
 }
 
+// GlobalPlannerParams::goal_tolerance_m: an inscribed goal is planned to the nearest traversable
+// cell within the tolerance, and the path still ends at the goal pose; lethal goals and goals with
+// no such cell stay BLOCKED_GOAL.
+TEST_P(Outcomes, InscribedGoalIsPlannedToTheNearestFreeCellWithinTheTolerance) {
+  auto map = make_map(12, 8, 0.05);  // 0.05 m cells, as the global map
+  // A wall at column 11 with its inscribed band on columns 8-10; the goal in cell (9, 4), 0.08 m
+  // from the centre of cell (7, 4), the nearest free one ((7, 3) and (7, 5): 0.094 m).
+  for (int y = 0; y < 8; ++y) {
+    map.set_cost(11, y, mapping::kLethal);
+    for (int x = 8; x <= 10; ++x) map.set_cost(x, y, mapping::kInscribed);
+  }
+  const Pose2 goal{0.455, 0.225, 0.4};
+  GlobalPlannerParams p;
+  p.goal_tolerance_m = 0.1;
+  const PlanResult r = planner(p)->plan(map, centre(map, 1, 4), goal, {});
+  ASSERT_EQ(r.result.outcome, Outcome::SUCCESS) << r.result.message;
+  ASSERT_FALSE(r.cells.empty());
+  EXPECT_EQ(r.cells.back(), (mapping::Cell{7, 4}));
+  EXPECT_NEAR(r.cost, 6 * 0.05, 1e-9);  // six straight moves from column 1 to column 7
+  const auto& poses = r.path.poses;
+  ASSERT_GE(poses.size(), 2u);
+  EXPECT_DOUBLE_EQ(poses.back().x, goal.x);
+  EXPECT_DOUBLE_EQ(poses.back().y, goal.y);
+  EXPECT_DOUBLE_EQ(poses.back().theta, goal.theta);
+  const auto c = map.geometry().cell_center(7, 4);
+  EXPECT_DOUBLE_EQ(poses[poses.size() - 2].x, c.x());  // the substitute cell comes before the goal
+  EXPECT_DOUBLE_EQ(poses[poses.size() - 2].y, c.y());
+  ASSERT_EQ(goal_search_cell(map, goal, p), (mapping::Cell{7, 4}));
+
+  // A tighter tolerance than the 0.08 m: blocked, and the message says why.
+  p.goal_tolerance_m = 0.07;
+  PlanResult blocked = planner(p)->plan(map, centre(map, 1, 4), goal, {});
+  EXPECT_EQ(blocked.result.outcome, Outcome::BLOCKED_GOAL);
+  EXPECT_TRUE(mentions(blocked.result, "no traversable cell lies within goal_tolerance_m = 0.070 m"))
+      << blocked.result.message;
+  p.goal_tolerance_m = 0.0;  // off: every inscribed goal is blocked
+  blocked = planner(p)->plan(map, centre(map, 1, 4), goal, {});
+  EXPECT_EQ(blocked.result.outcome, Outcome::BLOCKED_GOAL);
+  EXPECT_FALSE(mentions(blocked.result, "goal_tolerance_m")) << blocked.result.message;
+
+  // A lethal goal cell is blocked whatever the tolerance.
+  p.goal_tolerance_m = 1.0;
+  blocked = planner(p)->plan(map, centre(map, 1, 4), centre(map, 11, 4), {});
+  EXPECT_EQ(blocked.result.outcome, Outcome::BLOCKED_GOAL);
+  EXPECT_TRUE(mentions(blocked.result, "254 (lethal)")) << blocked.result.message;
+  EXPECT_FALSE(goal_search_cell(map, centre(map, 11, 4), p).has_value());
+
+  p.goal_tolerance_m = -0.1;
+  EXPECT_THROW(p.validate(), ParamError);
+}
+
 TEST_P(Outcomes, OutOfMap) {
   mapping::GridGeometry g;
   g.width = 10;
