@@ -171,6 +171,7 @@ void run_command(const RunArgs& a) {
   std::shared_ptr<ros1::BagRecorder> bag;
   if (!a.bag.empty()) {
     bag = std::make_shared<ros1::BagRecorder>(a.bag, runner::load_robot(o.robot.empty() ? s.robot : o.robot));
+    o.render_unused_depth = true;  // the bag keeps every depth image
     o.on_step = [bag](const sim::Simulation& sim, const SensorFrame& f, const navigation::Navigator& n,
                       const Twist& c) { bag->record(sim, f, n, c); };
   }

@@ -106,7 +106,7 @@ Twist Navigator::tick(const SensorFrame& frame) {
   perception_in_.depth.clear();
   for (std::size_t i = 0; i < frame.depth.size(); ++i) {
     if (!admitted.depth[i]) continue;
-    if (depth_superseded(frame, admitted, i))
+    if (!depth_judged_ahead_ && depth_superseded(frame, admitted, i))
       ++depth_frames_skipped_;
     else
       perception_in_.depth.push_back(&frame.depth[i]);
@@ -129,22 +129,35 @@ Twist Navigator::tick(const SensorFrame& frame) {
 bool Navigator::depth_superseded(const SensorFrame& frame, const Admission& admitted, std::size_t i) {
   if (!params_.newest_depth_only) return false;
   const DepthCloud& d = frame.depth[i];
-  auto clock = std::find_if(depth_clocks_.begin(), depth_clocks_.end(),
-                            [&](const DepthClock& c) { return c.camera == d.camera; });
+  bool newer_in_step = false;
+  for (std::size_t j = i + 1; j < frame.depth.size() && !newer_in_step; ++j)
+    newer_in_step = admitted.depth[j] && frame.depth[j].camera == d.camera;
+  return depth_superseded(d.camera, d.cloud.stamp_s, now_s_, newer_in_step);
+}
+
+bool Navigator::depth_superseded(const std::string& camera, double stamp_s, double now_s, bool newer_in_step) {
+  auto clock =
+      std::find_if(depth_clocks_.begin(), depth_clocks_.end(), [&](const DepthClock& c) { return c.camera == camera; });
   double period = std::numeric_limits<double>::infinity();  // unknown before the camera's second frame
   if (clock == depth_clocks_.end()) {
-    depth_clocks_.push_back({d.camera, d.cloud.stamp_s});
+    depth_clocks_.push_back({camera, stamp_s});
   } else {
-    period = d.cloud.stamp_s - clock->last_stamp_s;
-    clock->last_stamp_s = d.cloud.stamp_s;
+    period = stamp_s - clock->last_stamp_s;
+    clock->last_stamp_s = stamp_s;
   }
-  // A newer frame of the same camera in this step supersedes it at once.
-  for (std::size_t j = i + 1; j < frame.depth.size(); ++j)
-    if (admitted.depth[j] && frame.depth[j].camera == d.camera) return true;
-  if (local_gate_.due(now_s_)) return false;  // the map integrates this step's frames
+  if (newer_in_step) return true;            // a newer frame of the same camera supersedes it at once
+  if (local_gate_.due(now_s)) return false;  // the map integrates this step's frames
   // The next frame arrives about one period from now (this frame's latency included): before the
   // next update, it replaces this one.
-  return period > 0.0 && now_s_ + period < local_gate_.next_s() - 1e-9;
+  return period > 0.0 && now_s + period < local_gate_.next_s() - 1e-9;
+}
+
+bool Navigator::wants_depth(const std::string& camera, double capture_s, double frame_stamp_s, bool newer_in_step) {
+  depth_judged_ahead_ = true;
+  if (!params_.newest_depth_only) return true;
+  if (!depth_superseded(camera, capture_s, frame_stamp_s, newer_in_step)) return true;
+  ++depth_frames_skipped_;
+  return false;
 }
 
 namespace {

@@ -133,6 +133,15 @@ class Navigator {
   // Depth frames not processed under NavigatorParams::newest_depth_only (superseded before the
   // local map would have integrated them).
   std::size_t depth_frames_skipped() const { return depth_frames_skipped_; }
+  // newest_depth_only ahead of the sensor (a sim::Simulation::DepthDemand): whether the image of
+  // `camera` captured at capture_s, to arrive in the frame stamped frame_stamp_s (the next tick's),
+  // would be processed; false counts it as skipped. The same decision tick() makes for a
+  // delivered image, taken before the image exists, so a simulator need not render the images
+  // the navigator would drop. Once called, tick() takes the depth images it gets as already
+  // judged (an image the camera never delivers cannot be judged in tick()). Without
+  // newest_depth_only every image is wanted. Only for frames delivered in the step they are
+  // captured in (no injected delays): the decision uses the map gate's state at that step.
+  bool wants_depth(const std::string& camera, double capture_s, double frame_stamp_s, bool newer_in_step);
 
  private:
   void perceive(const perception::PerceptionInput& in);
@@ -145,6 +154,7 @@ class Navigator {
   bool sensors_alive() const;
   void finish(BtStatus status);
   bool depth_superseded(const SensorFrame& frame, const Admission& admitted, std::size_t i);
+  bool depth_superseded(const std::string& camera, double stamp_s, double now_s, bool newer_in_step);
 
   NavigatorParams params_;
   RobotProfile robot_;
@@ -169,6 +179,7 @@ class Navigator {
   };
   std::vector<DepthClock> depth_clocks_;  // newest_depth_only: each camera's last frame stamp
   std::size_t depth_frames_skipped_ = 0;
+  bool depth_judged_ahead_ = false;  // wants_depth has been called: tick() keeps every depth image
   std::optional<Pose2> goal_;
   Path global_path_;
   std::uint64_t global_path_version_ = 0;

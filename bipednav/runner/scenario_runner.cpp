@@ -85,6 +85,10 @@ RunResult run_scenario(const sim::Scenario& scenario, const RunOptions& o) {
   std::vector<sim::Fault> faults = scenario.faults;
   faults.insert(faults.end(), o.faults.begin(), o.faults.end());
   sim::FaultInjector injector(faults, sp.seed);
+  if (faults.empty() && !o.render_unused_depth && params.newest_depth_only)
+    sim.set_depth_demand([&nav](const std::string& camera, double capture_s, double stamp_s, bool newer_in_step) {
+      return nav.wants_depth(camera, capture_s, stamp_s, newer_in_step);
+    });
   const std::vector<sim::TimedGoal> goals = sim::goals_with_floods(scenario.goals, faults, scenario.bounds, sp.seed);
   std::size_t next_goal = 0;
   Twist cmd;
@@ -140,6 +144,8 @@ RunResult run_scenario(const sim::Scenario& scenario, const RunOptions& o) {
   out.cpu_s = (cpu_end_ms - cpu_start_ms) / 1000.0;
   out.cpu_real_time_factor = out.cpu_s > 0 ? out.time_s / out.cpu_s : 0.0;
   const sim::SimulationStats& ss = sim.stats();
+  out.depth_images = ss.depth_images;
+  out.depth_images_unused = nav.depth_frames_skipped();
   const navigation::NavigatorCpu& nc = nav.cpu();
   auto& st = out.stage_cpu_ms;
   st["setup"] = cpu_loop_ms - cpu_start_ms;

@@ -30,6 +30,12 @@ struct RunOptions {
   // A navigation parameters file (navigator_params_yaml.hpp) overlaid on the robot's defaults before
   // localization, local_planner and global_planner (empty: none). The scenario's goal tolerances win.
   std::filesystem::path params_file;
+  // Render every depth image, also those the navigator would drop unseen (newest_depth_only). By
+  // default the simulator asks the navigator first (Simulation::set_depth_demand with
+  // Navigator::wants_depth; runs with injected faults render every image): the run is the same
+  // bit for bit, for a third less depth rendering at 15 Hz against the 10 Hz map. A recorder that
+  // should see every image (the rosbag) sets it.
+  bool render_unused_depth = false;
   // Called after every step with the simulator, its sensor frame, the navigator and the command
   // (e.g. a rosbag recorder).
   std::function<void(const sim::Simulation&, const SensorFrame&, const navigation::Navigator&, const Twist&)> on_step;
@@ -74,6 +80,9 @@ struct RunResult {
   // control (behavior tree, D* Lite, TEB) and runner (recording the run).
   std::map<std::string, double> stage_cpu_ms;
   std::size_t goals_given = 0;
+  // Depth images rendered, and those the navigator declined before rendering (RunOptions::
+  // render_unused_depth off) or dropped after (on, or with faults).
+  std::uint64_t depth_images = 0, depth_images_unused = 0;
   sim::FaultCounters faults;  // what the fault injector did
   std::vector<TraceSample> trace;
   std::vector<Snapshot> snapshots;

@@ -80,6 +80,11 @@ PointCloud DepthCamera::capture(const SE3& T_world_camera, const RayCaster& cast
   return c;
 }
 
+void DepthCamera::skip_capture() {
+  noise_.skip(static_cast<std::uint64_t>(params_.width) * static_cast<std::uint64_t>(params_.height));
+  ++count_;
+}
+
 PointCloud DepthCamera::capture_at(double stamp_s, const SE3& T_world_camera, const RayCaster& caster) {
   PointCloud c;
   render_into(c, stamp_s, T_world_camera, caster);

@@ -43,8 +43,13 @@ class DepthCamera {
 
   // Time of the next capture.
   double next_capture_s() const { return static_cast<double>(count_) / params_.rate_hz; }
+  double capture_after_next_s() const { return static_cast<double>(count_ + 1) / params_.rate_hz; }
   // Captures the image due at next_capture_s() from T_world_camera and schedules the next one.
   PointCloud capture(const SE3& T_world_camera, const RayCaster& caster);
+  // Passes over the image due at next_capture_s() without rendering it: the schedule and the noise
+  // stream advance as capture() would advance them, so later captures are the same as if it had
+  // been taken.
+  void skip_capture();
   // Captures at an arbitrary time without touching the schedule.
   PointCloud capture_at(double stamp_s, const SE3& T_world_camera, const RayCaster& caster);
   // Hands back a returned image's cloud: the next capture() is written into its buffers.

@@ -32,6 +32,13 @@ class GaussianNoise {
     return v;
   }
 
+  // Skips n samples in O(1): the next sample is the one n calls of operator() would have reached.
+  void skip(std::uint64_t n) {
+    for (; n > 0 && quarter_ != 0; --n) (*this)();
+    state_ += (n / 4) * kGamma;  // splitmix64's state is a counter: n / 4 outputs skipped
+    for (n %= 4; n > 0; --n) (*this)();
+  }
+
   // out.size() samples, the same as that many calls of operator().
   void fill(std::span<float> out) {
     std::size_t i = 0;
@@ -50,8 +57,10 @@ class GaussianNoise {
  private:
   static constexpr std::uint64_t kSize = std::uint64_t{1} << 12;  // 16 KiB: stays in L1
 
+  static constexpr std::uint64_t kGamma = 0x9E3779B97F4A7C15ull;
+
   std::uint64_t next() {  // splitmix64
-    std::uint64_t z = (state_ += 0x9E3779B97F4A7C15ull);
+    std::uint64_t z = (state_ += kGamma);
     z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
     z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
     return z ^ (z >> 31);

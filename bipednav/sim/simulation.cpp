@@ -89,6 +89,11 @@ SensorFrame Simulation::step(const Twist& cmd) {
       const Stopwatch sw;
       const CpuScope cpu(stats_.depth_cpu_ms);
       const double t = c.camera.next_capture_s();
+      if (depth_demand_ && !depth_demand_(c.mount.name, t, t1, c.camera.capture_after_next_s() < t1)) {
+        c.camera.skip_capture();
+        ++stats_.depth_images_skipped;
+        continue;
+      }
       frame.depth.push_back(DepthCloud{c.mount.name, c.camera.capture(pose_at(t) * c.mount.T_base_sensor(), caster_)});
       stats_.depth_ms += sw.elapsed_ms();
       ++stats_.depth_images;

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -50,8 +51,9 @@ struct SimulationStats {
   std::uint64_t lidar_sweeps = 0;
   double lidar_ms = 0.0;  // total time firing LiDAR columns
   std::uint64_t depth_images = 0;
-  double depth_ms = 0.0;      // total time rendering depth images
-  double lidar_cpu_ms = 0.0;  // the same two in process CPU time
+  std::uint64_t depth_images_skipped = 0;  // declined by the depth demand (Simulation::set_depth_demand)
+  double depth_ms = 0.0;                   // total time rendering depth images
+  double lidar_cpu_ms = 0.0;               // the same two in process CPU time
   double depth_cpu_ms = 0.0;
 };
 
@@ -73,6 +75,16 @@ class Simulation {
   // clouds' buffers instead of newly allocated ones (the loop would otherwise free and allocate
   // each depth image's 1.2 MB every frame). Outputs do not change.
   void recycle(SensorFrame&& frame);
+
+  // Asked before each depth image is rendered: (camera mount name, capture time, the step's end
+  // time = the frame's stamp, whether a later image of the same camera falls in this step). false:
+  // the image is neither rendered nor delivered; its noise draws are skipped (DepthCamera::
+  // skip_capture), so every later image is the same as without the demand. For a consumer that
+  // would drop the image unseen (Navigator::wants_depth), as Gazebo renders a camera only for its
+  // subscribers. None (the default): every image is rendered.
+  using DepthDemand =
+      std::function<bool(const std::string& camera, double capture_s, double frame_stamp_s, bool newer_in_step)>;
+  void set_depth_demand(DepthDemand demand) { depth_demand_ = std::move(demand); }
 
   double now_s() const { return clock_.now_s(); }
   Pose2 true_pose() const { return robot_.state().pose; }
@@ -108,6 +120,7 @@ class Simulation {
   std::optional<SensorMount> lidar_mount_;
   std::unique_ptr<Vlp16> lidar_;
   std::vector<Camera> cameras_;
+  DepthDemand depth_demand_;
   OdometryModel odometry_;
   RateGate odometry_gate_;
   Proximity proximity_;

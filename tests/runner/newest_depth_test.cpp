@@ -8,6 +8,7 @@
 #include "bipednav/navigation/navigator.hpp"
 #include "bipednav/runner/scenario_runner.hpp"
 #include "bipednav/sim/simulation.hpp"
+#include "test_data.hpp"
 
 using namespace bipednav;
 
@@ -85,4 +86,34 @@ TEST(NewestDepthOnly, AnObstacleThatMovesAwayIsClearedAndOneFrameInThreeIsSkippe
   EXPECT_LE(on.cleared_at_s, off.cleared_at_s + 0.1 + 1e-9);
   std::printf("box cell cleared at %.2f s (newest_depth_only) and %.2f s (every frame)\n", on.cleared_at_s,
               off.cleared_at_s);
+}
+
+// The runner lets the simulator ask the navigator before rendering each depth image
+// (Simulation::set_depth_demand, Navigator::wants_depth): the images newest_depth_only would drop
+// are not rendered, and the run is the same bit for bit.
+TEST(NewestDepthOnly, ImagesTheNavigatorWouldDropAreNotRenderedAndTheRunIsTheSame) {
+  const sim::Scenario s = sim::load_scenario(test::source_dir() / "scenarios" / "hexagon_static.yaml");
+  runner::RunOptions o;
+  o.robot = "turtlebot3";
+  o.time_limit_s = 8.0;
+  const runner::RunResult lazy = runner::run_scenario(s, o);
+  o.render_unused_depth = true;
+  const runner::RunResult every = runner::run_scenario(s, o);
+  ASSERT_EQ(lazy.trace.size(), every.trace.size());
+  for (std::size_t i = 0; i < lazy.trace.size(); ++i) {
+    ASSERT_EQ(lazy.trace[i].true_pose, every.trace[i].true_pose) << "sample " << i;
+    ASSERT_EQ(lazy.trace[i].estimated_pose, every.trace[i].estimated_pose) << "sample " << i;
+    ASSERT_EQ(lazy.trace[i].cmd.linear_x, every.trace[i].cmd.linear_x) << "sample " << i;
+    ASSERT_EQ(lazy.trace[i].cmd.angular_z, every.trace[i].cmd.angular_z) << "sample " << i;
+  }
+  EXPECT_EQ(lazy.replans, every.replans);
+  EXPECT_EQ(lazy.min_clearance_m, every.min_clearance_m);
+  // The same images are used; the dropped third is no longer rendered.
+  EXPECT_EQ(lazy.depth_images_unused, every.depth_images_unused);
+  EXPECT_GT(every.depth_images_unused, every.depth_images / 4);
+  EXPECT_EQ(lazy.depth_images + lazy.depth_images_unused, every.depth_images);
+  std::printf("depth images: %llu rendered, %llu not rendered (every image: %llu rendered)\n",
+              static_cast<unsigned long long>(lazy.depth_images),
+              static_cast<unsigned long long>(lazy.depth_images_unused),
+              static_cast<unsigned long long>(every.depth_images));
 }

@@ -53,6 +53,17 @@ TEST(RayPacket, PerRayOriginsAgreeWithSingleRaysIncludingActorsAndPartialPackets
   EXPECT_EQ(r, -1.0f);
 }
 
+TEST(GaussianNoise, SkipLandsWhereDrawsWould) {
+  for (int offset = 0; offset < 5; ++offset)
+    for (const std::uint64_t n : {0u, 1u, 2u, 3u, 4u, 5u, 7u, 1001u, 101760u}) {
+      GaussianNoise a(3), b(3);
+      for (int i = 0; i < offset; ++i) (void)a(), (void)b();
+      a.skip(n);
+      for (std::uint64_t i = 0; i < n; ++i) (void)b();
+      for (int i = 0; i < 9; ++i) ASSERT_EQ(a(), b()) << "offset " << offset << ", n " << n << ", draw " << i;
+    }
+}
+
 TEST(GaussianNoise, FillMatchesSingleDrawsAndIsStandardNormal) {
   GaussianNoise a(7), b(7);
   std::vector<float> block(1001);
