@@ -1,9 +1,11 @@
 // `bipednav run`: the closed loop in the simulator, `bipednav bench scenarios` and `bipednav params`
 // (the effective navigation parameters as a file for --params).
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <thread>
@@ -317,6 +319,71 @@ void bench_scenarios(const BenchScenarioArgs& a) {
   }
 }
 
+struct BenchLoopArgs {
+  std::string scenario = "hexagon_static";
+  std::string robot;  // empty: the scenario's
+  int runs = 3;
+  std::string params;  // navigation parameters file (RunOptions::params_file)
+  bool json = false;
+};
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n == 0 ? 0.0 : (n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
+}
+
+// Issue 8's real-time goal: the whole closed loop (simulator included) on one thread, `runs` times
+// one after another; the real-time factor is simulated time over process CPU time (the run is
+// single-threaded, so this is one core), medians over the runs against the 10x goal.
+void bench_loop(const BenchLoopArgs& a) {
+  require(a.runs >= 1, "--runs", ">= 1");
+  const sim::Scenario s = sim::load_scenario(resolve_scenario(a.scenario));
+  runner::RunOptions o;
+  o.robot = a.robot;
+  o.params_file = a.params;
+  std::vector<double> cpu_ms, wall_ms;
+  std::map<std::string, std::vector<double>> stages;
+  runner::RunResult last;
+  for (int i = 0; i < a.runs; ++i) {
+    last = runner::run_scenario(s, o);
+    cpu_ms.push_back(last.cpu_s * 1e3);
+    wall_ms.push_back(last.wall_s * 1e3);
+    for (const auto& [k, v] : last.stage_cpu_ms) stages[k].push_back(v);
+  }
+  nlohmann::json stage_median = nlohmann::json::object();
+  for (const auto& [k, v] : stages) stage_median[k] = median(v);
+  const double cpu_med = median(cpu_ms), wall_med = median(wall_ms);
+  const double rtf = cpu_med > 0.0 ? last.time_s / (cpu_med * 1e-3) : 0.0;
+  const double wall_rtf = wall_med > 0.0 ? last.time_s / (wall_med * 1e-3) : 0.0;
+  constexpr double kGoalRtf = 10.0;
+  const nlohmann::json j{{"scenario", last.scenario},
+                         {"robot", last.robot},
+                         {"runs", a.runs},
+                         {"success", last.success},
+                         {"outcome", std::string(outcome_name(last.outcome.outcome))},
+                         {"simulated_s", last.time_s},
+                         {"cpu_median_ms", cpu_med},
+                         {"cpu_min_ms", *std::min_element(cpu_ms.begin(), cpu_ms.end())},
+                         {"cpu_max_ms", *std::max_element(cpu_ms.begin(), cpu_ms.end())},
+                         {"wall_median_ms", wall_med},
+                         {"cpu_real_time_factor_rtf", rtf},
+                         {"wall_real_time_factor_rtf", wall_rtf},
+                         {"stage_cpu_median_ms", stage_median},
+                         {"goal_rtf", kGoalRtf},
+                         {"meets_goal", rtf >= kGoalRtf}};
+  if (a.json) {
+    std::printf("%s\n", j.dump(2).c_str());
+    return;
+  }
+  std::printf(
+      "%s with %s: %s, %.1f s simulated; CPU median %.0f ms (%.0f-%.0f over %d runs): %.1fx real time "
+      "(goal %.0fx: %s); wall %.1fx\n",
+      last.scenario.c_str(), last.robot.c_str(), j["outcome"].get<std::string>().c_str(), last.time_s, cpu_med,
+      j["cpu_min_ms"].get<double>(), j["cpu_max_ms"].get<double>(), a.runs, rtf, kGoalRtf,
+      rtf >= kGoalRtf ? "met" : "not met", wall_rtf);
+}
+
 struct ParamsArgs {
   std::string robot = "turtlebot3";
   std::string params;
@@ -382,6 +449,18 @@ void add_run_commands(CLI::App& app, CLI::App& bench) {
   sc->add_flag("--json", b->json, "Print one JSON object (with the failed seeds of each pair)");
   sc->add_option("--params", b->params, "Navigation parameters YAML for every run (as `run --params`)");
   sc->callback([b] { bench_scenarios(*b); });
+
+  auto lp = std::make_shared<BenchLoopArgs>();
+  CLI::App* loop = bench.add_subcommand(
+      "loop", "The whole closed loop's real-time factor on one core (simulated / process CPU time; goal 10x)");
+  loop->add_option("scenario", lp->scenario, "Scenario name or file")->capture_default_str();
+  loop->add_option("--robot", lp->robot, "Robot profile (default: the scenario's)");
+  loop->add_option("--runs", lp->runs, "Runs, one after another (medians)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100));
+  loop->add_option("--params", lp->params, "Navigation parameters YAML (as `run --params`)");
+  loop->add_flag("--json", lp->json, "Print one JSON object");
+  loop->callback([lp] { bench_loop(*lp); });
 
   auto pa = std::make_shared<ParamsArgs>();
   CLI::App* params = app.add_subcommand(
