@@ -372,16 +372,16 @@ void bench_loop(const BenchLoopArgs& a) {
                          {"stage_cpu_median_ms", stage_median},
                          {"goal_rtf", kGoalRtf},
                          {"meets_goal", rtf >= kGoalRtf}};
-  if (a.json) {
-    std::printf("%s\n", j.dump(2).c_str());
+  if (!a.json) {
+    std::printf(
+        "%s with %s: %s, %.1f s simulated; CPU median %.0f ms (%.0f-%.0f over %d runs): %.1fx real time "
+        "(goal %.0fx: %s); wall %.1fx\n",
+        last.scenario.c_str(), last.robot.c_str(), j["outcome"].get<std::string>().c_str(), last.time_s, cpu_med,
+        j["cpu_min_ms"].get<double>(), j["cpu_max_ms"].get<double>(), a.runs, rtf, kGoalRtf,
+        rtf >= kGoalRtf ? "met" : "not met", wall_rtf);
     return;
   }
-  std::printf(
-      "%s with %s: %s, %.1f s simulated; CPU median %.0f ms (%.0f-%.0f over %d runs): %.1fx real time "
-      "(goal %.0fx: %s); wall %.1fx\n",
-      last.scenario.c_str(), last.robot.c_str(), j["outcome"].get<std::string>().c_str(), last.time_s, cpu_med,
-      j["cpu_min_ms"].get<double>(), j["cpu_max_ms"].get<double>(), a.runs, rtf, kGoalRtf,
-      rtf >= kGoalRtf ? "met" : "not met", wall_rtf);
+  std::printf("%s\n", j.dump(2).c_str());
 }
 
 struct ParamsArgs {
@@ -454,12 +454,10 @@ void add_run_commands(CLI::App& app, CLI::App& bench) {
   CLI::App* loop = bench.add_subcommand(
       "loop", "The whole closed loop's real-time factor on one core (simulated / process CPU time; goal 10x)");
   loop->add_option("scenario", lp->scenario, "Scenario name or file")->capture_default_str();
-  loop->add_option("--robot", lp->robot, "Robot profile (default: the scenario's)");
-  loop->add_option("--runs", lp->runs, "Runs, one after another (medians)")
-      ->capture_default_str()
-      ->check(CLI::Range(1, 100));
-  loop->add_option("--params", lp->params, "Navigation parameters YAML (as `run --params`)");
   loop->add_flag("--json", lp->json, "Print one JSON object");
+  loop->add_option("--runs", lp->runs, "Runs, one after another (medians; default 3)")->check(CLI::Range(1, 100));
+  loop->add_option("--robot", lp->robot, "Robot profile (default: the scenario's)");
+  loop->add_option("--params", lp->params, "Navigation parameters YAML (as `run --params`)");
   loop->callback([lp] { bench_loop(*lp); });
 
   auto pa = std::make_shared<ParamsArgs>();
