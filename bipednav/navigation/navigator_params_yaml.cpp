@@ -360,6 +360,7 @@ void visit_fields(V& v, planning::local::DynamicAvoidanceParams& p) {
   v("prediction_growth_mps", p.prediction_growth_mps);
   v("sim_step_s", p.sim_step_s);
   v("static_check_s", p.static_check_s);
+  v("hold_step_s", p.hold_step_s);
   v("exit_swept_corridor", p.exit_swept_corridor);
   v("reverse_at_structure", p.reverse_at_structure);
 }

@@ -190,6 +190,7 @@ void DynamicAvoidanceParams::validate() const {
           "dynamic_avoidance.prediction_growth_mps", ">= 0");
   require(positive(sim_step_s) && sim_step_s <= horizon_s, "dynamic_avoidance.sim_step_s", "in (0, horizon_s]");
   require(positive(static_check_s), "dynamic_avoidance.static_check_s", "> 0");
+  require(std::isfinite(hold_step_s) && hold_step_s >= 0.0, "dynamic_avoidance.hold_step_s", ">= 0");
 }
 
 namespace {
@@ -709,7 +710,7 @@ struct RolloutCheck {
 RolloutCheck rollout_check(const Pose2& pose, const Twist& current, const Twist& target,
                            const std::vector<TrackedObstacle>& moving, const CommandLimits& lim, double now_s,
                            const DynamicAvoidanceParams& p, std::vector<Pose2>* arc, bool corridors = false,
-                           const std::vector<double>* turns = nullptr) {
+                           const std::vector<double>* turns = nullptr, double hold_s = kInf) {
   // The prediction of obstacle i at now_s + dt: constant velocity, turned back at its turn time.
   const auto at = [&](std::size_t i, double dt) -> Eigen::Vector2d {
     const double tt = turns ? (*turns)[i] : kInf;
@@ -724,7 +725,7 @@ RolloutCheck rollout_check(const Pose2& pose, const Twist& current, const Twist&
   const int n = static_cast<int>(std::ceil(p.horizon_s / p.sim_step_s - 1e-9));
   for (int k = 1; k <= n; ++k) {
     const double t = k * p.sim_step_s;
-    step(r, target, lim, p.sim_step_s);
+    step(r, t - p.sim_step_s < hold_s - 1e-9 ? target : Twist{}, lim, p.sim_step_s);  // then braking
     if (arc && t <= p.static_check_s + 1e-9) arc->push_back(r.pose);
     for (std::size_t i = 0; i < moving.size(); ++i) {
       const double d = (at(i, t) - r.pose.position()).norm();
@@ -786,13 +787,26 @@ YieldDecision yield_to_moving_obstacles(const Twist& cmd, const Pose2& pose, con
   if (!std::isfinite(out.ttc_s)) return out;
 
   // Candidates: the command slowed along its arc, then a coarse grid of forward, turning and
-  // backing commands.
-  std::vector<Twist> cand;
-  for (const double f : {0.75, 0.5, 0.25, 0.0}) cand.push_back({f * cmd.linear_x, 0.0, f * cmd.angular_z});
-  cand.push_back({0.0, 0.0, 0.0});
+  // backing commands, each held over the horizon; with hold_step_s, when none of those is free, the
+  // grid again, held for multiples of it and then braked to a stop (longest hold first, so of
+  // equally good ones the longest wins).
+  struct Candidate {
+    Twist cmd;
+    double hold_s = kInf;
+  };
+  std::vector<Candidate> cand;
+  for (const double f : {0.75, 0.5, 0.25, 0.0}) cand.push_back({{f * cmd.linear_x, 0.0, f * cmd.angular_z}});
+  cand.push_back({});
   const double vb = lim.max_vel_x_backwards_mps, vf = lim.max_vel_x_mps, wm = lim.max_vel_theta_radps;
-  for (const double v : {-vb, -0.5 * vb, 0.0, 0.5 * vf, vf}) {
-    for (const double w : {-0.6 * wm, -0.3 * wm, 0.0, 0.3 * wm, 0.6 * wm}) cand.push_back({v, 0.0, w});
+  std::vector<double> holds{kInf};
+  if (p.hold_step_s > 0.0)
+    for (int k = static_cast<int>(std::ceil(p.static_check_s / p.hold_step_s - 1e-9)) - 1; k >= 1; --k)
+      holds.push_back(k * p.hold_step_s);
+  for (const double hold : holds) {
+    for (const double v : {-vb, -0.5 * vb, 0.0, 0.5 * vf, vf}) {
+      if (v == 0.0 && std::isfinite(hold)) continue;  // turning in place then stopping: the held turn decides
+      for (const double w : {-0.6 * wm, -0.3 * wm, 0.0, 0.3 * wm, 0.6 * wm}) cand.push_back({{v, 0.0, w}, hold});
+    }
   }
   const auto deviation = [&](const Twist& c) {
     return std::abs(c.linear_x - cmd.linear_x) / std::max(vf, 1e-3) +
@@ -801,15 +815,17 @@ YieldDecision yield_to_moving_obstacles(const Twist& cmd, const Pose2& pose, con
   // A collision-free candidate (against the predictions and the costmap) closest to the command;
   // when there is none, the one that keeps the largest gap to the moving obstacles.
   // With exit_swept_corridor, among the ones run into, the one leaving the corridors soonest first.
-  const Twist* best = nullptr;
+  const Candidate* best = nullptr;
   bool best_free = false;
   double best_dev = kInf, best_gap = -kInf, best_exit = kInf;
   std::vector<Pose2> arc;
   for (const auto& c : cand) {
-    const RolloutCheck rc = rollout_check(pose, cur, c, moving, lim, now_s, p, &arc, p.exit_swept_corridor, turns);
+    if (std::isfinite(c.hold_s) && best_free) break;  // the held commands come first and one is free
+    const RolloutCheck rc =
+        rollout_check(pose, cur, c.cmd, moving, lim, now_s, p, &arc, p.exit_swept_corridor, turns, c.hold_s);
     if (!poses_feasible(arc, costmap)) continue;
     const bool free = !std::isfinite(rc.ttc_s);
-    const double dev = deviation(c);
+    const double dev = deviation(c.cmd);
     const bool sooner = rc.corridor_exit_s < best_exit - 1e-9;
     const bool as_soon = !sooner && !(rc.corridor_exit_s > best_exit + 1e-9);
     const bool better_blocked =
@@ -825,9 +841,9 @@ YieldDecision yield_to_moving_obstacles(const Twist& cmd, const Pose2& pose, con
     out.ttc_s = rollout_check(pose, cur, Twist{}, moving, lim, now_s, p, nullptr, false, turns).ttc_s;
     return out;
   }
-  out.target = *best;
-  out.cmd = clamp_command(*best, cur, lim, period_s);
-  out.ttc_s = rollout_check(pose, cur, *best, moving, lim, now_s, p, nullptr, false, turns).ttc_s;
+  out.target = best->cmd;
+  out.cmd = clamp_command(best->cmd, cur, lim, period_s);
+  out.ttc_s = rollout_check(pose, cur, best->cmd, moving, lim, now_s, p, nullptr, false, turns, best->hold_s).ttc_s;
   return out;
 }
 
