@@ -207,6 +207,7 @@ void run_command(const RunArgs& a) {
 
 struct BenchScenarioArgs {
   int seeds = 1;
+  int first_seed = 1;  // seeds first_seed .. first_seed + seeds - 1 (fresh-seed screens)
   int jobs = 1;
   std::vector<std::string> robots{"turtlebot3", "digit"};
   std::vector<std::string> scenarios{"hexagon_static",   "hexagon_dynamic",   "three_rooms",
@@ -236,11 +237,11 @@ void bench_scenarios(const BenchScenarioArgs& a) {
   std::vector<BenchRun> runs;
   for (std::size_t k = 0; k < loaded.size(); ++k)
     for (const auto& robot : a.robots)
-      for (int seed = 1; seed <= a.seeds; ++seed) {
+      for (int i = 0; i < a.seeds; ++i) {
         BenchRun& b = runs.emplace_back();
         b.scenario = k;
         b.robot = robot;
-        b.seed = seed;
+        b.seed = a.first_seed + i;
       }
   // Runs are independent simulations: --jobs of them at a time, each on one thread. The results do
   // not depend on --jobs; a run's real-time factor is its own wall time, so it drops when the
@@ -300,7 +301,11 @@ void bench_scenarios(const BenchScenarioArgs& a) {
                     {"failures", failures}});
   }
   if (a.json) {
-    std::printf("%s\n", nlohmann::json{{"rows", rows}, {"succeeded", ok_total}, {"runs", runs.size()}, {"jobs", a.jobs}}
+    std::printf("%s\n", nlohmann::json{{"rows", rows},
+                                       {"succeeded", ok_total},
+                                       {"runs", runs.size()},
+                                       {"first_seed", a.first_seed},
+                                       {"jobs", a.jobs}}
                             .dump(2)
                             .c_str());
     return;
@@ -441,6 +446,9 @@ void add_run_commands(CLI::App& app, CLI::App& bench) {
   sc->add_option("--seeds", b->seeds, "Seeds per scenario and robot")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000));
+  sc->add_option("--first-seed", b->first_seed, "The first seed: runs seeds first .. first + N - 1")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000000));
   sc->add_option("--robots", b->robots, "Robot profiles")->capture_default_str();
   sc->add_option("--scenarios", b->scenarios, "Scenario names or files")->capture_default_str();
   sc->add_option("--jobs", b->jobs, "Runs at a time, each on one thread (results do not depend on it)")
