@@ -75,8 +75,9 @@ NavigatorParams NavigatorParams::for_robot(const RobotProfile& robot) {
   // session 20): stepping aside in a mover's lane between posts instead of standing in it.
   // TurtleBot3 on main 3f49347, on / off: hexagon_dynamic seeds 1-120 110/120 / 106/120 with 3 / 6
   // runs touching the box (seeds 1-60 57 / 55); three_rooms 1-30 27 / 28 (seed 11 touches a
-  // cube), 31-60 29 / 28; digit_lab_dynamic 1-30 29 / 29, 31-60 30 / 29. Digit (path tracker, lagging walker):
-  // three_rooms 1-30 25 / 26 (other seeds: 3 and 20 touch, 15 does not), digit_lab_dynamic 30 / 30: off for walkers.
+  // cube), 31-60 29 / 28; digit_lab_dynamic 1-30 29 / 29, 31-60 30 / 29. Digit (path tracker,
+  // lagging walker): three_rooms 1-30 25 / 26 (other seeds: 3 and 20 touch, 15 does not), 31-60
+  // 25 / 25; digit_lab_dynamic 1-30 30 / 30. Off for walkers.
   if (robot.kind == "diff_drive") p.server.local.avoidance.hold_step_s = 0.25;
 
   auto& lim = p.server.local.teb.limits;

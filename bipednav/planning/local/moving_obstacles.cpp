@@ -190,7 +190,10 @@ void DynamicAvoidanceParams::validate() const {
           "dynamic_avoidance.prediction_growth_mps", ">= 0");
   require(positive(sim_step_s) && sim_step_s <= horizon_s, "dynamic_avoidance.sim_step_s", "in (0, horizon_s]");
   require(positive(static_check_s), "dynamic_avoidance.static_check_s", "> 0");
-  require(std::isfinite(hold_step_s) && hold_step_s >= 0.0, "dynamic_avoidance.hold_step_s", ">= 0");
+  // Holds between two rollout steps would repeat a candidate (the rollout brakes from a step on), and
+  // a tiny step would make thousands of them on every control cycle.
+  require(hold_step_s == 0.0 || (std::isfinite(hold_step_s) && hold_step_s >= sim_step_s),
+          "dynamic_avoidance.hold_step_s", "0 (off) or >= sim_step_s");
 }
 
 namespace {
@@ -817,7 +820,7 @@ YieldDecision yield_to_moving_obstacles(const Twist& cmd, const Pose2& pose, con
   // With exit_swept_corridor, among the ones run into, the one leaving the corridors soonest first.
   const Candidate* best = nullptr;
   bool best_free = false;
-  double best_dev = kInf, best_gap = -kInf, best_exit = kInf;
+  double best_dev = kInf, best_gap = -kInf, best_exit = kInf, best_ttc = kInf;
   std::vector<Pose2> arc;
   for (const auto& c : cand) {
     if (std::isfinite(c.hold_s) && best_free) break;  // the held commands come first and one is free
@@ -832,7 +835,9 @@ YieldDecision yield_to_moving_obstacles(const Twist& cmd, const Pose2& pose, con
         p.exit_swept_corridor ? sooner || (as_soon && rc.min_gap_m > best_gap) : rc.min_gap_m > best_gap;
     const bool better = best == nullptr || (free && !best_free) || (free && best_free && dev < best_dev) ||
                         (!free && !best_free && better_blocked);
-    if (better) best = &c, best_free = free, best_dev = dev, best_gap = rc.min_gap_m, best_exit = rc.corridor_exit_s;
+    if (!better) continue;
+    best = &c, best_free = free, best_dev = dev, best_gap = rc.min_gap_m, best_exit = rc.corridor_exit_s;
+    best_ttc = rc.ttc_s;
   }
   out.modified = true;
   if (best == nullptr) {
@@ -843,7 +848,7 @@ YieldDecision yield_to_moving_obstacles(const Twist& cmd, const Pose2& pose, con
   }
   out.target = best->cmd;
   out.cmd = clamp_command(best->cmd, cur, lim, period_s);
-  out.ttc_s = rollout_check(pose, cur, best->cmd, moving, lim, now_s, p, nullptr, false, turns, best->hold_s).ttc_s;
+  out.ttc_s = best_ttc;  // the corridors and the arc the loop also asked for do not change it
   return out;
 }
 

@@ -352,12 +352,12 @@ struct DynamicAvoidanceParams {
   // Candidates that move and then stop, when no held candidate is free: the grid of commands
   // again, each held for a multiple of hold_step_s shorter than static_check_s and then braked to
   // a stop within the acceleration limits (checked against the predictions and the costmap as
-  // braked). A robot in a mover's lane between
-  // two obstacles can then step aside, where every command held for static_check_s runs into one
-  // of them and standing still was the only candidate left. Cause addressed: hexagon_dynamic/
-  // turtlebot3 seed 8, the robot in the box's lane between the cylinders at (-1.1, 0) and (0, 0)
-  // (0.8 m between their surfaces) stopped at 45.4 s with the box 0.3 m away and was run into.
-  // 0: off (only held commands).
+  // braked). A robot in a mover's lane between two obstacles can then step aside, where every
+  // command held for static_check_s runs into one of them and standing still was the only
+  // candidate left. Cause addressed: hexagon_dynamic/turtlebot3 seed 8, the robot in the box's
+  // lane between the cylinders at (-1.1, 0) and (0, 0) (0.8 m between their surfaces) stopped at
+  // 45.4 s with the box 0.3 m away and was run into. 0: off (only held commands); else at least
+  // sim_step_s. On for wheeled robots (NavigatorParams::for_robot, 0.25 s).
   double hold_step_s = 0.0;
   // When every candidate is run into: the one whose rollout leaves the obstacles' swept corridors
   // soonest (a corridor: the points within reach of where the obstacle is predicted over the next

@@ -203,6 +203,15 @@ TEST(MovingObstacles, BadParametersAreRejected) {
   EXPECT_ANY_THROW(l.validate());
   l.latch_displacement_m = std::numeric_limits<double>::quiet_NaN();
   EXPECT_ANY_THROW(l.validate());
+  DynamicAvoidanceParams h;
+  h.hold_step_s = 0.25;
+  EXPECT_NO_THROW(h.validate());
+  h.hold_step_s = 0.5 * h.sim_step_s;  // finer than the rollout's steps
+  EXPECT_ANY_THROW(h.validate());
+  h.hold_step_s = -0.25;
+  EXPECT_ANY_THROW(h.validate());
+  h.hold_step_s = std::numeric_limits<double>::infinity();
+  EXPECT_ANY_THROW(h.validate());
 }
 
 TEST(MovingObstacles, TimeToCollisionHeadOnAndPassingBehind) {
