@@ -415,7 +415,9 @@ void add_run_commands(CLI::App& app, CLI::App& bench) {
   CLI::App* run = app.add_subcommand("run", "Navigate a scenario closed-loop in the built-in simulator");
   run->add_option("scenario", args->scenario, "Scenario name (scenarios/NAME.yaml) or file")->capture_default_str();
   run->add_option("--out", args->out, "Output directory for run.json and run.png")->capture_default_str();
-  run->add_option("--robot", args->options.robot, "Robot profile (turtlebot3, digit): overrides the scenario's");
+  run->add_option("--robot", args->options.robot,
+                  "Robot profile: a name in config/ (turtlebot3, digit, nao) or your own profile FILE.yaml "
+                  "(config/README.md); overrides the scenario's");
   run->add_option("--seed", args->seed, "Seed (overrides the scenario's)");
   run->add_option("--time-limit", args->time_limit_s, "Time limit in simulated seconds");
   run->add_option("--localization", args->options.localization, "loam or odometry");
@@ -449,7 +451,7 @@ void add_run_commands(CLI::App& app, CLI::App& bench) {
   sc->add_option("--first-seed", b->first_seed, "The first seed: runs seeds first .. first + N - 1")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000000));
-  sc->add_option("--robots", b->robots, "Robot profiles")->capture_default_str();
+  sc->add_option("--robots", b->robots, "Robot profiles (names in config/ or profile files)")->capture_default_str();
   sc->add_option("--scenarios", b->scenarios, "Scenario names or files")->capture_default_str();
   sc->add_option("--jobs", b->jobs, "Runs at a time, each on one thread (results do not depend on it)")
       ->capture_default_str()
@@ -464,14 +466,15 @@ void add_run_commands(CLI::App& app, CLI::App& bench) {
   loop->add_option("scenario", lp->scenario, "Scenario name or file")->capture_default_str();
   loop->add_flag("--json", lp->json, "Print one JSON object");
   loop->add_option("--runs", lp->runs, "Runs, one after another (medians; default 3)")->check(CLI::Range(1, 100));
-  loop->add_option("--robot", lp->robot, "Robot profile (default: the scenario's)");
+  loop->add_option("--robot", lp->robot, "Robot profile name or file (default: the scenario's)");
   loop->add_option("--params", lp->params, "Navigation parameters YAML (as `run --params`)");
   loop->callback([lp] { bench_loop(*lp); });
 
   auto pa = std::make_shared<ParamsArgs>();
   CLI::App* params = app.add_subcommand(
       "params", "Print the effective navigation parameters as YAML (the layout of --params; like ros2 param dump)");
-  params->add_option("--robot", pa->robot, "Robot profile (a humanoid: the footstep navigator's parameters)")
+  params
+      ->add_option("--robot", pa->robot, "Robot profile name or file (a humanoid: the footstep navigator's parameters)")
       ->capture_default_str();
   params->add_option("--params", pa->params, "A parameters file to overlay first (prints the result)");
   params->callback([pa] { print_params(*pa); });

@@ -11,10 +11,28 @@
 
 namespace bipednav::runner {
 
-RobotProfile load_robot(const std::string& name, const std::filesystem::path& config_dir) {
-  const std::filesystem::path dir = config_dir.empty() ? std::filesystem::path(navigation::config_dir()) : config_dir;
-  const auto file = dir / (name + ".yaml");
-  if (!std::filesystem::exists(file)) throw Error("unknown robot '" + name + "': no profile " + file.string());
+RobotProfile load_robot(const std::string& name_or_file, const std::filesystem::path& config_dir) {
+  namespace fs = std::filesystem;
+  const fs::path given(name_or_file);
+  const std::string ext = given.extension().string();
+  if (ext == ".yaml" || ext == ".yml" || name_or_file.find('/') != std::string::npos) {
+    if (!fs::is_regular_file(given)) throw Error("robot profile file " + name_or_file + " not found");
+    return io::load_robot_profile(given);
+  }
+  const fs::path dir = config_dir.empty() ? fs::path(navigation::config_dir()) : config_dir;
+  const fs::path file = dir / (name_or_file + ".yaml");
+  if (name_or_file.empty() || !fs::exists(file)) {
+    std::vector<std::string> known;
+    std::error_code ec;
+    for (const auto& e : fs::directory_iterator(dir, ec))
+      if (e.path().extension() == ".yaml") known.push_back(e.path().stem().string());
+    std::sort(known.begin(), known.end());
+    std::string list;
+    for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
+    throw Error(
+        "unknown robot '" + name_or_file + "': no profile " + file.string() +
+        (list.empty() ? "" : " (profiles in " + dir.string() + ": " + list + "; or give a profile file FILE.yaml)"));
+  }
   return io::load_robot_profile(file);
 }
 

@@ -89,8 +89,10 @@ struct RunResult {
   Snapshot final_state;
 };
 
-// Loads the robot profile config/<name>.yaml.
-RobotProfile load_robot(const std::string& name, const std::filesystem::path& config_dir = {});
+// Loads a robot profile: a name is config/<name>.yaml (config_dir, default navigation::config_dir());
+// an argument ending in .yaml or .yml, or containing a '/', is a profile file of the user's own
+// robot (config/README.md gives the format).
+RobotProfile load_robot(const std::string& name_or_file, const std::filesystem::path& config_dir = {});
 // The global map's grid: the scenario's bounds plus a margin, at the given resolution.
 mapping::GridGeometry global_geometry_for(const sim::Scenario& scenario, double resolution_m, double margin_m = 2.0);
 
