@@ -232,8 +232,14 @@ void bench_scenarios(const BenchScenarioArgs& a) {
   for (const auto& name : a.scenarios) loaded.push_back(sim::load_scenario(resolve_scenario(name)));
   runner::RunOptions base;
   base.params_file = a.params;
-  // A bad parameters file is reported once here, not as every run's error.
-  for (const auto& robot : a.robots) runner::navigator_params(runner::load_robot(robot), base);
+  // A bad parameters file is reported once here, not as every run's error. The table names a
+  // profile file's robot by its profile name.
+  std::map<std::string, std::string> robot_names;
+  for (const auto& robot : a.robots) {
+    const RobotProfile profile = runner::load_robot(robot);
+    runner::navigator_params(profile, base);
+    robot_names[robot] = profile.name;
+  }
   std::vector<BenchRun> runs;
   for (std::size_t k = 0; k < loaded.size(); ++k)
     for (const auto& robot : a.robots)
@@ -293,7 +299,7 @@ void bench_scenarios(const BenchScenarioArgs& a) {
     }
     ok_total += static_cast<std::size_t>(ok);
     rows.push_back({{"scenario", a.scenarios[runs[first].scenario]},
-                    {"robot", runs[first].robot},
+                    {"robot", robot_names[runs[first].robot]},
                     {"succeeded", ok},
                     {"runs", a.seeds},
                     {"mean_rtf", rtf},
