@@ -13,6 +13,7 @@
 
 #include "apps/commands.hpp"
 #include "bipednav/common/clock.hpp"
+#include "bipednav/common/cpu_time.hpp"
 #include "bipednav/common/error.hpp"
 #include "bipednav/io/pcd.hpp"
 #include "bipednav/io/ply.hpp"
@@ -154,12 +155,6 @@ fs::path find_file(const std::string& rel) {
     }
   }
   return {};
-}
-
-double thread_cpu_ms() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return 1e3 * static_cast<double>(ts.tv_sec) + 1e-6 * static_cast<double>(ts.tv_nsec);
 }
 
 struct Timing {

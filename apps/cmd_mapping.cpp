@@ -8,6 +8,7 @@
 
 #include "apps/commands.hpp"
 #include "bipednav/common/clock.hpp"
+#include "bipednav/common/cpu_time.hpp"
 #include "bipednav/common/error.hpp"
 #include "bipednav/io/map_server.hpp"
 #include "bipednav/mapping/bench_scene.hpp"
@@ -67,13 +68,6 @@ void run_inflate(const InflateOptions& o) {
   if (!o.out_png.empty()) j["png"] = o.out_png;
   if (!o.out_yaml.empty()) j["yaml"] = o.out_yaml;
   std::printf("%s\n", j.dump(2).c_str());
-}
-
-// CPU time of this thread (ms): unlike wall time it excludes preemption on a busy machine.
-double thread_cpu_ms() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
 }
 
 double median(std::vector<double> v) {

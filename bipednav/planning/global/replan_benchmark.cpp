@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "bipednav/common/cpu_time.hpp"
 #include "bipednav/common/error.hpp"
 
 namespace bipednav::planning {
@@ -43,7 +44,7 @@ bool reveal(const mapping::Costmap2D& truth, mapping::Costmap2D& known, const Po
 }
 
 struct Totals {
-  double d_exp = 0, a_exp = 0, d_ms = 0, a_ms = 0;
+  double d_exp = 0, a_exp = 0, d_ms = 0, a_ms = 0, d_cpu_ms = 0, a_cpu_ms = 0;
 };
 
 }  // namespace
@@ -135,8 +136,12 @@ ReplanStats run_replan_benchmark(const ReplanBenchParams& params) {
       changes = mapping::diff(before, known);
     }
     st.changed_cells += changes.size();
+    const double t0 = thread_cpu_ms();
     rd = dstar->plan(known, robot, world.goal, changes);
+    const double t1 = thread_cpu_ms();
     const PlanResult a = astar->plan(known, robot, world.goal, {});
+    tot.a_cpu_ms += thread_cpu_ms() - t1;
+    tot.d_cpu_ms += t1 - t0;
     ++st.replans;
     if (rd.result.outcome != a.result.outcome || std::abs(rd.cost - a.cost) > 1e-9 * std::max(1.0, a.cost))
       ++st.cost_mismatches;
@@ -155,6 +160,9 @@ ReplanStats run_replan_benchmark(const ReplanBenchParams& params) {
   st.astar_mean_ms = tot.a_ms / n;
   st.expansions_ratio = tot.a_exp / std::max(tot.d_exp, 1.0);
   st.time_ratio = tot.a_ms / std::max(tot.d_ms, 1e-9);
+  st.dstar_cpu_mean_ms = tot.d_cpu_ms / n;
+  st.astar_cpu_mean_ms = tot.a_cpu_ms / n;
+  st.cpu_time_ratio = tot.a_cpu_ms / std::max(tot.d_cpu_ms, 1e-9);
   return st;
 }
 

@@ -44,8 +44,11 @@ struct ReplanStats {
   double dstar_mean_expansions = 0.0, astar_mean_expansions = 0.0;
   double dstar_mean_ms = 0.0, astar_mean_ms = 0.0;
   double dstar_max_ms = 0.0, astar_max_ms = 0.0;
+  // The same in the calling thread's CPU time (the planners' own time_ms is wall time, which load inflates).
+  double dstar_cpu_mean_ms = 0.0, astar_cpu_mean_ms = 0.0;
   double expansions_ratio = 0.0;  // A* mean / D* Lite mean
-  double time_ratio = 0.0;
+  double time_ratio = 0.0;        // wall time
+  double cpu_time_ratio = 0.0;    // thread CPU time
 };
 
 // Drives a point robot along D* Lite's path through the three-room world: it starts with the

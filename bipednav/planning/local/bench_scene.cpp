@@ -5,6 +5,7 @@
 #include <ctime>
 
 #include "bipednav/common/clock.hpp"
+#include "bipednav/common/cpu_time.hpp"
 #include "bipednav/common/rng.hpp"
 #include "bipednav/planning/local/teb_planner.hpp"
 
@@ -29,12 +30,6 @@ void stamp_disc(mapping::Costmap2D& m, double x, double y, double r, double insc
 }
 
 namespace {
-
-double thread_cpu_ms() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) * 1e-6;
-}
 
 // The q-quantile of a sorted, non-empty sample.
 double quantile(const std::vector<double>& sorted, double q) {
