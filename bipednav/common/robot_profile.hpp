@@ -55,6 +55,12 @@ struct RobotProfile {
       require(s.type == "vlp16" || s.type == "d430", "sensors[" + s.name + "].type", "vlp16 or d430");
     }
   }
+  // The LiDAR the stack uses (LOAM, the obstacle layers, the sensor gate): the first vlp16 mount.
+  const SensorMount* lidar() const {
+    for (const auto& s : sensors)
+      if (s.type == "vlp16") return &s;
+    return nullptr;
+  }
   const SensorMount* sensor(const std::string& sensor_name) const {
     for (const auto& s : sensors)
       if (s.name == sensor_name) return &s;

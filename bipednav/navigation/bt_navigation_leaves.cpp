@@ -10,9 +10,13 @@ std::vector<BtLeafSpec> make_specs() {
   const P goal = P::input("goal", BtType::Pose2, "{goal}");
   const P error_code = P::output("error_code", BtType::Int);
   return {
-      {"SensorsAlive", C, {}, "every sensor delivered a frame within its timeout"},
+      {"SensorsAlive", C, {}, "every LiDAR and depth camera delivered a frame within its timeout"},
       {"IsLocalizationHealthy", C, {}, "the localization reports good health"},
-      {"IsStartValid", C, {}, "the robot's footprint is not in collision on the costmaps"},
+      {"IsStartValid",
+       C,
+       {error_code},
+       "the robot's centre is on the global map and not in a lethal cell; else error_code = INVALID_START (52) / "
+       "BLOCKED_START (54)"},
       {"IsGoalValid",
        C,
        {goal, error_code},
@@ -21,7 +25,7 @@ std::vector<BtLeafSpec> make_specs() {
       {"IsPathValid",
        C,
        {P::input("path", BtType::Path, "{path}")},
-       "path is non-empty and collision-free on the costmaps"},
+       "path is non-empty and no lethal cell lies on its next path_check_distance_m"},
       {"CanRotateInPlace", C, {}, "the robot profile allows turning on the spot"},
       {"ComputePathToPose",
        A,

@@ -19,11 +19,9 @@ void LocalizerParams::validate() const {
 Localizer::Localizer(LocalizerParams params, const RobotProfile& robot, const Pose2& T_map_base_initial)
     : params_(std::move(params)), correction_(T_map_base_initial) {
   params_.validate();
-  for (const auto& s : robot.sensors) {
-    if (s.type == "vlp16") {
-      T_base_lidar_ = s.T_base_sensor();
-      has_lidar_ = true;
-    }
+  if (const SensorMount* lidar = robot.lidar()) {
+    T_base_lidar_ = lidar->T_base_sensor();
+    has_lidar_ = true;
   }
   if (params_.method == "loam" && has_lidar_) {
     localization::LoamParams lp = params_.loam;

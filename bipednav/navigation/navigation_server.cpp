@@ -224,10 +224,13 @@ Result NavigationServer::goal_valid(const Pose2& goal) const {
   return {Outcome::SUCCESS, ""};
 }
 
-bool NavigationServer::start_valid() const {
+Result NavigationServer::start_valid() const {
+  if (!view_.pose.is_finite()) return {Outcome::INVALID_START, "the robot's pose is not finite"};
   const auto& map = global_.costmap();
   const auto c = map.geometry().world_to_cell(view_.pose.x, view_.pose.y);
-  return c && map.cost(*c) != mapping::kLethal;
+  if (!c) return {Outcome::INVALID_START, "the robot is outside the global map"};
+  if (map.cost(*c) == mapping::kLethal) return {Outcome::BLOCKED_START, "the robot's centre lies in an obstacle"};
+  return {Outcome::SUCCESS, ""};
 }
 
 bool NavigationServer::path_valid(const Path& path) const {

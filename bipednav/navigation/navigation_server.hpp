@@ -83,7 +83,7 @@ class NavigationServer {
   // Conditions.
   bool goal_reached(const Pose2& goal) const;
   Result goal_valid(const Pose2& goal) const;  // SUCCESS, PLAN_OUT_OF_MAP, BLOCKED_GOAL
-  bool start_valid() const;
+  Result start_valid() const;                  // SUCCESS, INVALID_START (not finite / off the map), BLOCKED_START
   bool path_valid(const Path& path) const;
   bool can_rotate_in_place() const { return robot_.can_rotate_in_place; }
 

@@ -10,9 +10,8 @@
 namespace bipednav::navigation {
 
 std::string lidar_mount_name(const RobotProfile& robot) {
-  for (const auto& m : robot.sensors)
-    if (m.type == "vlp16") return m.name;
-  return {};
+  const SensorMount* lidar = robot.lidar();
+  return lidar ? lidar->name : std::string();
 }
 
 std::vector<std::string> depth_mount_names(const RobotProfile& robot) {
@@ -410,18 +409,21 @@ void Navigator::finish(BtStatus s) {
     return;
   }
   status_.state = NavState::FAILED;
+  // The safety gate first: while sensors are silent or localization is unhealthy it halts the
+  // navigation below it, so a failure now is the gate's, and error_code may still hold the code
+  // of a controller failure the recoveries had overcome before.
   const int code = tree_->blackboard()->get<int>("error_code").value_or(0);
-  if (code != 0) {
-    status_.result = {static_cast<Outcome>(code),
-                      code == static_cast<int>(bipednav::code(last_failure_.outcome)) ? last_failure_.message : ""};
-  } else if (!last_failure_.ok()) {
-    status_.result = last_failure_;
-  } else if (!sensors_alive()) {
+  if (!sensors_alive()) {
     std::string names;
     for (const auto& n : gate_.silent(now_s_)) names += (names.empty() ? "" : ", ") + n;
     status_.result = {Outcome::CTRL_STOPPED, "sensors went silent: " + names};
   } else if (!localizer_.healthy(now_s_)) {
     status_.result = {Outcome::CTRL_STOPPED, "localization unhealthy: " + localizer_.reason()};
+  } else if (code != 0) {
+    status_.result = {static_cast<Outcome>(code),
+                      code == static_cast<int>(bipednav::code(last_failure_.outcome)) ? last_failure_.message : ""};
+  } else if (!last_failure_.ok()) {
+    status_.result = last_failure_;
   } else {
     status_.result = {Outcome::CTRL_FAILURE, "navigation failed"};
   }

@@ -33,7 +33,13 @@ void Navigator::register_leaves(BtFactory& f) {
       "IsLocalizationHealthy", [this](BtNode&, double) { return localizer_.healthy(now_s_); },
       bt_leaf_ports("IsLocalizationHealthy"));
   f.register_simple_condition(
-      "IsStartValid", [&srv](BtNode&, double) { return srv.start_valid(); }, bt_leaf_ports("IsStartValid"));
+      "IsStartValid",
+      [&srv, fail_with](BtNode& self, double) {
+        const Result r = srv.start_valid();
+        if (!r.ok()) fail_with(self, r);
+        return r.ok();
+      },
+      bt_leaf_ports("IsStartValid"));
   f.register_simple_condition(
       "IsGoalValid",
       [&srv, fail_with](BtNode& self, double) {

@@ -59,9 +59,7 @@ void PerceptionPipeline::add_depth(FusedCloud& fused, const DepthCloud& depth, c
 }
 
 void PerceptionPipeline::add_lidar(FusedCloud& fused, const PointCloud& sweep, const RobotProfile& robot) {
-  const SensorMount* mount = robot.sensor("lidar");
-  for (const auto& s : robot.sensors)
-    if (!mount && s.type == "vlp16") mount = &s;
+  const SensorMount* mount = robot.lidar();
   if (!mount) throw Error("perception: a LiDAR sweep arrived but robot profile '" + robot.name + "' mounts no vlp16");
   PassThroughParams range;
   range.min_range_m = params_.lidar_min_range_m;

@@ -36,6 +36,24 @@ TEST(FaultRun, LidarDropoutStopsTheRobotUntilSweepsReturn) {
   EXPECT_EQ(max_speed_between(r, 6.8, 9.0), 0.0);  // sensors silent after 0.5 s: stopped
 }
 
+// The LiDAR lost for good after the controller's recoveries have run: the run ends stopped, and the
+// result names the silent sensor, not the recovered controller failure still on the blackboard.
+TEST(FaultRun, LidarLostForGoodEndsStoppedWithTheSilentSensorAsTheOutcome) {
+  sim::Scenario s = sim::load_scenario(test::source_dir() / "scenarios" / "hexagon_dynamic.yaml");
+  s.faults.push_back(sim::parse_fault("lidar_dropout:25:60"));
+  runner::RunOptions o;
+  o.seed = 10;
+  const runner::RunResult r = runner::run_scenario(s, o);
+  EXPECT_GT(r.recoveries, 0);  // a controller failure was recovered before the LiDAR went
+  EXPECT_FALSE(r.success);
+  EXPECT_EQ(r.outcome.outcome, Outcome::CTRL_STOPPED) << outcome_name(r.outcome.outcome) << " " << r.outcome.message;
+  EXPECT_NE(r.outcome.message.find("sensors went silent: lidar"), std::string::npos) << r.outcome.message;
+  EXPECT_EQ(r.collisions, 0);
+  ASSERT_FALSE(r.trace.empty());
+  EXPECT_TRUE(r.trace.back().cmd.is_zero());
+  EXPECT_EQ(max_speed_between(r, 26.0, r.time_s), 0.0);  // stopped from 0.5 s after the last sweep
+}
+
 TEST(FaultRun, DepthNanBurstStopsAWalkerThatLosesItsNearField) {
   const auto r = run_with("digit_lab_static", "depth_nan_burst:5:3:1.0");
   expect_safe_success(r, "depth NaN burst");
