@@ -33,7 +33,7 @@ struct FootstepNavigatorParams {
   std::size_t max_recovery_steps = 3;
 
   void validate() const;
-  // Deterministic planning in the loop: the first ARA* solution with epsilon 2 and no time
+  // Deterministic planning in the loop: the first ARA* solution with epsilon 3 and no time
   // limit, capped by expansions (a run is reproducible bit for bit).
   static footstep::FootstepPlannerParams default_planner();
   // GICP between the views of consecutive stances: the kinematic odometry is good to a few

@@ -287,8 +287,9 @@ void Navigator::track_moving_obstacles() {
   if (pts.empty()) return;
   moving_->set_static_structure(global_.occupancy(), now_s_);  // walls' pieces are not movers
   moving_->update(pts, heights, localizer_.T_map_base(), now_s_);
-  // Moving obstacles stay out of the global map (their trail would block the lanes they crossed);
-  // the local map and the local planner's prediction handle them.
+  // Points on moving obstacles stay out of the global map's own LiDAR input (their trail would
+  // block the lanes they crossed); the local map marks them, and merge_local carries the local
+  // map's cells into the global map, so the global planner routes round a mover where it is seen.
   const auto moving = moving_->moving(now_s_);
   if (moving.empty()) return;
   const double margin_m = params_.moving_obstacles.global_map_margin_m;

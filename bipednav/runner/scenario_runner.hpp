@@ -104,7 +104,8 @@ bool path_departs(const Path& before, const Path& after, double limit_m = 0.5);
 // Runs a scenario closed-loop: the simulator's sensor frames feed the Navigator (through the
 // fault injector when the scenario or the options name faults), its command drives the simulated robot; goals are
 // handed over at their times; the run ends when the last goal succeeded or failed, or at the time limit. Success = the
-// last goal reached (by the navigator, and within tolerance by the true pose) with zero collisions.
+// last goal reached (by the navigator, and within 1.25 times the scenario's tolerances by the true
+// pose, which leaves room for the localization error) with zero collisions.
 RunResult run_scenario(const sim::Scenario& scenario, const RunOptions& options);
 // The navigator's parameters for a run of `robot`: its defaults, options.params_file, then the
 // localization / planner options (without the scenario's goal tolerances).
