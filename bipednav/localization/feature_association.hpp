@@ -4,7 +4,6 @@
 #include <cstdint>
 #include <vector>
 
-#include "bipednav/localization/kdtree.hpp"
 #include "bipednav/localization/point_kdtree.hpp"
 #include "bipednav/localization/registration_lm.hpp"
 

@@ -179,21 +179,6 @@ void GicpParams::validate() const {
   require(threads >= 1 && threads <= 256, "threads", "in [1, 256]");
 }
 
-std::vector<Eigen::Matrix3f> plane_covariances(const std::vector<Eigen::Vector3f>& points, const KdTree3f& tree, int k,
-                                               double epsilon, int threads) {
-  std::vector<Eigen::Matrix3f> covs(points.size());
-  parallel_chunks(points.size(), threads, [&](std::size_t begin, std::size_t end, std::size_t) {
-    std::vector<std::uint32_t> idx(static_cast<std::size_t>(k));
-    std::vector<float> d2(static_cast<std::size_t>(k));
-    for (std::size_t i = begin; i < end; ++i) {
-      const std::size_t n = tree.knn(points[i], static_cast<std::size_t>(k), idx.data(), d2.data());
-      covs[i] = plane_covariance(
-          n, [&](std::size_t t) { return tree.point(idx[t]); }, epsilon);
-    }
-  });
-  return covs;
-}
-
 // Per point in the tree's leaf order: consecutive queries touch the same tree nodes and points,
 // and the previous point's k neighbours, being k points near this one, bound the search.
 std::vector<Eigen::Matrix3f> plane_covariances(const GicpIndex& index, int k, double epsilon, int threads) {

@@ -7,7 +7,6 @@
 
 #include "bipednav/common/point_cloud.hpp"
 #include "bipednav/common/se3.hpp"
-#include "bipednav/localization/kdtree.hpp"
 #include "bipednav/localization/point_kdtree.hpp"
 
 namespace bipednav::localization {
@@ -47,12 +46,9 @@ struct GicpResult {
   double time_ms = 0.0;
 };
 
-// Covariance of each point from its k nearest neighbours, with the eigenvalues replaced by
-// (1, 1, epsilon) so every point is modelled as a small plane (Segal et al., section III-B).
-std::vector<Eigen::Matrix3f> plane_covariances(const std::vector<Eigen::Vector3f>& points, const KdTree3f& tree, int k,
-                                               double epsilon, int threads);
-// The same for the points of `index` themselves (the k nearest include the point), queried in the
-// tree's leaf order.
+// Covariance of each point of `index` from its k nearest neighbours (the point among them), with the
+// eigenvalues replaced by (1, 1, epsilon) so every point is modelled as a small plane (Segal et al.,
+// section III-B); indexed like the points, queried in the tree's leaf order.
 std::vector<Eigen::Matrix3f> plane_covariances(const GicpIndex& index, int k, double epsilon, int threads);
 
 // Drops non-finite points, builds the tree and the covariances.

@@ -78,8 +78,8 @@ TEST(Gicp, PlaneCovarianceHasTheNormalAsItsSmallAxis) {
   std::vector<Eigen::Vector3f> pts;
   for (int i = 0; i < 10; ++i)
     for (int j = 0; j < 10; ++j) pts.emplace_back(0.1f * i, 0.1f * j, 2.0f);
-  const KdTree3f tree(pts);
-  const auto covs = plane_covariances(pts, tree, 20, 1e-3, 1);
+  const GicpIndex index(pts);
+  const auto covs = plane_covariances(index, 20, 1e-3, 1);
   const Eigen::Vector3f n = Eigen::Vector3f::UnitZ();
   EXPECT_NEAR(n.dot(covs[55] * n), 1e-3, 1e-6);
   EXPECT_NEAR(covs[55](0, 0), 1.0, 1e-5);
