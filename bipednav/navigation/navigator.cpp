@@ -102,6 +102,7 @@ Twist Navigator::tick(const SensorFrame& frame) {
   }
   perception_in_.stamp_s = admitted.stamp_s;
   perception_in_.lidar = admitted.lidar ? &*frame.lidar : nullptr;
+  perception_in_.base_velocity = localizer_.velocity();
   perception_in_.depth.clear();
   for (std::size_t i = 0; i < frame.depth.size(); ++i) {
     if (!admitted.depth[i]) continue;

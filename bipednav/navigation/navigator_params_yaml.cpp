@@ -76,6 +76,7 @@ void visit_fields(V& v, perception::PerceptionParams& p) {
   v("lidar_min_range_m", p.lidar_min_range_m);
   v("lidar_max_range_m", p.lidar_max_range_m);
   v("lidar_voxel_m", p.lidar_voxel_m);
+  v("deskew_lidar", p.deskew_lidar);
   v.group("ransac", p.ransac);
   v("prior_ground", p.prior_ground);
   v("max_ground_offset_m", p.max_ground_offset_m);

@@ -4,6 +4,7 @@
 
 #include "bipednav/common/clock.hpp"
 #include "bipednav/common/error.hpp"
+#include "bipednav/perception/deskew.hpp"
 
 namespace bipednav::perception {
 
@@ -58,9 +59,14 @@ void PerceptionPipeline::add_depth(FusedCloud& fused, const DepthCloud& depth, c
   append_sensor_cloud(fused, voxels_, mount->T_base_sensor(), mount->name, params_.depth_max_range_m);
 }
 
-void PerceptionPipeline::add_lidar(FusedCloud& fused, const PointCloud& sweep, const RobotProfile& robot) {
+void PerceptionPipeline::add_lidar(FusedCloud& fused, const PointCloud& raw, const PerceptionInput& in,
+                                   const RobotProfile& robot) {
   const SensorMount* mount = robot.lidar();
   if (!mount) throw Error("perception: a LiDAR sweep arrived but robot profile '" + robot.name + "' mounts no vlp16");
+  const PointCloud& sweep =
+      params_.deskew_lidar && deskew_sweep(raw, mount->T_base_sensor(), in.base_velocity, in.stamp_s, lidar_deskewed_)
+          ? lidar_deskewed_
+          : raw;
   PassThroughParams range;
   range.min_range_m = params_.lidar_min_range_m;
   range.max_range_m = params_.lidar_max_range_m;
@@ -150,7 +156,7 @@ void PerceptionPipeline::process(const PerceptionInput& in, const RobotProfile& 
     if (d) add_depth(fused, *d, robot, out);
   out.timings.depth_ms = sw.elapsed_ms();
   sw.restart();
-  if (in.lidar) add_lidar(fused, *in.lidar, robot);
+  if (in.lidar) add_lidar(fused, *in.lidar, in, robot);
   out.timings.lidar_ms = sw.elapsed_ms();
   sw.restart();
   RansacParams ransac = params_.ransac;
