@@ -86,6 +86,14 @@ nlohmann::json to_json(const runner::RunResult& r) {
   j["localization_error_m"] = r.localization_error_m;
   j["replans"] = r.replans;
   j["recoveries"] = r.recoveries;
+  j["recovery_log"] = nlohmann::json::array();
+  for (const auto& rec : r.recovery_log)
+    j["recovery_log"].push_back({{"name", rec.name},
+                                 {"start_s", rec.start_s},
+                                 {"end_s", rec.end_s},
+                                 {"outcome", std::string(outcome_name(rec.result.outcome))},
+                                 {"outcome_code", code(rec.result.outcome)},
+                                 {"message", rec.result.message}});
   j["real_time_factor"] = r.real_time_factor;
   j["wall_s"] = r.wall_s;
   j["cpu_s"] = r.cpu_s;
@@ -109,6 +117,22 @@ void print_summary(const runner::RunResult& r) {
               r.localization_error_m);
   std::printf("  replans %zu, recoveries %zu, real-time factor %.1fx (wall), %.1fx (CPU: %.2f s)\n", r.replans,
               r.recoveries, r.real_time_factor, r.cpu_real_time_factor, r.cpu_s);
+  if (!r.recovery_log.empty()) {
+    // Each recovery and outcome with its count, in the order they first happened.
+    std::vector<std::pair<std::string, int>> counts;
+    for (const auto& rec : r.recovery_log) {
+      const std::string key =
+          rec.name + " " + (rec.end_s < 0.0 ? std::string("RUNNING") : std::string(outcome_name(rec.result.outcome)));
+      auto it = std::find_if(counts.begin(), counts.end(), [&](const auto& c) { return c.first == key; });
+      if (it == counts.end())
+        counts.emplace_back(key, 1);
+      else
+        ++it->second;
+    }
+    std::string line;
+    for (const auto& [key, n] : counts) line += (line.empty() ? "" : ", ") + key + " x" + std::to_string(n);
+    std::printf("  recovery outcomes: %s\n", line.c_str());
+  }
   std::string stages;
   for (const auto& [name, ms] : r.stage_cpu_ms)
     stages += (stages.empty() ? "" : ", ") + name + " " + std::to_string(static_cast<long>(std::lround(ms)));

@@ -38,6 +38,7 @@ NavigationServer::NavigationServer(ServerParams params, RobotProfile robot, mapp
                                    mapping::LocalCostmap& local)
     : params_(std::move(params)),
       robot_(std::move(robot)),
+      limits_(control::VelocityLimits::from_profile(robot_)),
       global_(global),
       local_(local),
       goal_checker_(params_.goal),
@@ -127,83 +128,102 @@ ActionStep NavigationServer::exe_path(const Path& path, bool first) {
   return {};
 }
 
-ActionStep NavigationServer::back_up(double distance_m, double speed_mps, bool first) {
-  if (first) {
-    ++recoveries_;
-    recovery_start_pose_ = view_.pose;
-    recovery_start_s_ = view_.now_s;
+void NavigationServer::begin_recovery(const char* name) {
+  if (recovery_running_) end_recovery(Result{Outcome::RECOVERY_CANCELED, std::string("superseded by ") + name});
+  ++recoveries_;
+  if (recovery_log_.size() == kRecoveryLogSize) recovery_log_.erase(recovery_log_.begin());
+  recovery_log_.push_back({name, view_.now_s, -1.0, {}});
+  recovery_running_ = true;
+  recovery_start_pose_ = view_.pose;
+  recovery_start_s_ = view_.now_s;
+}
+
+Result NavigationServer::end_recovery(Result result) {
+  if (recovery_running_ && !recovery_log_.empty()) {
+    recovery_log_.back().end_s = view_.now_s;
+    recovery_log_.back().result = result;
   }
+  recovery_running_ = false;
+  return result;
+}
+
+ActionStep NavigationServer::end_recovery(ActionStep step) {
+  if (step.state != ActionStep::State::RUNNING) step.result = end_recovery(std::move(step.result));
+  return step;
+}
+
+void NavigationServer::cancel_recovery() {
+  cmd_ = {};
+  if (recovery_running_) end_recovery(Result{Outcome::RECOVERY_CANCELED, "halted by the behavior tree"});
+}
+
+Twist NavigationServer::ramp_to(const Twist& target) const {
+  return control::limit_velocity(target, view_.velocity.is_finite() ? view_.velocity : Twist{},
+                                 std::max(0.0, view_.period_s), limits_);
+}
+
+ActionStep NavigationServer::back_up(double distance_m, double speed_mps, bool first) {
+  using State = ActionStep::State;
+  if (first) begin_recovery("BackUp");
+  cmd_ = {};
   if (robot_.max_vel_x_backwards_mps <= 0.0)
-    return {ActionStep::State::FAILED, {Outcome::RECOVERY_FAILURE, "this robot cannot walk backwards"}};
+    return end_recovery({State::FAILED, {Outcome::RECOVERY_FAILURE, "this robot cannot walk backwards"}});
   // Refuse to back into an obstacle: probe just behind the footprint.
   const Pose2 probe = view_.pose * Pose2{-(robot_.footprint_radius_m + 0.1), 0.0, 0.0};
   const auto& lc = local_.costmap();
-  if (auto c = lc.geometry().world_to_cell(probe.x, probe.y); c && lc.cost(*c) >= mapping::kInscribed) {
-    cmd_ = {};
-    return {ActionStep::State::FAILED, {Outcome::RECOVERY_IMPASSABLE, "an obstacle is behind the robot"}};
-  }
+  if (auto c = lc.geometry().world_to_cell(probe.x, probe.y); c && lc.cost(*c) >= mapping::kInscribed)
+    return end_recovery({State::FAILED, {Outcome::RECOVERY_IMPASSABLE, "an obstacle is behind the robot"}});
   const double speed = std::min(speed_mps, robot_.max_vel_x_backwards_mps);
-  if (distance(view_.pose, recovery_start_pose_) >= distance_m) {
-    cmd_ = {};
-    return {ActionStep::State::SUCCEEDED, {Outcome::SUCCESS, "backed up"}};
-  }
-  if (view_.now_s - recovery_start_s_ > 2.0 * distance_m / speed + 2.0) {
-    cmd_ = {};
-    return {ActionStep::State::FAILED, {Outcome::RECOVERY_PAT_EXCEEDED, "backing up took too long"}};
-  }
-  cmd_ = {-speed, 0.0, 0.0};
+  if (distance(view_.pose, recovery_start_pose_) >= distance_m)
+    return end_recovery({State::SUCCEEDED, {Outcome::SUCCESS, "backed up"}});
+  if (view_.now_s - recovery_start_s_ > 2.0 * distance_m / speed + 2.0)
+    return end_recovery({State::FAILED, {Outcome::RECOVERY_PAT_EXCEEDED, "backing up took too long"}});
+  cmd_ = ramp_to({-speed, 0.0, 0.0});
   return {};
 }
 
 ActionStep NavigationServer::rotate_in_place(double angle_rad, bool first) {
-  if (!robot_.can_rotate_in_place)
-    return {ActionStep::State::FAILED, {Outcome::RECOVERY_FAILURE, "this robot cannot rotate in place"}};
+  using State = ActionStep::State;
   if (first) {
-    ++recoveries_;
+    begin_recovery("RotateInPlace");
     rotated_rad_ = 0.0;
     last_yaw_ = view_.pose.theta;
-    recovery_start_s_ = view_.now_s;
   }
+  cmd_ = {};
+  if (!robot_.can_rotate_in_place)
+    return end_recovery({State::FAILED, {Outcome::RECOVERY_FAILURE, "this robot cannot rotate in place"}});
   rotated_rad_ += std::abs(angle_diff(view_.pose.theta, last_yaw_));
   last_yaw_ = view_.pose.theta;
-  if (rotated_rad_ >= std::abs(angle_rad)) {
-    cmd_ = {};
-    return {ActionStep::State::SUCCEEDED, {Outcome::SUCCESS, "rotated"}};
-  }
+  if (rotated_rad_ >= std::abs(angle_rad)) return end_recovery({State::SUCCEEDED, {Outcome::SUCCESS, "rotated"}});
   const double rate = 0.6 * robot_.max_vel_theta_radps;
-  if (view_.now_s - recovery_start_s_ > 2.0 * std::abs(angle_rad) / rate + 2.0) {
-    cmd_ = {};
-    return {ActionStep::State::FAILED, {Outcome::RECOVERY_PAT_EXCEEDED, "rotating took too long"}};
-  }
-  cmd_ = {0.0, 0.0, angle_rad >= 0.0 ? rate : -rate};
+  if (view_.now_s - recovery_start_s_ > 2.0 * std::abs(angle_rad) / rate + 2.0)
+    return end_recovery({State::FAILED, {Outcome::RECOVERY_PAT_EXCEEDED, "rotating took too long"}});
+  cmd_ = ramp_to({0.0, 0.0, angle_rad >= 0.0 ? rate : -rate});
   return {};
 }
 
 ActionStep NavigationServer::wait(double duration_s, bool first) {
-  if (first) {
-    ++recoveries_;
-    recovery_start_s_ = view_.now_s;
-  }
+  if (first) begin_recovery("Wait");
   cmd_ = {};
   if (view_.now_s - recovery_start_s_ >= duration_s)
-    return {ActionStep::State::SUCCEEDED, {Outcome::SUCCESS, "waited"}};
+    return end_recovery({ActionStep::State::SUCCEEDED, {Outcome::SUCCESS, "waited"}});
   return {};
 }
 
 Result NavigationServer::clear_costmaps() {
-  ++recoveries_;
+  begin_recovery("ClearCostmaps");
   // The local map only: the global map keeps what the LiDAR saw of walls and obstacles (its
   // own ray-trace clearing removes stale cells), so a blocked goal stays known as blocked.
   local_.clear();
   local_planner_->reset();
-  return {Outcome::SUCCESS, "local costmap cleared"};
+  return end_recovery({Outcome::SUCCESS, "local costmap cleared"});
 }
 
 Result NavigationServer::relax_constraints() {
-  ++recoveries_;
-  if (relaxed_) return {Outcome::RECOVERY_FAILURE, "constraints are already relaxed"};
+  begin_recovery("RelaxConstraints");
+  if (relaxed_) return end_recovery({Outcome::RECOVERY_FAILURE, "constraints are already relaxed"});
   make_global_planner(true);
-  return {Outcome::SUCCESS, "planner cost weight relaxed"};
+  return end_recovery({Outcome::SUCCESS, "planner cost weight relaxed"});
 }
 
 bool NavigationServer::goal_reached(const Pose2& goal) const {

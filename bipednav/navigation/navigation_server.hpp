@@ -2,6 +2,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "bipednav/common/outcome.hpp"
 #include "bipednav/common/path.hpp"
@@ -10,6 +11,7 @@
 #include "bipednav/control/goal_checker.hpp"
 #include "bipednav/control/oscillation_checker.hpp"
 #include "bipednav/control/progress_checker.hpp"
+#include "bipednav/control/velocity_limiter.hpp"
 #include "bipednav/mapping/global_costmap.hpp"
 #include "bipednav/mapping/local_costmap.hpp"
 #include "bipednav/planning/global/global_planner.hpp"
@@ -47,6 +49,17 @@ struct RobotView {
   double now_s = 0.0;
   Pose2 pose;      // T_map_base
   Twist velocity;  // base frame
+  // The control period: the recoveries' commands change by at most the robot's acceleration
+  // limits times this per cycle (control::limit_velocity from `velocity`).
+  double period_s = 0.1;
+};
+
+// One recovery as it ran, with what the recovery action reported (MBF outcomes 150-158).
+struct RecoveryRecord {
+  std::string name;  // the behavior tree leaf: BackUp, RotateInPlace, Wait, ClearCostmaps, RelaxConstraints
+  double start_s = 0.0;
+  double end_s = -1.0;  // -1 while it runs
+  Result result;        // SUCCESS or a RECOVERY_* outcome (RECOVERY_CANCELED when halted)
 };
 
 // One step of a long action: RUNNING with a command, or finished with an outcome.
@@ -79,6 +92,9 @@ class NavigationServer {
   Result clear_costmaps();
   Result relax_constraints();
   void stop() { cmd_ = {}; }
+  // A running recovery was halted (preempted, or the safety gate took over): it ends
+  // RECOVERY_CANCELED and the robot stops.
+  void cancel_recovery();
 
   // Conditions.
   bool goal_reached(const Pose2& goal) const;
@@ -95,6 +111,9 @@ class NavigationServer {
   const planning::PlanResult& last_plan() const { return last_plan_; }
   std::size_t plans() const { return plans_; }
   std::size_t recoveries() const { return recoveries_; }
+  // The latest recoveries (at most kRecoveryLogSize, oldest first) with their outcomes.
+  static constexpr std::size_t kRecoveryLogSize = 256;
+  const std::vector<RecoveryRecord>& recovery_log() const { return recovery_log_; }
   const Result& last_controller_result() const { return last_ctrl_; }
   // Process CPU time spent in the global planner (get_path) and the local planner (exe_path).
   double global_planner_cpu_ms() const { return global_planner_cpu_ms_; }
@@ -102,9 +121,16 @@ class NavigationServer {
 
  private:
   void make_global_planner(bool relaxed);
+  void begin_recovery(const char* name);
+  Result end_recovery(Result result);  // closes the running record; returns `result`
+  ActionStep end_recovery(ActionStep step);
+  // A recovery's motion command: `target` reached from the current velocity within the robot's
+  // velocity and acceleration limits over one control period.
+  Twist ramp_to(const Twist& target) const;
 
   ServerParams params_;
   RobotProfile robot_;
+  control::VelocityLimits limits_;
   mapping::GlobalCostmap& global_;
   mapping::LocalCostmap& local_;
   std::unique_ptr<planning::GlobalPlanner> global_planner_;
@@ -129,6 +155,8 @@ class NavigationServer {
   double recovery_start_s_ = 0.0;
   double rotated_rad_ = 0.0;
   double last_yaw_ = 0.0;
+  std::vector<RecoveryRecord> recovery_log_;
+  bool recovery_running_ = false;
 };
 
 }  // namespace bipednav::navigation

@@ -383,7 +383,7 @@ Twist Navigator::reference_velocity() const {
 bool Navigator::sensors_alive() const { return gate_.all_alive(now_s_); }
 
 void Navigator::control() {
-  server_->set_view({now_s_, localizer_.T_map_base(), reference_velocity()});
+  server_->set_view({now_s_, localizer_.T_map_base(), reference_velocity(), 1.0 / params_.control_rate_hz});
   // Plans and goal checks wait for the first map built from the sensors.
   if (status_.state != NavState::ACTIVE || !map_ready_) {
     server_->stop();

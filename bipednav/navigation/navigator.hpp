@@ -123,6 +123,7 @@ class Navigator {
   const std::optional<Pose2>& goal() const { return goal_; }
   std::size_t replans() const { return server_->plans(); }
   std::size_t recoveries() const { return server_->recoveries(); }
+  const std::vector<RecoveryRecord>& recovery_log() const { return server_->recovery_log(); }
   const NavigatorTimings& timings() const { return timings_; }  // wall time of the last run of each stage
   const NavigatorCpu& cpu() const { return cpu_; }
   const BehaviorTree& tree() const { return *tree_; }

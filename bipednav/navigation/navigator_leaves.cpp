@@ -89,17 +89,17 @@ void Navigator::register_leaves(BtFactory& f) {
       [&srv](BtNode& self, double, bool first) {
         return to_status(srv.back_up(self.input<double>("distance_m"), self.input<double>("speed_mps"), first));
       },
-      [&srv](BtNode&) { srv.stop(); }, bt_leaf_ports("BackUp"));
+      [&srv](BtNode&) { srv.cancel_recovery(); }, bt_leaf_ports("BackUp"));
   f.register_simple_action(
       "RotateInPlace",
       [&srv](BtNode& self, double, bool first) {
         return to_status(srv.rotate_in_place(self.input<double>("angle_rad"), first));
       },
-      [&srv](BtNode&) { srv.stop(); }, bt_leaf_ports("RotateInPlace"));
+      [&srv](BtNode&) { srv.cancel_recovery(); }, bt_leaf_ports("RotateInPlace"));
   f.register_simple_action(
       "Wait",
       [&srv](BtNode& self, double, bool first) { return to_status(srv.wait(self.input<double>("duration_s"), first)); },
-      [&srv](BtNode&) { srv.stop(); }, bt_leaf_ports("Wait"));
+      [&srv](BtNode&) { srv.cancel_recovery(); }, bt_leaf_ports("Wait"));
   f.register_simple_action(
       "ClearCostmaps",
       [&srv](BtNode&, double, bool) { return srv.clear_costmaps().ok() ? BtStatus::SUCCESS : BtStatus::FAILURE; }, {},

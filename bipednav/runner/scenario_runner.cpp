@@ -186,6 +186,7 @@ RunResult run_scenario(const sim::Scenario& scenario, const RunOptions& o) {
   out.min_clearance_m = sim.min_clearance_m();
   out.replans = nav.replans();
   out.recoveries = nav.recoveries();
+  out.recovery_log = nav.recovery_log();
   out.faults = injector.counters();
   out.final_state = snapshot(sim.now_s(), nav, sim);
   out.localization_error_m = distance(nav.pose(), sim.true_pose());

@@ -71,6 +71,8 @@ struct RunResult {
   double goal_error_m = 0.0, goal_error_rad = 0.0;
   double localization_error_m = 0.0;  // estimated vs true pose at the end
   std::size_t replans = 0, recoveries = 0;
+  // The latest recoveries with their MBF outcomes (Navigator::recovery_log), oldest first.
+  std::vector<navigation::RecoveryRecord> recovery_log;
   double real_time_factor = 0.0, wall_s = 0.0;  // simulated time / wall time (says little on a shared machine)
   // Process CPU time of the run (setup and loop; not the figure) and simulated time / cpu_s.
   double cpu_s = 0.0, cpu_real_time_factor = 0.0;
