@@ -10,6 +10,7 @@
 #include <map>
 #include <memory>
 
+#include "bipednav/control/gait_command.hpp"
 #include "bipednav/runner/scenario_runner.hpp"
 #include "bipednav/sim/simulation.hpp"
 #include "ros/conversions.hpp"
@@ -38,8 +39,10 @@ class SimNode {
   SimNodeParams p_;
   sim::Scenario scenario_;
   std::unique_ptr<sim::Simulation> sim_;
-  Twist cmd_;
-  double cmd_stamp_s_ = -1e9;
+  // cmd_vel goes to the simulated walking controller through a watchdog: non-finite commands
+  // become zero, and silence longer than cmd_timeout_s stops the robot.
+  control::GaitCommandBuffer gait_;
+  std::unique_ptr<control::StopOnSilence> watchdog_;
   ros::Publisher clock_pub_, odom_pub_, truth_pub_;
   std::map<std::string, ros::Publisher> cloud_pubs_;
   ros::Subscriber cmd_sub_;
@@ -59,6 +62,7 @@ SimNode::SimNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) {
   pnh.param("seed", p_.seed, p_.seed);
   if (p_.scenario.empty()) throw Error("bipednav_sim_node: parameter ~scenario (a scenario YAML file) is required");
   require(p_.real_time_factor >= 0.0, "real_time_factor", ">= 0");
+  watchdog_ = std::make_unique<control::StopOnSilence>(gait_, control::StopOnSilenceParams{p_.cmd_timeout_s});
   scenario_ = sim::load_scenario(p_.scenario);
   const RobotProfile robot = runner::load_robot(p_.robot.empty() ? scenario_.robot : p_.robot, p_.config_dir);
   sim::SimulationParams sp;
@@ -74,8 +78,7 @@ SimNode::SimNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) {
   }
   static_tf_.sendTransform(mounts);
   cmd_sub_ = nh.subscribe<geometry_msgs::Twist>("cmd_vel", 10, [this](const geometry_msgs::Twist::ConstPtr& msg) {
-    cmd_ = from_msg(*msg);
-    cmd_stamp_s_ = sim_->now_s();
+    watchdog_->send(from_msg(*msg), sim_->now_s());
   });
   ROS_INFO("bipednav_sim_node: scenario %s, robot %s, step %.3f s, real-time factor %.2f", scenario_.name.c_str(),
            robot.name.c_str(), sp.step_s, p_.real_time_factor);
@@ -110,8 +113,8 @@ void SimNode::run() {
   clock_pub_.publish(clock);
   while (ros::ok()) {
     ros::spinOnce();
-    if (sim_->now_s() - cmd_stamp_s_ > p_.cmd_timeout_s) cmd_ = Twist{};
-    SensorFrame frame = sim_->step(cmd_);
+    watchdog_->tick(sim_->now_s());
+    SensorFrame frame = sim_->step(gait_.last());
     publish(frame);
     sim_->recycle(std::move(frame));  // its clouds' buffers hold the next frames' clouds
     if (sim_->first_collision() && sim_->first_collision()->time_s + step_s >= sim_->now_s())
