@@ -15,7 +15,7 @@
 #include "apps/commands.hpp"
 #include "bipednav/common/clock.hpp"
 #include "bipednav/common/progress.hpp"
-#include "bipednav/io/heightmap_image.hpp"
+#include "bipednav/mapping/map_io.hpp"
 #include "bipednav/planning/footstep/footstep_planner.hpp"
 #include "bipednav/planning/footstep/terrain_generator.hpp"
 #include "bipednav/runner/footstep_drawing.hpp"
@@ -44,7 +44,7 @@ struct FootstepArgs {
 
 void footsteps_command(const FootstepArgs& a) {
   const mapping::Heightmap map =
-      io::read_heightmap_image(a.heightmap, {a.resolution_m, a.min_height_m, a.max_height_m, 0.0, 0.0});
+      mapping::read_heightmap_image(a.heightmap, {a.resolution_m, a.min_height_m, a.max_height_m, 0.0, 0.0});
   FootstepPlannerParams p;
   p.robot = a.robot;
   p.heuristic = a.heuristic;

@@ -8,7 +8,7 @@
 #include "apps/cli_pose.hpp"
 #include "apps/commands.hpp"
 #include "bipednav/common/error.hpp"
-#include "bipednav/io/map_server.hpp"
+#include "bipednav/mapping/map_io.hpp"
 #include "bipednav/planning/local/bench_scene.hpp"
 #include "bipednav/planning/local/local_planner.hpp"
 #include "bipednav/runner/scenario_runner.hpp"
@@ -68,7 +68,7 @@ void draw_run(const std::string& out, const mapping::Costmap2D& map, const Pose2
 }
 
 void local_plan(const PlanOptions& o) {
-  const mapping::Costmap2D map = io::read_map_server(o.map);
+  const mapping::Costmap2D map = mapping::read_map_server(o.map);
   const Pose2 start = parse_pose(o.start, "--start", true), goal = parse_pose(o.goal, "--goal", true);
   planning::local::LocalPlannerParams params;
   params.teb.homotopy.num_threads = o.threads;

@@ -10,11 +10,12 @@
 #include "bipednav/common/clock.hpp"
 #include "bipednav/common/cpu_time.hpp"
 #include "bipednav/common/error.hpp"
-#include "bipednav/io/map_server.hpp"
 #include "bipednav/mapping/bench_scene.hpp"
 #include "bipednav/mapping/global_costmap.hpp"
 #include "bipednav/mapping/heightmap_fusion.hpp"
 #include "bipednav/mapping/local_costmap.hpp"
+#include "bipednav/mapping/map_io.hpp"
+#include "bipednav/viz/costmap_png.hpp"
 
 namespace bipednav::app {
 
@@ -48,7 +49,7 @@ nlohmann::json geometry_json(const GridGeometry& g) {
 }
 
 void run_inflate(const InflateOptions& o) {
-  const Costmap2D map = io::read_map_server(o.map);
+  const Costmap2D map = mapping::read_map_server(o.map);
   GlobalCostmapParams p;
   p.inscribed_radius_m = o.inscribed_m;
   p.inflation_radius_m = o.inflation_m;
@@ -59,8 +60,8 @@ void run_inflate(const InflateOptions& o) {
   GlobalCostmap global(map.geometry(), p);
   global.set_occupancy(map);
   const double ms = sw.elapsed_ms();
-  if (!o.out_png.empty()) io::write_costmap_png(o.out_png, global.costmap(), o.scale);
-  if (!o.out_yaml.empty()) io::write_map_server(o.out_yaml, global.costmap());
+  if (!o.out_png.empty()) viz::write_costmap_png(o.out_png, global.costmap(), o.scale);
+  if (!o.out_yaml.empty()) mapping::write_map_server(o.out_yaml, global.costmap());
   nlohmann::json j = {{"map", o.map},
                       {"geometry", geometry_json(map.geometry())},
                       {"inflate_ms", ms},
@@ -153,7 +154,7 @@ void add_mapping_commands(CLI::App& app, CLI::App& bench) {
   CLI::App* info = costmap->add_subcommand("info", "Print a map_server map's geometry and cost counts as JSON");
   info->add_option("map", *info_map, "map_server YAML")->required();
   info->callback([info_map] {
-    const Costmap2D m = io::read_map_server(*info_map);
+    const Costmap2D m = mapping::read_map_server(*info_map);
     const nlohmann::json j = {{"map", *info_map}, {"geometry", geometry_json(m.geometry())}, {"costs", cost_counts(m)}};
     std::printf("%s\n", j.dump(2).c_str());
   });

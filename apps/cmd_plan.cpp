@@ -10,9 +10,9 @@
 #include "apps/cli_pose.hpp"
 #include "apps/commands.hpp"
 #include "bipednav/common/error.hpp"
-#include "bipednav/io/map_server.hpp"
 #include "bipednav/io/movingai.hpp"
 #include "bipednav/mapping/global_costmap.hpp"
+#include "bipednav/mapping/map_io.hpp"
 #include "bipednav/planning/global/global_planner.hpp"
 #include "bipednav/planning/global/movingai_runner.hpp"
 #include "bipednav/planning/global/replan_benchmark.hpp"
@@ -56,7 +56,7 @@ void write_plan_png(const std::string& file, const mapping::Costmap2D& map, cons
 
 void run_grid(const GridOptions& o) {
   const Pose2 start = parse_pose(o.start, "--start"), goal = parse_pose(o.goal, "--goal");
-  const mapping::Costmap2D prior = io::read_map_server(o.map);
+  const mapping::Costmap2D prior = mapping::read_map_server(o.map);
   mapping::GlobalCostmapParams cp;
   cp.inscribed_radius_m = o.inscribed_m;
   cp.inflation_radius_m = o.inflation_m;

@@ -1,6 +1,6 @@
 // libFuzzer target: map_server maps (YAML + PGM/PNG image). The input is the YAML, optionally
 // followed by "\n%%IMAGE%%\n" and the image bytes, written as map.pgm and map.png next to it.
-#include "bipednav/io/map_server.hpp"
+#include "bipednav/mapping/map_io.hpp"
 #include "fuzz_common.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -11,6 +11,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string_view image = parts.size() > 1 ? parts[1] : std::string_view{};
   fuzz::write_file(dir, "map.pgm", image);
   fuzz::write_file(dir, "map.png", image);
-  fuzz::run_loader([&] { (void)io::read_map_server(yaml); }, {dir.string()});
+  fuzz::run_loader([&] { (void)mapping::read_map_server(yaml); }, {dir.string()});
   return 0;
 }

@@ -3,6 +3,7 @@
 #include <cairo.h>
 
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <system_error>
 
@@ -20,7 +21,7 @@ void HeightmapImageParams::validate() const {
 
 namespace {
 
-mapping::Heightmap read_png(const std::filesystem::path& png, const HeightmapImageParams& p) {
+HeightmapGrid read_png(const std::filesystem::path& png, const HeightmapImageParams& p) {
   if (std::error_code ec; !std::filesystem::exists(png, ec)) throw FileError(png.string(), "", "file not found");
   std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)> s(cairo_image_surface_create_from_png(png.c_str()),
                                                                        &cairo_surface_destroy);
@@ -32,7 +33,9 @@ mapping::Heightmap read_png(const std::filesystem::path& png, const HeightmapIma
   const cairo_format_t fmt = cairo_image_surface_get_format(s.get());
   const unsigned char* data = cairo_image_surface_get_data(s.get());
   if (w <= 0 || h <= 0 || !data) throw FileError(png.string(), "", "empty image");
-  mapping::Heightmap m({w, h, p.resolution_m, p.origin_x_m, p.origin_y_m});
+  const std::size_t n = std::size_t(w) * h;
+  HeightmapGrid g{w, h, p, std::vector<float>(n, std::numeric_limits<float>::quiet_NaN()),
+                  std::vector<std::uint8_t>(n, 0)};
   for (int row = 0; row < h; ++row) {
     for (int col = 0; col < w; ++col) {
       double v = 0.0;
@@ -46,17 +49,18 @@ mapping::Heightmap read_png(const std::filesystem::path& png, const HeightmapIma
         // Premultiplied: undo the alpha for a grey value.
         v = a > 0 ? ((px >> 16) & 0xFF) * 255.0 / a : 0.0;
       }
-      const int y = h - 1 - row;
-      if (known)
-        m.set(col, y, static_cast<float>(p.min_height_m + v / 255.0 * (p.max_height_m - p.min_height_m)), 0.0f);
+      if (!known) continue;
+      const std::size_t i = std::size_t(row) * w + col;
+      g.heights[i] = static_cast<float>(p.min_height_m + v / 255.0 * (p.max_height_m - p.min_height_m));
+      g.known[i] = 1;
     }
   }
-  return m;
+  return g;
 }
 
 }  // namespace
 
-mapping::Heightmap read_heightmap_image(const std::filesystem::path& file, const HeightmapImageParams& params) {
+HeightmapGrid read_heightmap_grid(const std::filesystem::path& file, const HeightmapImageParams& params) {
   const auto ext = file.extension().string();
   if (ext != ".yaml" && ext != ".yml") {
     params.validate();

@@ -1,8 +1,8 @@
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
-
-#include "bipednav/mapping/heightmap.hpp"
+#include <vector>
 
 namespace bipednav::io {
 
@@ -19,9 +19,19 @@ struct HeightmapImageParams {
   void validate() const;
 };
 
+// The heights of a heightmap image, row-major with row 0 at the image's top; params as used (the
+// YAML's when reading one). mapping/map_io.hpp makes a Heightmap of it.
+struct HeightmapGrid {
+  int width = 0;
+  int height = 0;
+  HeightmapImageParams params;
+  std::vector<float> heights;       // width * height, NaN where not known
+  std::vector<std::uint8_t> known;  // width * height: 0 where the pixel is fully transparent
+};
+
 // Reads a PNG heightmap. `file` is the PNG itself (using `params`), or a YAML file with keys
 // image (relative to the YAML), resolution_m, min_height_m, max_height_m, origin_x_m, origin_y_m.
 // Throws FileError naming the file and the field for unreadable or malformed input.
-mapping::Heightmap read_heightmap_image(const std::filesystem::path& file, const HeightmapImageParams& params = {});
+HeightmapGrid read_heightmap_grid(const std::filesystem::path& file, const HeightmapImageParams& params = {});
 
 }  // namespace bipednav::io

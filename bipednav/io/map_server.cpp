@@ -14,8 +14,6 @@
 
 namespace bipednav::io {
 
-using mapping::Costmap2D;
-
 namespace {
 
 // Next whitespace-separated PGM header token, skipping '#' comments.
@@ -216,103 +214,45 @@ MapServerMetadata parse_metadata(const std::filesystem::path& yaml_path) {
   return m;
 }
 
-// map_server's occupancy of one pixel (100, 0..99 in scale mode, 0, -1 unknown) as a cost.
-std::uint8_t pixel_cost(double gray, int alpha, const MapServerMetadata& m) {
-  if (m.negate) gray = 255.0 - gray;
-  const double occ = (255.0 - gray) / 255.0;
-  if (occ > m.occupied_thresh) return mapping::kLethal;
-  if (occ < m.free_thresh) return mapping::kFree;
-  if (m.mode == "trinary" || alpha == 0) return mapping::kUnknown;
-  const int occupancy = static_cast<int>(99.0 * (occ - m.free_thresh) / (m.occupied_thresh - m.free_thresh));
-  // Nav2 static layer (trinary_costmap: false): cost = occupancy / 100 * LETHAL_OBSTACLE.
-  return static_cast<std::uint8_t>(occupancy / 100.0 * mapping::kLethal);
-}
-
 }  // namespace
 
-Costmap2D read_map_server(const std::filesystem::path& yaml_path, MapServerMetadata* metadata) {
-  const MapServerMetadata m = parse_metadata(yaml_path);
+MapServerFile read_map_server_file(const std::filesystem::path& yaml_path) {
+  MapServerFile file{parse_metadata(yaml_path), {}};
+  const MapServerMetadata& m = file.metadata;
   std::filesystem::path image = m.image;
   if (image.is_relative()) image = yaml_path.parent_path() / image;
   if (std::error_code ec; !std::filesystem::is_regular_file(image, ec))
     throw FileError(yaml_path.string(), "image", "the image '" + image.string() + "' does not exist");
   std::string ext = image.extension().string();
   for (auto& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  GrayImage img;
   if (ext == ".pgm")
-    img = read_pgm(image);
+    file.image = read_pgm(image);
   else if (ext == ".png")
-    img = read_png_gray(image);
+    file.image = read_png_gray(image);
   else
     throw FileError(yaml_path.string(), "image", "expected a .pgm or .png file, got '" + m.image + "'");
-  Costmap2D map({img.width, img.height, m.resolution_m, m.origin_x_m, m.origin_y_m}, mapping::kUnknown);
-  for (int row = 0; row < img.height; ++row)
-    for (int x = 0; x < img.width; ++x) {
-      const std::size_t i = std::size_t(row) * img.width + x;
-      map.set_cost(x, img.height - 1 - row, pixel_cost(img.pixels[i], img.alpha.empty() ? 255 : img.alpha[i], m));
-    }
-  if (metadata) *metadata = m;
-  return map;
+  return file;
 }
 
-void write_map_server(const std::filesystem::path& yaml_path, const Costmap2D& costmap) {
+void write_map_server_file(const std::filesystem::path& yaml_path, const GrayImage& image, double resolution_m,
+                           double origin_x_m, double origin_y_m) {
+  if (image.width < 0 || image.height < 0 || image.pixels.size() != std::size_t(image.width) * image.height)
+    throw Error("write_map_server_file: the image needs width * height pixels");
   std::filesystem::path pgm = yaml_path;
   pgm.replace_extension(".pgm");
   {
     std::ofstream out(pgm, std::ios::binary);
     if (!out) throw FileError(pgm.string(), "", "cannot open the file for writing");
-    out << "P5\n# bipednav costmap\n" << costmap.width() << " " << costmap.height() << "\n255\n";
-    std::vector<unsigned char> row(static_cast<std::size_t>(costmap.width()));
-    for (int y = costmap.height() - 1; y >= 0; --y) {
-      for (int x = 0; x < costmap.width(); ++x) {
-        const std::uint8_t c = costmap.cost(x, y);
-        row[x] = c == mapping::kLethal ? 0 : (c == mapping::kUnknown ? 205 : 254);
-      }
-      out.write(reinterpret_cast<const char*>(row.data()), static_cast<std::streamsize>(row.size()));
-    }
+    out << "P5\n# bipednav costmap\n" << image.width << " " << image.height << "\n255\n";
+    out.write(reinterpret_cast<const char*>(image.pixels.data()), static_cast<std::streamsize>(image.pixels.size()));
     if (!out) throw FileError(pgm.string(), "", "write failed");
   }
   std::ofstream y(yaml_path);
   if (!y) throw FileError(yaml_path.string(), "", "cannot open the file for writing");
   y.precision(17);
-  const auto& g = costmap.geometry();
-  y << "image: " << pgm.filename().string() << "\nresolution: " << g.resolution_m << "\norigin: [" << g.origin_x_m
-    << ", " << g.origin_y_m << ", 0.0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\nmode: trinary\n";
+  y << "image: " << pgm.filename().string() << "\nresolution: " << resolution_m << "\norigin: [" << origin_x_m << ", "
+    << origin_y_m << ", 0.0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\nmode: trinary\n";
   if (!y) throw FileError(yaml_path.string(), "", "write failed");
-}
-
-namespace {
-
-std::uint32_t cost_color(std::uint8_t c) {
-  const auto rgb = [](unsigned r, unsigned g, unsigned b) { return 0xff000000u | (r << 16) | (g << 8) | b; };
-  if (c == mapping::kFree) return rgb(235, 235, 235);
-  if (c == mapping::kUnknown) return rgb(160, 160, 160);
-  if (c == mapping::kLethal) return rgb(0, 0, 0);
-  if (c == mapping::kInscribed) return rgb(120, 20, 150);
-  const double t = c / 252.0;  // inflated: light to deep blue
-  return rgb(unsigned(200 - 170 * t), unsigned(220 - 170 * t), unsigned(255 - 55 * t));
-}
-
-}  // namespace
-
-void write_costmap_png(const std::filesystem::path& path, const Costmap2D& costmap, int scale) {
-  if (scale < 1 || scale > 64) throw Error("write_costmap_png: scale must be 1..64 pixels per cell");
-  if (costmap.width() <= 0 || costmap.height() <= 0) throw Error("write_costmap_png: empty costmap");
-  const int w = costmap.width() * scale, h = costmap.height() * scale;
-  std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)> s(
-      cairo_image_surface_create(CAIRO_FORMAT_ARGB32, w, h), cairo_surface_destroy);
-  if (cairo_surface_status(s.get()) != CAIRO_STATUS_SUCCESS) throw Error("write_costmap_png: image too large");
-  cairo_surface_flush(s.get());
-  unsigned char* data = cairo_image_surface_get_data(s.get());
-  const int stride = cairo_image_surface_get_stride(s.get());
-  for (int py = 0; py < h; ++py)
-    for (int px = 0; px < w; ++px) {
-      const std::uint32_t c = cost_color(costmap.cost(px / scale, costmap.height() - 1 - py / scale));
-      std::memcpy(data + std::size_t(py) * stride + 4 * px, &c, 4);
-    }
-  cairo_surface_mark_dirty(s.get());
-  if (cairo_surface_write_to_png(s.get(), path.string().c_str()) != CAIRO_STATUS_SUCCESS)
-    throw FileError(path.string(), "", "cannot write the PNG file");
 }
 
 }  // namespace bipednav::io

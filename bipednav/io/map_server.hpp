@@ -1,11 +1,14 @@
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
-
-#include "bipednav/mapping/costmap2d.hpp"
+#include <vector>
 
 namespace bipednav::io {
+
+// The map_server file format on plain types: the YAML's fields and the image's gray pixels. The
+// pixels become costs in mapping/map_io.hpp.
 
 // The fields of a ROS map_server YAML file.
 struct MapServerMetadata {
@@ -18,18 +21,6 @@ struct MapServerMetadata {
   std::string mode = "trinary";  // trinary | scale
 };
 
-// Reads a map_server map (YAML + PGM P5/P2 or PNG) into costs the way map_server and the Nav2
-// static layer do: p = (255 - gray) / 255 (inverted when negate), p > occupied_thresh -> kLethal,
-// p < free_thresh -> kFree, otherwise kUnknown (trinary) or, in scale mode, occupancy
-// 99 (p - free) / (occ - free) mapped to cost occupancy / 100 * 254 (a transparent pixel is
-// unknown). Image row 0 is the top of the map (largest y). Rotated maps (origin yaw != 0) are
-// rejected. Malformed files raise FileError naming the file and the field.
-mapping::Costmap2D read_map_server(const std::filesystem::path& yaml_path, MapServerMetadata* metadata = nullptr);
-
-// Writes `<stem>.yaml` + `<stem>.pgm` next to each other (P5, trinary: kLethal -> 0, kUnknown ->
-// 205, every other cost -> 254; occupied_thresh 0.65, free_thresh 0.196, as map_saver does).
-void write_map_server(const std::filesystem::path& yaml_path, const mapping::Costmap2D& costmap);
-
 // Reads a PGM (P5 8/16-bit or P2) image as 8-bit gray, row 0 at the top.
 struct GrayImage {
   int width = 0;
@@ -40,8 +31,19 @@ struct GrayImage {
 GrayImage read_pgm(const std::filesystem::path& path);
 GrayImage read_png_gray(const std::filesystem::path& path);
 
-// Renders costs as a colour PNG (free light grey, unknown mid grey, lethal black, inscribed
-// purple, inflated costs shades of blue), `scale` pixels per cell, north up.
-void write_costmap_png(const std::filesystem::path& path, const mapping::Costmap2D& costmap, int scale = 1);
+// A map_server map as stored: its YAML's fields and its image (PGM P5/P2 or PNG, by extension).
+// Rotated maps (origin yaw != 0) are rejected. Malformed files raise FileError naming the file and
+// the field.
+struct MapServerFile {
+  MapServerMetadata metadata;
+  GrayImage image;
+};
+MapServerFile read_map_server_file(const std::filesystem::path& yaml_path);
+
+// Writes `image` as `<stem>.pgm` (P5) next to `yaml_path` and the YAML naming it, with the given
+// resolution and origin and map_saver's trinary fields (yaw 0, negate 0, occupied_thresh 0.65,
+// free_thresh 0.196).
+void write_map_server_file(const std::filesystem::path& yaml_path, const GrayImage& image, double resolution_m,
+                           double origin_x_m, double origin_y_m);
 
 }  // namespace bipednav::io
