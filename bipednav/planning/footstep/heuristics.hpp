@@ -73,7 +73,13 @@ class DijkstraHeuristic : public Heuristic {
 
  private:
   void mark_body_blocked(const ActionSet& actions);
+  // The level graph (heuristic_levels.cpp): standable levels per cell, the levels a relaxed path
+  // may take within reach_m of them and their node numbering (false when there is nothing to
+  // build or too much), then the search from the goal.
   void build_level_graph(const ActionSet& actions, const mapping::Cell& goal_cell);
+  bool build_stand_levels(const ActionSet& actions, int gap_k);
+  bool build_allowed_levels(double reach_m);
+  void search_level_graph(const ActionSet& actions, const mapping::Cell& goal_cell, int free_k, int jump_k);
   // The level bitsets: `words_` 64-bit words per cell, level 0 at z = level_z0_.
   int level_of(double z) const { return static_cast<int>(std::floor((z - level_z0_) / kLevelM)); }
   // The index of node (cell, level l); l must be an allowed level of the cell.
