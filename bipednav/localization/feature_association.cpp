@@ -62,9 +62,10 @@ bool fit_neighbours(const Tree& tree, const Eigen::Vector3d& q, const Associatio
   f.n = k;
   // A tree's own points do not move (MovedPoints' do): the same neighbours of the same tree as in
   // the previous round give the same fit.
-  const std::uint64_t fixed = std::is_same_v<Tree, PointKdTree> ? searched.id() : 0;
+  const PointKdTree* fixed = std::is_same_v<Tree, PointKdTree> ? &searched : nullptr;
   if (hint != nullptr) {
-    const bool same = fixed != 0 && hint->fit_tree == fixed && hint->n == k &&
+    const bool same = fixed != nullptr && hint->fit_tree == fixed && hint->fit_generation == fixed->generation() &&
+                      hint->n == k &&
                       std::equal(f.idx.begin(), f.idx.begin() + static_cast<std::ptrdiff_t>(k), hint->idx.begin());
     std::copy_n(f.idx.begin(), k, hint->idx.begin());
     hint->n = static_cast<std::uint8_t>(k);
@@ -74,7 +75,7 @@ bool fit_neighbours(const Tree& tree, const Eigen::Vector3d& q, const Associatio
       f.eigenvectors = hint->eigenvectors;
       return true;
     }
-    hint->fit_tree = 0;
+    hint->fit_tree = nullptr;
   }
   for (std::size_t i = 0; i < f.n; ++i) f.mean += tree.point(f.idx[i]).template cast<double>();
   f.mean /= static_cast<double>(f.n);
@@ -88,8 +89,9 @@ bool fit_neighbours(const Tree& tree, const Eigen::Vector3d& q, const Associatio
   es.computeDirect(cov / static_cast<double>(f.n));
   f.eigenvalues = es.eigenvalues();
   f.eigenvectors = es.eigenvectors();
-  if (hint != nullptr && fixed != 0) {
+  if (hint != nullptr && fixed != nullptr) {
     hint->fit_tree = fixed;
+    hint->fit_generation = fixed->generation();
     hint->mean = f.mean;
     hint->eigenvalues = f.eigenvalues;
     hint->eigenvectors = f.eigenvectors;

@@ -51,12 +51,14 @@ struct MovedPoints {
 // their distances let the kd-tree search prune from its start; the neighbours found are the same
 // with or without a hint (see PointKdTree::knn: the k first by distance, then by visiting order,
 // among the points closer than the bound). A match stores the neighbours it searched, and against
-// a PointKdTree (whose points do not move) their fit, reused while the same tree gives the same
-// neighbours.
+// a PointKdTree (whose points do not move) their fit, reused while the same tree (address and
+// generation) gives the same neighbours. Hints are kept by the owner of the trees they are used
+// with (a hint that outlived its tree could take another tree at the same address for it).
 struct NeighbourHint {
   std::array<std::uint32_t, 16> idx{};
   std::uint8_t n = 0;
-  std::uint64_t fit_tree = 0;  // PointKdTree::id() of the tree the fit below is of (0: none)
+  const PointKdTree* fit_tree = nullptr;  // the tree the fit below is of (nullptr: none) ...
+  std::uint64_t fit_generation = 0;       // ... and its generation() then
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
   Eigen::Vector3d eigenvalues = Eigen::Vector3d::Zero();
   Eigen::Matrix3d eigenvectors = Eigen::Matrix3d::Identity();

@@ -146,7 +146,7 @@ LoamOutput Loam::process(const PointCloud& sweep, const std::optional<SE3>& moti
   const bool prior_given = motion_prior.has_value() && finite(*motion_prior);
   if (motion_prior && !prior_given) append_reason(out, "motion prior is not finite, ignored");
   const SE3 guess = prior_given ? *motion_prior : constant_velocity_guess();
-  const LoamFeatures f = extract_features(clean, p_.features);
+  const LoamFeatures f = extract_features(clean, p_.features, &feature_scratch_);
   out.edge_features = f.edges.size();
   out.planar_features = f.planars.size();
   SE3 motion = guess;

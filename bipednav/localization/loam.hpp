@@ -93,6 +93,7 @@ class Loam {
   SE3 level(const SE3& T_world_lidar) const;  // the planar projection (identity without planar_motion)
 
   LoamParams p_;
+  FeatureScratch feature_scratch_;  // extract_features' work space
   LoamOdometry odometry_;
   LoamMapping mapping_;
   std::size_t sweeps_ = 0;

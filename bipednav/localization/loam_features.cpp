@@ -10,19 +10,16 @@
 
 namespace bipednav::localization {
 
+void FeatureScratch::RingGeometry::assign(const std::vector<Eigen::Vector3f>& pts) {
+  range.resize(pts.size());
+  gap.assign(pts.size(), 0.0f);
+  for (std::size_t i = 0; i < pts.size(); ++i) range[i] = pts[i].norm();
+  for (std::size_t i = 0; i + 1 < pts.size(); ++i) gap[i] = (pts[i + 1] - pts[i]).norm();
+}
+
 namespace {
 
-// The ranges of one ring's points and the gaps between neighbours (gap[i] = |p[i+1] - p[i]|),
-// computed once: the marking below reads each several times.
-struct RingGeometry {
-  std::vector<float> range, gap;
-  void assign(const std::vector<Eigen::Vector3f>& pts) {
-    range.resize(pts.size());
-    gap.assign(pts.size(), 0.0f);
-    for (std::size_t i = 0; i < pts.size(); ++i) range[i] = pts[i].norm();
-    for (std::size_t i = 0; i + 1 < pts.size(); ++i) gap[i] = (pts[i + 1] - pts[i]).norm();
-  }
-};
+using RingGeometry = FeatureScratch::RingGeometry;
 
 // Marks points whose smoothness is unreliable (section 4.4.1): the occluded side of a depth
 // discontinuity, both sides of a gap without returns, and surfaces nearly parallel to the beam.
@@ -170,25 +167,8 @@ void smoothness_into(const std::vector<Eigen::Vector3f>& ring, int k, std::vecto
   }
 }
 
-// One ring's work space, kept between rings and sweeps (extract_features runs ~16 rings of ~1000
-// points per sweep: allocating these per ring cost more than some of the work done in them).
-struct RingScratch {
-  std::vector<std::uint32_t> order;  // the sweep's point indices grouped by ring
-  std::vector<std::size_t> ring_begin, next;
-  std::vector<float> azimuth;  // the sort key of clouds without times
-  std::vector<std::uint16_t> derived_rings;
-  std::vector<Eigen::Vector3f> pts;
-  std::vector<Eigen::Vector3d> prefix;
-  std::vector<double> c;
-  std::vector<char> picked;
-  RingGeometry ring;
-  std::vector<int> sharp, flat;
-  std::vector<std::pair<double, int>> scored;
-  std::vector<std::uint64_t> packed;
-};
-
 void process_ring(const PointCloud& sweep, const std::uint32_t* idx, std::size_t count, const FeatureParams& p,
-                  RingScratch& w, LoamFeatures& out) {
+                  FeatureScratch& w, LoamFeatures& out) {
   const int k = p.neighbours_per_side;
   const int n = static_cast<int>(count);
   if (n < 2 * k + 1) return;
@@ -301,11 +281,12 @@ std::vector<std::uint16_t> ring_indices(const PointCloud& sweep, const FeaturePa
   return rings;
 }
 
-LoamFeatures extract_features(const PointCloud& sweep, const FeatureParams& p) {
+LoamFeatures extract_features(const PointCloud& sweep, const FeatureParams& p, FeatureScratch* scratch) {
   LoamFeatures out;
   for (PointCloud* c : {&out.edges, &out.planars, &out.map_edges, &out.map_planars}) *c = sweep.empty_copy();
   if (sweep.empty()) return out;
-  thread_local RingScratch w;
+  FeatureScratch own;
+  FeatureScratch& w = scratch != nullptr ? *scratch : own;
   if (!sweep.has_ring()) derive_rings(sweep, p, w.derived_rings);
   const std::vector<std::uint16_t>& rings = sweep.has_ring() ? sweep.rings : w.derived_rings;
   const std::size_t n_rings = static_cast<std::size_t>(*std::max_element(rings.begin(), rings.end())) + 1;

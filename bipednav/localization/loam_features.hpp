@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "bipednav/common/point_cloud.hpp"
@@ -50,8 +51,33 @@ const PointCloud& sanitized(const PointCloud& sweep, const FeatureParams& p, Poi
 // Ring index per point: the cloud's own rings, else derived from the elevation angle.
 std::vector<std::uint16_t> ring_indices(const PointCloud& sweep, const FeatureParams& p);
 
+// extract_features' work space, kept between rings and sweeps by its owner (extract_features runs
+// ~16 rings of ~1000 points per sweep: allocating these per ring cost more than some of the work
+// done in them). What it held does not change the features.
+struct FeatureScratch {
+  // The ranges of one ring's points and the gaps between neighbours (gap[i] = |p[i+1] - p[i]|),
+  // computed once: the marking reads each several times.
+  struct RingGeometry {
+    std::vector<float> range, gap;
+    void assign(const std::vector<Eigen::Vector3f>& pts);
+  };
+  std::vector<std::uint32_t> order;  // the sweep's point indices grouped by ring
+  std::vector<std::size_t> ring_begin, next;
+  std::vector<float> azimuth;  // the sort key of clouds without times
+  std::vector<std::uint16_t> derived_rings;
+  std::vector<Eigen::Vector3f> pts;
+  std::vector<Eigen::Vector3d> prefix;
+  std::vector<double> c;
+  std::vector<char> picked;
+  RingGeometry ring;
+  std::vector<int> sharp, flat;
+  std::vector<std::pair<double, int>> scored;
+  std::vector<std::uint64_t> packed;
+};
+
 // Extracts the features of a sanitized sweep: points are grouped per ring, ordered by time offset
-// (azimuth when the cloud has no times), scored with eq. 4.5 and selected per sub-region.
-LoamFeatures extract_features(const PointCloud& sweep, const FeatureParams& p);
+// (azimuth when the cloud has no times), scored with eq. 4.5 and selected per sub-region. Without
+// `scratch` the call allocates its own.
+LoamFeatures extract_features(const PointCloud& sweep, const FeatureParams& p, FeatureScratch* scratch = nullptr);
 
 }  // namespace bipednav::localization

@@ -62,25 +62,26 @@ void LoamMapping::reset() {
   planar_map_.clear();
   edge_tree_ = PointKdTree();
   planar_tree_ = PointKdTree();
+  edge_hints_.clear();
+  planar_hints_.clear();
 }
 
-std::vector<Constraint> LoamMapping::associate(const PointCloud& edges, const PointCloud& planars, const SE3& T) const {
+std::vector<Constraint> LoamMapping::associate(const PointCloud& edges, const PointCloud& planars, const SE3& T) {
   std::vector<Constraint> cs;
   cs.reserve(edges.size() + planars.size());
   Constraint c;
   const ViewCheck edge_view{&edge_map_.viewpoints(), T.translation()};
   const ViewCheck planar_view{&planar_map_.viewpoints(), T.translation()};
   // Each point's neighbours of the previous round bound its next search (see NeighbourHint).
-  thread_local std::vector<NeighbourHint> edge_hints, planar_hints;
-  edge_hints.resize(edges.size());
-  planar_hints.resize(planars.size());
+  edge_hints_.resize(edges.size());
+  planar_hints_.resize(planars.size());
   for (std::size_t i = 0; i < edges.size(); ++i) {
     const Eigen::Vector3d q = T * edges.points[i].cast<double>();
-    if (edge_correspondence(edge_tree_, q, 1.0, q, p_.association, c, &edge_view, &edge_hints[i])) cs.push_back(c);
+    if (edge_correspondence(edge_tree_, q, 1.0, q, p_.association, c, &edge_view, &edge_hints_[i])) cs.push_back(c);
   }
   for (std::size_t i = 0; i < planars.size(); ++i) {
     const Eigen::Vector3d q = T * planars.points[i].cast<double>();
-    if (planar_correspondence(planar_tree_, q, 1.0, q, p_.association, c, &planar_view, &planar_hints[i]))
+    if (planar_correspondence(planar_tree_, q, 1.0, q, p_.association, c, &planar_view, &planar_hints_[i]))
       cs.push_back(c);
   }
   return cs;
@@ -92,8 +93,8 @@ void LoamMapping::insert(const PointCloud& edges, const PointCloud& planars, con
   for (const auto& p : planars.points) planar_map_.insert((T * p.cast<double>()).cast<float>(), centre);
   edge_map_.crop(centre, p_.map_radius_m);
   planar_map_.crop(centre, p_.map_radius_m);
-  edge_tree_ = PointKdTree(edge_map_.points());
-  planar_tree_ = PointKdTree(planar_map_.points());
+  edge_tree_.build(edge_map_.points());
+  planar_tree_.build(planar_map_.points());
 }
 
 namespace {

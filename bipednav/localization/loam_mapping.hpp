@@ -85,12 +85,15 @@ class LoamMapping {
   const MappingParams& params() const { return p_; }
 
  private:
-  std::vector<Constraint> associate(const PointCloud& edges, const PointCloud& planars, const SE3& T) const;
+  std::vector<Constraint> associate(const PointCloud& edges, const PointCloud& planars, const SE3& T);
   void insert(const PointCloud& edges, const PointCloud& planars, const SE3& T);
 
   MappingParams p_;
   VoxelPointMap edge_map_, planar_map_;
   PointKdTree edge_tree_, planar_tree_;
+  // Each point's neighbours of the previous round, and their fit, for the trees above (see
+  // NeighbourHint): kept between rounds for reuse.
+  std::vector<NeighbourHint> edge_hints_, planar_hints_;
 };
 
 }  // namespace bipednav::localization

@@ -90,43 +90,24 @@ const PointCloud& LoamOdometry::reference_planars() const {
   return ref_planars_;
 }
 
-namespace {
-
-// The reference's features de-skewed with the motion being estimated, and kd-trees over them.
-// The trees are rebuilt only when a point moved more than kRebuildM since they were built:
-// neighbours are searched among the tree's positions and fitted at the current ones.
-struct MovingReference {
-  static constexpr float kRebuildM = 0.05f;
-  PointKdTree tree;
-  std::vector<Eigen::Vector3f> positions;
-
-  void update(const PointCloud& raw, const SE3& T, double scan_period_s) {
-    deskew_points_to_end(raw, T, scan_period_s, positions);
-    bool rebuild = tree.size() != positions.size();
-    for (std::size_t i = 0; i < positions.size() && !rebuild; ++i)
-      rebuild = (positions[i] - tree.point(i)).squaredNorm() > kRebuildM * kRebuildM;
-    if (rebuild) tree = PointKdTree(positions);
-  }
-  MovedPoints points() const { return {&tree, &positions}; }
-};
-
-}  // namespace
+void LoamOdometry::MovingReference::update(const PointCloud& raw, const SE3& T, double scan_period_s) {
+  deskew_points_to_end(raw, T, scan_period_s, positions);
+  bool rebuild = tree.size() != positions.size();
+  for (std::size_t i = 0; i < positions.size() && !rebuild; ++i)
+    rebuild = (positions[i] - tree.point(i)).squaredNorm() > kRebuildM * kRebuildM;
+  if (rebuild) tree.build(positions);
+}
 
 std::vector<Constraint> LoamOdometry::associate(const LoamFeatures& f, const Vector6d& x,
                                                 const Vector6d& reference_offset) const {
-  // Kept between calls (rounds and sweeps): a tree is reused only while update() finds every
-  // point within kRebuildM of where the tree has it, whatever cloud it was built from.
-  thread_local MovingReference edge_ref, planar_ref;
   const SE3 T = motion_to_se3(x + reference_offset);
-  edge_ref.update(raw_edges_, T, p_.scan_period_s);
-  planar_ref.update(raw_planars_, T, p_.scan_period_s);
-  const MovedPoints edge_points = edge_ref.points(), planar_points = planar_ref.points();
+  work_.edges.update(raw_edges_, T, p_.scan_period_s);
+  work_.planars.update(raw_planars_, T, p_.scan_period_s);
+  const MovedPoints edge_points = work_.edges.points(), planar_points = work_.planars.points();
   std::vector<Constraint> cs;
   cs.reserve(f.edges.size() + f.planars.size());
   Constraint c;
-  // Each feature's neighbours of the previous round (or sweep) bound its next search (any
-  // neighbours do: see NeighbourHint; the matches do not depend on them).
-  thread_local std::vector<NeighbourHint> edge_hints, planar_hints;
+  std::vector<NeighbourHint>&edge_hints = work_.edge_hints, &planar_hints = work_.planar_hints;
   edge_hints.resize(f.edges.size());
   planar_hints.resize(f.planars.size());
   for (std::size_t i = 0; i < f.edges.size(); ++i) {

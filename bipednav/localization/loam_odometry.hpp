@@ -86,12 +86,32 @@ class LoamOdometry {
 
   void deskew_reference() const;
 
+  // The reference's features de-skewed with the motion being estimated, and a kd-tree over them.
+  // The tree is rebuilt only when a point moved more than kRebuildM since it was built: neighbours
+  // are searched among the tree's positions and fitted at the current ones.
+  struct MovingReference {
+    static constexpr float kRebuildM = 0.05f;
+    PointKdTree tree;
+    std::vector<Eigen::Vector3f> positions;
+    void update(const PointCloud& raw, const SE3& T, double scan_period_s);
+    MovedPoints points() const { return {&tree, &positions}; }
+  };
+  // associate()'s work space, kept between calls (rounds and sweeps; reset() keeps it too): a tree
+  // is reused only while update() finds every point within kRebuildM of where the tree has it,
+  // whatever cloud it was built from. Each feature's neighbours of the previous round (or sweep)
+  // bound its next search (any neighbours do: see NeighbourHint; the matches do not depend on them).
+  struct Workspace {
+    MovingReference edges, planars;
+    std::vector<NeighbourHint> edge_hints, planar_hints;
+  };
+
   OdometryParams p_;
   PointCloud raw_edges_, raw_planars_;  // the previous sweep's map features, as measured
   SE3 raw_motion_ = SE3::Identity();    // their sweep's estimated motion
   // The same, de-skewed to its end with raw_motion_ (computed on demand: stale while ref_stale_).
   mutable PointCloud ref_edges_, ref_planars_;
   mutable bool ref_stale_ = false;
+  mutable Workspace work_;  // estimate() changes it: one object estimates on one thread at a time
 };
 
 }  // namespace bipednav::localization

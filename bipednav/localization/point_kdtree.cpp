@@ -1,7 +1,6 @@
 #include "bipednav/localization/point_kdtree.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <limits>
 
 namespace bipednav::localization {
@@ -42,16 +41,23 @@ struct PointKdTree::Nearest {
   }
 };
 
-PointKdTree::PointKdTree(std::vector<Eigen::Vector3f> points) : points_(std::move(points)) {
-  static std::atomic<std::uint64_t> built{0};
-  id_ = ++built;
+PointKdTree::PointKdTree(std::vector<Eigen::Vector3f> points) { build(std::move(points)); }
+
+void PointKdTree::build(std::vector<Eigen::Vector3f> points) {
+  ++generation_.value;
+  points_ = std::move(points);
+  ids_.clear();
+  x_.clear();
+  y_.clear();
+  z_.clear();
+  nodes_.clear();
   std::vector<Slot> slots;
   slots.reserve(points_.size());
   for (std::size_t i = 0; i < points_.size(); ++i)
     if (points_[i].allFinite()) slots.push_back({points_[i], static_cast<std::uint32_t>(i)});
   if (slots.empty()) return;
   nodes_.reserve(4 * slots.size() / kLeafSize + 2);
-  build(slots, 0, static_cast<std::uint32_t>(slots.size()));
+  build_node(slots, 0, static_cast<std::uint32_t>(slots.size()));
   ids_.resize(slots.size());
   x_.resize(slots.size());
   y_.resize(slots.size());
@@ -67,7 +73,7 @@ PointKdTree::PointKdTree(std::vector<Eigen::Vector3f> points) : points_(std::mov
 // Median split on the axis of largest extent: a balanced tree whatever the point density. The
 // points are moved with their indices (no indirection while partitioning); nth_element sees the
 // same comparisons as on the indices alone, so it leaves the same order.
-std::uint32_t PointKdTree::build(std::vector<Slot>& slots, std::uint32_t begin, std::uint32_t end) {
+std::uint32_t PointKdTree::build_node(std::vector<Slot>& slots, std::uint32_t begin, std::uint32_t end) {
   const auto index = static_cast<std::uint32_t>(nodes_.size());
   nodes_.emplace_back();
   if (end - begin <= kLeafSize) {
@@ -91,8 +97,8 @@ std::uint32_t PointKdTree::build(std::vector<Slot>& slots, std::uint32_t begin, 
   nodes_[index].lo = left_max;
   nodes_[index].hi = slots[mid].p[dim];
   nodes_[index].dim = static_cast<std::uint8_t>(dim);
-  build(slots, begin, mid);
-  const std::uint32_t right = build(slots, mid, end);
+  build_node(slots, begin, mid);
+  const std::uint32_t right = build_node(slots, mid, end);
   nodes_[index].begin = right;
   return index;
 }

@@ -16,9 +16,14 @@ class PointKdTree {
   PointKdTree() = default;
   explicit PointKdTree(std::vector<Eigen::Vector3f> points);
 
+  // Indexes `points` instead of the tree's points (the buffers' capacity is kept).
+  void build(std::vector<Eigen::Vector3f> points);
+
   bool empty() const { return ids_.empty(); }
-  // Unique to each tree built from points (copies share it; 0 for a default-constructed tree).
-  std::uint64_t id() const { return id_; }
+  // Counts the changes of this tree object: build() and assigning to it each add one, so the
+  // tree's address and generation name its points for as long as it lives (a cache of results
+  // against a tree compares both). 0 for a default-constructed tree.
+  std::uint64_t generation() const { return generation_.value; }
   std::size_t indexed() const { return ids_.size(); }
   std::size_t size() const { return points_.size(); }
   const Eigen::Vector3f& point(std::size_t i) const { return points_[i]; }
@@ -51,7 +56,18 @@ class PointKdTree {
     Eigen::Vector3f p;
     std::uint32_t id;
   };
-  std::uint32_t build(std::vector<Slot>& slots, std::uint32_t begin, std::uint32_t end);
+  std::uint32_t build_node(std::vector<Slot>& slots, std::uint32_t begin, std::uint32_t end);
+
+  // A counter that a copy or move assignment of the tree advances instead of copying.
+  struct Generation {
+    std::uint64_t value = 0;
+    Generation() = default;
+    Generation(const Generation&) = default;
+    Generation& operator=(const Generation&) {
+      ++value;
+      return *this;
+    }
+  };
   template <class Result>
   void search(std::uint32_t node, const float* q, float* offset, float cell_sq, Result& r) const;
 
@@ -59,7 +75,7 @@ class PointKdTree {
   std::vector<std::uint32_t> ids_;       // slot -> index into points_
   std::vector<float> x_, y_, z_;         // per slot, leaf order
   std::vector<Node> nodes_;              // preorder, root first
-  std::uint64_t id_ = 0;
+  Generation generation_;
 };
 
 }  // namespace bipednav::localization

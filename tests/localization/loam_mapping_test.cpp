@@ -73,6 +73,25 @@ TEST(FeatureAssociation, HintsGiveTheSameMatches) {
   }
 }
 
+TEST(FeatureAssociation, AHintsFitIsNotReusedOnceItsTreeIsRebuilt) {
+  // The same tree object rebuilt from the wall moved 5 cm along x: the same neighbour indices, so
+  // only the tree's generation tells that the hint's fit is of the points before.
+  const ThinWall wall;
+  PointKdTree tree(wall.points);
+  AssociationParams p;
+  NeighbourHint hint;
+  Constraint before, after, want;
+  const Eigen::Vector3d q(-0.02, 0.01, 0.02);
+  ASSERT_TRUE(planar_correspondence(tree, q, 1.0, q, p, before, nullptr, &hint));
+  std::vector<Eigen::Vector3f> moved = wall.points;
+  for (auto& pt : moved) pt.x() += 0.05f;
+  tree.build(moved);
+  ASSERT_TRUE(planar_correspondence(tree, q, 1.0, q, p, want));
+  ASSERT_TRUE(planar_correspondence(tree, q, 1.0, q, p, after, nullptr, &hint));
+  EXPECT_NEAR(after.anchor.x(), before.anchor.x() + 0.05, 1e-6);
+  EXPECT_EQ(after.anchor, want.anchor);
+}
+
 TEST(VoxelPointMap, KeepsBothFacesOfAWallThinnerThanAVoxel) {
   VoxelPointMap map(0.4);
   map.insert({0.05f, 0.1f, 0.1f}, {-3.0f, 0.0f, 0.0f});

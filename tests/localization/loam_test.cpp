@@ -25,6 +25,14 @@ std::function<SE3(double)> constant_motion(const SE3& start, double vx, double v
   };
 }
 
+// The features of the room swept from `pose_at` from t on, with 1 cm noise.
+LoamFeatures room_features(const std::function<SE3(double)>& pose_at, double t, Rng& rng) {
+  SweepSpec spec;
+  spec.noise_m = 0.01;
+  const FeatureParams fp;
+  return extract_features(sanitize_sweep(synthetic_sweep(test::room_scene(), pose_at, t, spec, rng), fp), fp);
+}
+
 TEST(LoamFeatures, SmoothnessIsZeroOnALineAndLargeAtACorner) {
   std::vector<Eigen::Vector3f> line, corner;
   for (int i = -5; i <= 5; ++i) {
@@ -139,14 +147,10 @@ TEST(LoamOdometry, RecoversSweepMotionFromIdentity) {
 // 0.3 mrad (instead of 0.1 mm / 0.01 mrad) runs fewer rounds and keeps the estimate within the
 // bounds above.
 TEST(LoamOdometry, LooserRoundConvergenceStopsEarlierWithinTheSameBounds) {
-  const auto scene = test::room_scene();
-  SweepSpec spec;
-  spec.noise_m = 0.01;
   const auto pose_at = constant_motion(make_se3(-1, 0.5, 1.2, 0, 0, 0.3), 0.6, 0.1, 0.4);
-  FeatureParams fp;
   Rng rng(3);
-  const LoamFeatures f0 = extract_features(sanitize_sweep(synthetic_sweep(scene, pose_at, 0.0, spec, rng), fp), fp);
-  const LoamFeatures f1 = extract_features(sanitize_sweep(synthetic_sweep(scene, pose_at, 0.1, spec, rng), fp), fp);
+  const LoamFeatures f0 = room_features(pose_at, 0.0, rng);
+  const LoamFeatures f1 = room_features(pose_at, 0.1, rng);
   const SE3 truth = pose_at(0.1).inverse() * pose_at(0.2);
   const auto run = [&](const OdometryParams& p) {
     LoamOdometry odo(p);
@@ -163,6 +167,36 @@ TEST(LoamOdometry, LooserRoundConvergenceStopsEarlierWithinTheSameBounds) {
   EXPECT_LE(r.degenerate_dims, 1);
   EXPECT_LT(err.translation().norm(), 0.01);
   EXPECT_LT(rotation_angle(err), 0.006);
+}
+
+// Each odometry keeps its own kd-trees and hints: two of them fed interleaved sweeps on one thread
+// estimate what each does alone, bit for bit. B's guesses are 2 cm off A's, so a reference tree
+// left by A (built a few cm from where B has its points) would pass B's rebuild test and be searched.
+TEST(LoamOdometry, TwoOdometriesInterleavedEstimateAsEachAlone) {
+  const auto pose_at = constant_motion(make_se3(-1, 0.5, 1.2, 0, 0, 0.3), 0.6, 0.1, 0.4);
+  Rng rng(5);
+  std::vector<LoamFeatures> f;
+  std::vector<SE3> truth;
+  for (int k = 0; k < 4; ++k) {
+    f.push_back(room_features(pose_at, 0.1 * k, rng));
+    truth.push_back(pose_at(0.1 * k).inverse() * pose_at(0.1 * (k + 1)));
+  }
+  const SE3 offset = make_se3(0.02, 0, 0, 0, 0, 0);
+  const auto step = [&](LoamOdometry& odo, std::size_t k, const SE3& guess_offset) {
+    odo.set_reference(f[k - 1], truth[k - 1]);
+    return odo.estimate(f[k], truth[k - 1] * guess_offset).T_start_end;
+  };
+  std::vector<SE3> alone_a, alone_b;
+  LoamOdometry b(OdometryParams{});
+  for (std::size_t k = 1; k < f.size(); ++k) alone_b.push_back(step(b, k, offset));
+  LoamOdometry a(OdometryParams{});
+  for (std::size_t k = 1; k < f.size(); ++k) alone_a.push_back(step(a, k, SE3::Identity()));
+  LoamOdometry a2(OdometryParams{}), b2(OdometryParams{});
+  for (std::size_t k = 1; k < f.size(); ++k) {
+    const SE3 ra = step(a2, k, SE3::Identity()), rb = step(b2, k, offset);
+    EXPECT_EQ(ra.matrix(), alone_a[k - 1].matrix()) << k;
+    EXPECT_EQ(rb.matrix(), alone_b[k - 1].matrix()) << k;
+  }
 }
 
 TEST(Loam, DrivesARoomWithSmallDrift) {

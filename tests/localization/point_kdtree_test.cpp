@@ -137,5 +137,20 @@ TEST(PointKdTree, DegenerateInputIsSafe) {
   EXPECT_EQ(d2[4], 0.0f);
 }
 
+TEST(PointKdTree, GenerationAdvancesWithEveryChangeOfTheTree) {
+  const std::vector<Eigen::Vector3f> pts = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  PointKdTree tree;
+  EXPECT_EQ(tree.generation(), 0u);
+  tree.build(pts);
+  const std::uint64_t built = tree.generation();
+  EXPECT_GT(built, 0u);
+  tree.build(pts);
+  EXPECT_GT(tree.generation(), built);
+  const std::uint64_t rebuilt = tree.generation();
+  tree = PointKdTree(pts);  // a fresh tree starts over at 1: the assigned-to one does not
+  EXPECT_GT(tree.generation(), rebuilt);
+  EXPECT_EQ(tree.indexed(), 3u);
+}
+
 }  // namespace
 }  // namespace bipednav::localization
