@@ -205,9 +205,10 @@ nlohmann::json ransac_figures(const PointCloud& c, double threshold_m, int reps)
   p.distance_threshold_m = threshold_m;
   perception::PlaneFit fit;
   std::vector<std::size_t> inliers;
+  perception::RansacScratch scratch;  // reused as the pipeline reuses its own
   const Timing t = median_timing(reps, [&](int r) {
     Rng rng(static_cast<std::uint64_t>(r) + 1);
-    fit = perception::fit_plane_ransac(c.points, p, rng);
+    fit = perception::fit_plane_ransac(c.points, p, rng, &scratch);
     inliers.push_back(fit.inliers);
   });
   std::sort(inliers.begin(), inliers.end());

@@ -43,7 +43,9 @@ BENCHMARK(BM_VoxelGridDepthCloudCropped)->Unit(benchmark::kMicrosecond);
 void BM_RansacLidarSweep(benchmark::State& state) {
   perception::RansacParams p;
   Rng rng(1);
-  for (auto _ : state) benchmark::DoNotOptimize(perception::fit_plane_ransac(digit_frame().lidar->points, p, rng));
+  perception::RansacScratch scratch;
+  for (auto _ : state)
+    benchmark::DoNotOptimize(perception::fit_plane_ransac(digit_frame().lidar->points, p, rng, &scratch));
 }
 BENCHMARK(BM_RansacLidarSweep)->Unit(benchmark::kMicrosecond);
 

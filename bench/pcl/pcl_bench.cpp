@@ -111,11 +111,12 @@ nlohmann::json ransac(const PointCloud& c, double t, int reps) {
   p.success_probability = 0.99;
   p.max_iterations = 1000;
   std::vector<std::size_t> q_ours, q_pcl;
+  perception::RansacScratch scratch;
   const auto [ours_ms, pcl_ms] = median_ms(
       reps,
       [&](int r) {
         bipednav::Rng rng(static_cast<std::uint64_t>(r) + 1);
-        q_ours.push_back(count_within(c, perception::fit_plane_ransac(c.points, p, rng).plane, t));
+        q_ours.push_back(count_within(c, perception::fit_plane_ransac(c.points, p, rng, &scratch).plane, t));
       },
       [&](int) {
         pcl::SACSegmentation<pcl::PointXYZ> seg;

@@ -20,14 +20,6 @@ void RansacParams::validate() const {
 
 namespace {
 
-// The finite points as separate coordinate arrays, so that scoring a model vectorises.
-struct SoaPoints {
-  std::vector<float> x, y, z;
-  std::vector<std::size_t> index;  // into the input
-  std::size_t size() const { return x.size(); }
-  Eigen::Vector3d at(std::size_t i) const { return {x[i], y[i], z[i]}; }
-};
-
 // The finite points of `pts` (every `stride`-th point) into `s` (its buffers reused).
 void finite_points(const std::vector<Eigen::Vector3f>& pts, SoaPoints& s, std::size_t stride = 1) {
   const std::size_t n = pts.size();
@@ -136,11 +128,12 @@ Plane fit_plane_least_squares(const std::vector<Eigen::Vector3f>& points, const 
   return normalize_plane(Plane(normal.x(), normal.y(), normal.z(), -normal.dot(mean)));
 }
 
-PlaneFit fit_plane_ransac(const std::vector<Eigen::Vector3f>& points, const RansacParams& params, Rng& rng) {
+PlaneFit fit_plane_ransac(const std::vector<Eigen::Vector3f>& points, const RansacParams& params, Rng& rng,
+                          RansacScratch* scratch) {
   params.validate();
-  // Per-thread buffers: a pipeline fits a plane every frame, and fresh vectors of this size cost
-  // an allocation (and page faults) each time.
-  thread_local SoaPoints buffers, all;
+  RansacScratch own;
+  RansacScratch& w = scratch != nullptr ? *scratch : own;
+  SoaPoints &buffers = w.sampled, &all = w.all;
   const std::size_t stride = params.max_points > 0 && points.size() > params.max_points
                                  ? (points.size() + params.max_points - 1) / params.max_points
                                  : 1;
@@ -179,7 +172,7 @@ PlaneFit fit_plane_ransac(const std::vector<Eigen::Vector3f>& points, const Rans
   }
   if (!best.found) return best;
   if (params.refit) {
-    thread_local std::vector<std::size_t> in;
+    std::vector<std::size_t>& in = w.refit;
     in.clear();
     for (std::size_t i = 0; i < s.size(); ++i)
       if (std::fabs(best.plane.head<3>().dot(s.at(i)) + best.plane[3]) < t) in.push_back(s.index[i]);

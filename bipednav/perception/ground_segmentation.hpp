@@ -38,6 +38,22 @@ struct PlaneFit {
   int iterations = 0;               // models scored
 };
 
+// The finite points of a cloud as separate coordinate arrays, so that scoring a model vectorises.
+struct SoaPoints {
+  std::vector<float> x, y, z;
+  std::vector<std::size_t> index;  // into the input
+  std::size_t size() const { return x.size(); }
+  Eigen::Vector3d at(std::size_t i) const { return {x[i], y[i], z[i]}; }
+};
+
+// fit_plane_ransac's buffers, kept between calls by their owner: a pipeline fits a plane every
+// frame, and fresh vectors of this size cost an allocation (and page faults) each time. What they
+// held does not change the fit.
+struct RansacScratch {
+  SoaPoints sampled, all;          // the points the models are scored on; all finite points
+  std::vector<std::size_t> refit;  // the best model's inliers
+};
+
 // RANSAC plane fit (eq. 4.1-4.4). Each iteration samples 3 distinct points, solves the plane,
 // counts the points with D_i < D_threshold; the best model has the most inliers, ties broken by
 // the smaller standard deviation of the inlier distances. The iteration count is recomputed after
@@ -45,8 +61,10 @@ struct PlaneFit {
 // with (1 - eps) = u), capped by max_iterations. Degenerate (collinear) samples are redrawn and not
 // counted. Non-finite points are ignored. `found` is false for fewer than 3 finite points or when
 // no sample gives a plane passing the normal prior; `plane` is then z = 0. With max_points the
-// models come from a strided subset (see RansacParams::max_points).
-PlaneFit fit_plane_ransac(const std::vector<Eigen::Vector3f>& points, const RansacParams& params, Rng& rng);
+// models come from a strided subset (see RansacParams::max_points). Without `scratch` the call
+// allocates its own buffers.
+PlaneFit fit_plane_ransac(const std::vector<Eigen::Vector3f>& points, const RansacParams& params, Rng& rng,
+                          RansacScratch* scratch = nullptr);
 
 // Total least squares plane through the given points (centroid + smallest principal axis),
 // normalised (unit normal, c >= 0). Needs at least 3 non-collinear points; otherwise returns z = 0.

@@ -162,7 +162,7 @@ void PerceptionPipeline::process(const PerceptionInput& in, const RobotProfile& 
   RansacParams ransac = params_.ransac;
   ransac.prior_normal = params_.prior_ground.head<3>();
   ransac.inlier_std = false;  // choose_plane reads the plane and its inlier count only
-  const PlaneFit fit = fit_plane_ransac(fused.cloud.points, ransac, rng_);  // section 4.3
+  const PlaneFit fit = fit_plane_ransac(fused.cloud.points, ransac, rng_, &ransac_scratch_);  // section 4.3
   choose_plane(fit, out);
   out.timings.segmentation_ms = sw.elapsed_ms();
   sw.restart();

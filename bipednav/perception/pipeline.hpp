@@ -116,6 +116,7 @@ class PerceptionPipeline {
   VoxelGrid depth_voxel_;  // stages and buffers kept between frames (no per-frame allocation)
   PointCloud voxels_, decimated_, lidar_kept_, lidar_deskewed_;
   FusedCloud fused_;
+  RansacScratch ransac_scratch_;
 };
 
 }  // namespace bipednav::perception
