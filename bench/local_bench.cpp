@@ -23,8 +23,9 @@ BENCHMARK(BM_TebCycle)->Arg(0)->Arg(20)->Arg(100)->Unit(benchmark::kMillisecond)
 
 void BM_ExtractObstacles(benchmark::State& state) {
   const auto scene = make_local_bench_scene(static_cast<int>(state.range(0)), 42);
+  ObstacleScratch scratch;
   for (auto _ : state) {
-    auto obs = extract_obstacles(scene.costmap, ObstacleParams{});
+    auto obs = extract_obstacles(scene.costmap, ObstacleParams{}, &scratch);
     benchmark::DoNotOptimize(obs);
   }
 }

@@ -15,23 +15,10 @@ double cross(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Ve
   return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
 }
 
-// Buffers of extract_obstacles, kept between calls (one set per thread).
-struct LethalScratch {
-  std::vector<std::uint8_t> seen;     // per cell: already in a component
-  std::vector<std::size_t> stack;     // flood fill
-  std::vector<std::size_t> cells;     // the components' cells, component after component, each in scan order
-  std::vector<std::size_t> comp_end;  // end of each component in cells (components in scan order)
-  std::vector<std::pair<std::pair<long, long>, std::size_t>> keyed;  // (block, position in cells)
-  std::vector<Eigen::Vector2d> centres;                              // one component's cell centres
-  std::vector<Eigen::Vector2d> pts;                                  // one block's cell centres
-  std::vector<std::uint32_t> bucket_start;                           // sort_by_block's counts
-  std::vector<std::pair<std::pair<long, long>, std::size_t>> sorted;
-};
-
 // std::sort of s.keyed (block, then position), by a counting sort over the component's block window:
 // the positions come in ascending order, so a stable placement by block gives the same order. A
 // window of more than 4096 blocks is left to std::sort.
-void sort_by_block(LethalScratch& s) {
+void sort_by_block(ObstacleScratch& s) {
   if (s.keyed.empty()) return;
   long x_lo = s.keyed[0].first.first, x_hi = x_lo, y_lo = s.keyed[0].first.second, y_hi = y_lo;
   bool ascending = true;
@@ -60,7 +47,7 @@ void sort_by_block(LethalScratch& s) {
 
 // 8-connected components of the lethal cells into s.cells / s.comp_end: components in the order of their
 // first cell in scan order, each component's cells in scan order.
-void lethal_components(const mapping::Costmap2D& costmap, LethalScratch& s) {
+void lethal_components(const mapping::Costmap2D& costmap, ObstacleScratch& s) {
   const auto& g = costmap.geometry();
   const std::uint8_t* data = costmap.data().data();
   const std::size_t n = costmap.data().size();
@@ -176,12 +163,14 @@ Obstacle make_obstacle(const std::vector<Eigen::Vector2d>& pts, double half_cell
   return o;
 }
 
-std::vector<Obstacle> extract_obstacles(const mapping::Costmap2D& costmap, const ObstacleParams& params) {
+std::vector<Obstacle> extract_obstacles(const mapping::Costmap2D& costmap, const ObstacleParams& params,
+                                        ObstacleScratch* scratch) {
   std::vector<Obstacle> out;
   if (costmap.width() <= 0 || costmap.height() <= 0) return out;
   const auto& g = costmap.geometry();
   const double half = 0.5 * g.resolution_m;
-  thread_local LethalScratch s;
+  ObstacleScratch own;
+  ObstacleScratch& s = scratch != nullptr ? *scratch : own;
   lethal_components(costmap, s);
   std::size_t begin = 0;
   for (const std::size_t end : s.comp_end) {
@@ -212,9 +201,9 @@ std::vector<Obstacle> extract_obstacles(const mapping::Costmap2D& costmap, const
 }
 
 std::vector<int> nearest_obstacles(const std::vector<Obstacle>& obstacles, const Eigen::Vector2d& p, int k,
-                                   double max_dist_m) {
-  // Called per band pose several times a cycle: the candidate buffer keeps its capacity.
-  thread_local std::vector<std::pair<double, int>> cand;
+                                   double max_dist_m, std::vector<std::pair<double, int>>* candidates) {
+  std::vector<std::pair<double, int>> own;
+  std::vector<std::pair<double, int>>& cand = candidates != nullptr ? *candidates : own;
   cand.clear();
   for (std::size_t i = 0; i < obstacles.size(); ++i) {
     // Cheap bounding-circle rejection before the exact distance.

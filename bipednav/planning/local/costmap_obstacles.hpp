@@ -1,6 +1,8 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "bipednav/mapping/costmap2d.hpp"
@@ -40,12 +42,30 @@ Obstacle make_obstacle(const std::vector<Eigen::Vector2d>& pts, double half_cell
 // Convex hull (counter-clockwise, no collinear points) of a point set (Andrew's monotone chain).
 std::vector<Eigen::Vector2d> convex_hull(std::vector<Eigen::Vector2d> pts);
 
+// extract_obstacles' buffers, kept between calls by their owner (what they held does not change
+// the obstacles).
+struct ObstacleScratch {
+  std::vector<std::uint8_t> seen;     // per cell: already in a component
+  std::vector<std::size_t> stack;     // flood fill
+  std::vector<std::size_t> cells;     // the components' cells, component after component, each in scan order
+  std::vector<std::size_t> comp_end;  // end of each component in cells (components in scan order)
+  std::vector<std::pair<std::pair<long, long>, std::size_t>> keyed;  // (block, position in cells)
+  std::vector<Eigen::Vector2d> centres;                              // one component's cell centres
+  std::vector<Eigen::Vector2d> pts;                                  // one block's cell centres
+  std::vector<std::uint32_t> bucket_start;                           // sort_by_block's counts
+  std::vector<std::pair<std::pair<long, long>, std::size_t>> sorted;
+};
+
 // Clusters the lethal cells of the costmap into 8-connected components, cuts large ones into
-// cluster_block_m blocks and converts each piece with make_obstacle. Deterministic order.
-std::vector<Obstacle> extract_obstacles(const mapping::Costmap2D& costmap, const ObstacleParams& params);
+// cluster_block_m blocks and converts each piece with make_obstacle. Deterministic order. Without
+// `scratch` the call allocates its own buffers.
+std::vector<Obstacle> extract_obstacles(const mapping::Costmap2D& costmap, const ObstacleParams& params,
+                                        ObstacleScratch* scratch = nullptr);
 
 // Indices of the (at most k) obstacles nearest to p within max_dist_m, nearest first.
+// `candidates`: a buffer for the obstacles within max_dist_m (with their distances), for a caller
+// that calls this per band pose to reuse; without it the call allocates its own.
 std::vector<int> nearest_obstacles(const std::vector<Obstacle>& obstacles, const Eigen::Vector2d& p, int k,
-                                   double max_dist_m);
+                                   double max_dist_m, std::vector<std::pair<double, int>>* candidates = nullptr);
 
 }  // namespace bipednav::planning::local

@@ -245,30 +245,19 @@ bool blob_cpu_has_avx2() {
   return has;
 }
 
-// cluster_blobs' buffers, kept between calls (it runs at the local map's rate on tens of
-// thousands of points).
-struct BlobScratch {
-  std::vector<long> bx, by;
-  std::vector<std::size_t> in_range, order, stack, members;
-  std::vector<std::uint32_t> start;
-  std::vector<std::int32_t> grid;  // dense: cell index per bin, -1 when empty
-  std::vector<std::pair<std::size_t, std::size_t>> cells;
-  std::vector<std::pair<long, long>> cell_xy;
-  std::vector<char> seen;
-};
-
 }  // namespace
 
 std::vector<Blob> cluster_blobs(const std::vector<Eigen::Vector2d>& points, const Eigen::Vector2d& center,
                                 const MovingObstacleParams& params, const std::vector<double>& heights,
-                                const StaticStructure* structure) {
+                                const StaticStructure* structure, BlobScratch* scratch) {
   const bool check_structure = params.ignore_static_structure && structure != nullptr && !structure->empty();
   require(heights.empty() || heights.size() == points.size(), "cluster_blobs heights",
           "empty or one per point (" + std::to_string(points.size()) + "), got " + std::to_string(heights.size()));
   std::vector<Blob> out;
   const double cell = params.cluster_cell_m;
   const double r2max = params.max_range_m * params.max_range_m;
-  thread_local BlobScratch w;
+  BlobScratch own;
+  BlobScratch& w = scratch != nullptr ? *scratch : own;
   // The bins of the points in range, in point order.
   std::vector<long>&bx = w.bx, &by = w.by;
   std::vector<std::size_t>& in_range = w.in_range;
@@ -426,13 +415,13 @@ void MovingObstacleTracker::clear() {
 void MovingObstacleTracker::update(const std::vector<Eigen::Vector2d>& points, const Eigen::Vector2d& robot,
                                    double stamp_s) {
   if (!params_.enabled || !std::isfinite(stamp_s) || !robot.allFinite()) return;
-  update_blobs(cluster_blobs(points, robot, params_, {}, &structure_), stamp_s);
+  update_blobs(cluster_blobs(points, robot, params_, {}, &structure_, &blob_scratch_), stamp_s);
 }
 
 void MovingObstacleTracker::update(const std::vector<Eigen::Vector2d>& points, const std::vector<double>& heights,
                                    const Pose2& robot, double stamp_s) {
   if (!params_.enabled || !std::isfinite(stamp_s) || !robot.is_finite()) return;
-  update_blobs(cluster_blobs(points, robot.position(), params_, heights, &structure_), stamp_s, robot);
+  update_blobs(cluster_blobs(points, robot.position(), params_, heights, &structure_, &blob_scratch_), stamp_s, robot);
 }
 
 namespace {

@@ -1,8 +1,10 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bipednav/common/pose2.hpp"
@@ -278,14 +280,26 @@ class StaticStructure {
   double stamp_s_ = -1e300;
 };
 
+// cluster_blobs' buffers, kept between calls by their owner (it runs at the local map's rate on
+// tens of thousands of points). What they held does not change the blobs.
+struct BlobScratch {
+  std::vector<long> bx, by;
+  std::vector<std::size_t> in_range, order, stack, members;
+  std::vector<std::uint32_t> start;
+  std::vector<std::int32_t> grid;  // dense: cell index per bin, -1 when empty
+  std::vector<std::pair<std::size_t, std::size_t>> cells;
+  std::vector<std::pair<long, long>> cell_xy;
+  std::vector<char> seen;
+};
+
 // Clusters 2D points (map frame) within max_range_m of `center` into blobs; blobs larger than
 // max_blob_radius_m or with fewer than min_points points are left out. Deterministic order.
 // `heights` (empty, or one per point: height above the floor) gives the blobs' tops. With a
 // non-empty `structure` and ignore_static_structure, blobs on static structure are left out too
-// (MovingObstacleParams::structure_*).
+// (MovingObstacleParams::structure_*). Without `scratch` the call allocates its own buffers.
 std::vector<Blob> cluster_blobs(const std::vector<Eigen::Vector2d>& points, const Eigen::Vector2d& center,
                                 const MovingObstacleParams& params, const std::vector<double>& heights = {},
-                                const StaticStructure* structure = nullptr);
+                                const StaticStructure* structure = nullptr, BlobScratch* scratch = nullptr);
 
 class MovingObstacleTracker {
  public:
@@ -331,6 +345,7 @@ class MovingObstacleTracker {
   std::vector<std::pair<TrackedObstacle, double>> lost_;
   int next_id_ = 1;
   double last_stamp_s_ = -1e300;
+  BlobScratch blob_scratch_;  // update()'s clustering buffers, kept between cycles
 };
 
 // Yielding to moving obstacles: the command is checked against the constant-velocity predictions

@@ -268,12 +268,12 @@ bool solve_once(std::vector<double>& x, std::vector<double>& dt, const TebProble
 }
 
 void associate(const std::vector<double>& x, std::size_t n, const TebProblemInput& input, const TebOptimizerParams& p,
-               std::vector<std::vector<int>>& assoc) {
+               std::vector<std::vector<int>>& assoc, std::vector<std::pair<double, int>>& candidates) {
   assoc.assign(n, {});
   if (input.obstacles == nullptr) return;
   for (std::size_t k = 1; k + 1 < n; ++k) {
     assoc[k] = nearest_obstacles(*input.obstacles, {x[3 * k], x[3 * k + 1]}, p.obstacles_per_pose,
-                                 p.obstacle_influence_dist_m);
+                                 p.obstacle_influence_dist_m, &candidates);
   }
 }
 
@@ -306,6 +306,7 @@ bool optimize_band(TebBand& band, const TebProblemInput& input, const TebLimits&
   TebBand work = band;
   std::vector<double> x, dt;
   std::vector<std::vector<int>> assoc;
+  std::vector<std::pair<double, int>> candidates;  // nearest_obstacles' buffer
   const bool banded = params.linear_solver == "banded_lm";
   TebLmSolver lm;  // its buffers are reused over the outer iterations
   const std::vector<TebMovingObstacle> moving = band_moving_obstacles(input, params);
@@ -318,7 +319,7 @@ bool optimize_band(TebBand& band, const TebProblemInput& input, const TebLimits&
       x[3 * k] = work.poses[k].x, x[3 * k + 1] = work.poses[k].y, x[3 * k + 2] = work.poses[k].theta;
     }
     dt = work.dt_s;
-    associate(x, n, input, params, assoc);
+    associate(x, n, input, params, assoc, candidates);
     const auto via = assign_via_points(x, n, input.via_points);
     // The poses' times are the band's at the solve's set-up, held fixed during it (as teb_local_planner).
     if (!moving.empty()) times = band_pose_times(dt, params.dynamic_obstacle_max_prediction_s);
@@ -377,9 +378,10 @@ BandCost evaluate_band(const TebBand& band, const TebProblemInput& input, const 
                       w.acc_th * sq(penalty_symmetric(aw, limits.acc_lim_theta_radps2, eps));
   }
   if (input.obstacles != nullptr) {
+    std::vector<std::pair<double, int>> candidates;  // nearest_obstacles' buffer
     for (std::size_t k = 1; k + 1 < s.size(); ++k) {
       for (const int i : nearest_obstacles(*input.obstacles, s[k].position(), params.obstacles_per_pose,
-                                           params.obstacle_influence_dist_m)) {
+                                           params.obstacle_influence_dist_m, &candidates)) {
         const double d = obstacle_distance((*input.obstacles)[static_cast<std::size_t>(i)], s[k].x, s[k].y);
         c.min_obstacle_dist_m = std::min(c.min_obstacle_dist_m, d);
         c.obstacle += w.obstacle * sq(penalty_below(d, limits.min_obstacle_dist_m, eps));

@@ -93,7 +93,7 @@ LocalPlanResult TebPlanner::plan(const Pose2& T_map_base, const Twist& current_v
   }
   const LocalGoal lg = select_local_goal(global_plan, robot, local_costmap, params_.lookahead_m,
                                          params_.window_margin_m, params_.via_point_separation_m);
-  obstacles_ = extract_obstacles(local_costmap, params_.obstacles);
+  obstacles_ = extract_obstacles(local_costmap, params_.obstacles, &obstacle_scratch_);
   homotopy_.set_moving_obstacles(band_moving(now_s));
   const BandCandidate* best = homotopy_.plan(robot, lg.goal, current_velocity, lg.via_points, obstacles_);
   if (best == nullptr) {

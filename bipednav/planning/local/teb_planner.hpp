@@ -42,7 +42,8 @@ class TebPlanner : public LocalPlanner {
   HomotopyPlanner homotopy_;
   OscillationDetector oscillation_;
   std::vector<Obstacle> obstacles_;
-  bool holding_goal_ = false;  // approach_goal's hysteresis
+  ObstacleScratch obstacle_scratch_;  // extract_obstacles' buffers, kept between cycles
+  bool holding_goal_ = false;         // approach_goal's hysteresis
 };
 
 // The first interval's velocity (eq. 5.8 with the exact sign, eq. 5.9); zero for a degenerate band.
