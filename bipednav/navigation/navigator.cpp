@@ -174,7 +174,7 @@ mapping::Observation observation_for(const perception::SensorSource& src, const 
 
 void append_points(std::vector<mapping::Observation>& obs, const std::vector<perception::SensorSource>& sources,
                    const PointCloud& cloud, const std::vector<std::uint8_t>& source_of, const SE3& T_map_base,
-                   bool marking, std::vector<std::vector<Eigen::Vector3f>>& spare) {
+                   bool marking, std::vector<std::vector<Eigen::Vector3f>>& spare, SourceRuns& work) {
   const std::size_t first = obs.size();
   for (const auto& s : sources) {
     obs.push_back(observation_for(s, T_map_base, marking));
@@ -189,11 +189,8 @@ void append_points(std::vector<mapping::Observation>& obs, const std::vector<per
   // The cloud in runs of one source (each sensor's points are contiguous): each observation's
   // points counted, then written in place run by run (the same points in the same order as
   // appending them one by one, without a capacity test and a size update per point).
-  struct Run {
-    std::size_t begin, end, k;
-  };
-  thread_local std::vector<Run> runs;
-  thread_local std::vector<std::size_t> fill;
+  std::vector<SourceRuns::Run>& runs = work.runs;
+  std::vector<std::size_t>& fill = work.fill;
   runs.clear();
   const std::size_t n_src = obs.size() - first;
   fill.assign(n_src, 0);
@@ -211,7 +208,7 @@ void append_points(std::vector<mapping::Observation>& obs, const std::vector<per
     v.resize(old + fill[k]);
     fill[k] = old;  // from here: the next slot to write
   }
-  for (const Run& r : runs) {
+  for (const SourceRuns::Run& r : runs) {
     Eigen::Vector3f* o = obs[first + r.k].points_map.data() + fill[r.k];
     for (std::size_t i = r.begin; i < r.end; ++i) *o++ = R * cloud.points[i] + t;
     fill[r.k] += r.end - r.begin;
@@ -237,7 +234,7 @@ void Navigator::perceive(const perception::PerceptionInput& in) {
   // Obstacles mark and clear; ground returns only clear (so a moved obstacle leaves no trail).
   const std::size_t first = local_obs_.size();
   append_points(local_obs_, perception_out_.sources, perception_out_.obstacles, perception_out_.obstacle_source,
-                T_map_base, true, spare_points_);
+                T_map_base, true, spare_points_, source_runs_);
   if (in.lidar) {
     // The global map takes the LiDAR's obstacle observation of this frame, already in the map frame.
     recycle(lidar_obs_, spare_points_);
@@ -245,7 +242,7 @@ void Navigator::perceive(const perception::PerceptionInput& in) {
       if (perception_out_.sources[i].name == lidar_name_) lidar_obs_.push_back(local_obs_[first + i]);
   }
   append_points(local_obs_, perception_out_.sources, perception_out_.ground, perception_out_.ground_source, T_map_base,
-                false, spare_points_);
+                false, spare_points_, source_runs_);
 }
 
 void Navigator::update_maps() {

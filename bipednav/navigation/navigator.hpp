@@ -95,6 +95,16 @@ struct NavigatorCpu {
   }
 };
 
+// The work space of turning a cloud into observations (navigator.cpp): its runs of points of one
+// source, and points per source. Kept between frames by the Navigator.
+struct SourceRuns {
+  struct Run {
+    std::size_t begin, end, k;
+  };
+  std::vector<Run> runs;
+  std::vector<std::size_t> fill;
+};
+
 // The navigation pipeline of ARCHITECTURE.md. Each tick reads one step of sensor data and runs
 // perceive -> localize -> map -> plan -> control, every stage at its own rate on the frames'
 // clock. Planning and control are driven by the behavior tree (move_base) through the
@@ -172,7 +182,8 @@ class Navigator {
   perception::PerceptionInput perception_in_;  // this tick's admitted clouds (buffer kept between ticks)
   std::vector<mapping::Observation> local_obs_, lidar_obs_;
   std::vector<std::vector<Eigen::Vector3f>> spare_points_;  // point buffers of used observations, for reuse
-  std::vector<Eigen::Vector2d> moving_points_;              // track_moving_obstacles' input, kept for reuse
+  SourceRuns source_runs_;
+  std::vector<Eigen::Vector2d> moving_points_;  // track_moving_obstacles' input, kept for reuse
   std::vector<double> moving_heights_;
   struct DepthClock {
     std::string camera;
