@@ -37,8 +37,8 @@ struct NavigatorParams {
   // from) the measured velocity, or, with this on, from the last command while it is the slower
   // (acceleration_reference). A walker follows its commands with a lag (0.3 s on Digit), so a
   // command clamped to the measured velocity minus one period's change brakes at about a third of
-  // the limit: in digit_lab_dynamic seed 9 Digit, told to stop for the person 1.3 s ahead, kept
-  // 0.4 m/s for 1 s and walked 0.9 m into its lane. On for walkers (for_robot).
+  // the limit and walks on into a mover's lane. On for walkers (for_robot; docs/closed-loop-log.md,
+  // 'Walkers brake from their last command').
   bool brake_from_last_command = false;
   // Each local map update integrates only the newest frame of each depth camera (Nav2's observation
   // buffer with observation_persistence 0), instead of every frame since the last update. A depth
@@ -47,13 +47,9 @@ struct NavigatorParams {
   // after this one arrived, and the update is the local map gate's next slot. A frame whose
   // successor is late (dropped, delayed) leaves that update without the camera. At 15 Hz cameras
   // and a 10 Hz map one frame in three is skipped (perception and the local map's rays and marks).
-  // On for wheeled robots (for_robot, session 18's fast profile, with its screens); off here and
-  // for walkers. Measured alone (session 16): hexagon_static/turtlebot3 seed 1, 3 interleaved
-  // runs each (loaded machine): perception 1058 -> 602 ms, local map 669 -> 459 ms, cpu_s 6.17 ->
-  // 4.73 s, but the run itself changes (27.4 s instead of 34.6 s simulated); per simulated second
-  // perception -28 %, local map -13 %. TurtleBot3 seeds 1-10 with it alone: hexagon_dynamic 6/10
-  // (1, 3, 8, 9 time out; 8/10 off), digit_lab_dynamic 8/10 (6, 7 touch the person; 10/10 off);
-  // with ransac.max_points 4000 too: 9/10 (8) and 9/10 (6). Test NewestDepthOnly.*.
+  // On for wheeled robots (for_robot, the fast profile: less perception and local map CPU, screened with
+  // its other two switches; alone it lost runs); off here and for walkers. Test NewestDepthOnly.*
+  // (evidence: docs/closed-loop-log.md, 'Parameter evidence moved from code comments').
   bool newest_depth_only = false;
 
   // Defaults with footprint-dependent values (inscribed radius, velocity limits) from the robot.

@@ -35,18 +35,16 @@ NavigatorParams NavigatorParams::for_robot(const RobotProfile& robot) {
   p.localization.max_odometry_rate_radps = 2.0 * robot.max_vel_theta_radps;
   // A wheeled robot's odometry follows its turns closely: LOAM projects the previous sweep with the
   // (checked) change of the odometry's rotation instead of constant velocity, which lags at turn
-  // onsets. With the height-aware maps (mapping::height_aware_maps_for) the stale-timestamps fault
-  // run of hexagon_static ends 0.026 rad off the goal heading instead of 0.258; TurtleBot3 seeds 1-10
-  // of the six scenarios 56/60 against 53/60 with both off. Walkers keep constant velocity.
+  // onsets. It is on together with the height-aware maps (mapping::height_aware_maps_for): with the maps
+  // alone a fault run ended outside the goal's heading tolerance. Walkers keep constant velocity
+  // (docs/closed-loop-log.md, 'Height-aware clearing and mark decay').
   if (robot.kind == "diff_drive") p.localization.loam.reference_from_prior_change = true;
   // Wheeled robots also stop LOAM's correspondence rounds (odometry and mapping) at 1 mm / 3e-4 rad of
   // change instead of 0.1 mm / 1e-5 rad (~3 rounds per sweep instead of ~6; LoamParams keeps the tight
   // test) and factor TEB's Ceres solves with Eigen's sparse Cholesky instead of CHOLMOD (the same bands
-  // to rounding; alone its CPU effect is within noise, it is here as half of the screened pair). Session 16,
-  // TurtleBot3: LOAM 3.6 -> 2.9 ms per sweep; hexagon_static seed 1 ends at 28.8 s instead of 34.6 s (no recoveries),
-  // in 4.44 s of CPU instead of 5.54 s (3 interleaved runs each, medians, loaded machine). Seeds 1-10 of the six
-  // scenarios 60/60 (58/60 before: hexagon_dynamic 5, 6), seeds 11-20 56/60 (54/60 before). Digit with the LOAM
-  // setting: three_rooms and digit_lab_dynamic 9/10 each (seed 2 touches; 10/10 off), so walkers keep it off.
+  // to rounding; alone its CPU effect is within noise, it is here as half of the screened pair): less CPU
+  // with no runs lost on the TurtleBot3; Digit lost runs with the LOAM setting, so walkers keep both off
+  // (docs/closed-loop-log.md, 'Session 16: TurtleBot3 CPU settings, and the switches left opt-in').
   if (robot.kind == "diff_drive") {
     for (auto* r : {&p.localization.loam.odometry.round_converged_translation_m,
                     &p.localization.loam.mapping.round_converged_translation_m})
@@ -56,28 +54,19 @@ NavigatorParams NavigatorParams::for_robot(const RobotProfile& robot) {
       *r = 3e-4;
     p.server.local.teb.optim.ceres_sparse_library = "eigen_sparse";
   }
-  // Wheeled robots also run session 18's "fast profile": TEB's banded Levenberg-Marquardt (the same
+  // Wheeled robots also run the "fast profile": TEB's banded Levenberg-Marquardt (the same
   // objective and trust-region schedule as Ceres, analytic Jacobians; bands equal to Ceres' to ~1e-11
   // m per solve), the newest depth frame per local map update (newest_depth_only) and RANSAC's models
-  // from at most 4000 points. Chosen on fresh seeds, not on the seeds 1-10 the defaults were tuned on.
-  // TurtleBot3, six scenarios, 10 seeds each (fast / before): seeds 1-10 57/60 / 60/60 (hexagon_dynamic
-  // 8 time-out, 10 BLOCKED_GOAL; three_rooms 3 touches a cube), seeds 11-20 57/60 / 57/60, seeds
-  // 21-30 59/60 / 57/60; 173 / 174 of 180 in all. hexagon_static seed 1: 3.44-3.66 s of CPU for 34 s
-  // simulated (9.3-9.9x) against 4.78 s for 28.8 s (6.0x) on an idle machine; TEB 1.59 -> 0.58 s,
-  // perception 0.83 -> 0.54 s, local map 0.55 -> 0.47 s. Walkers (the path tracker, not TEB) keep
-  // every frame and all RANSAC points.
+  // from at most 4000 points: about a third less CPU, as robust as before on fresh seeds (docs/closed-loop-log.md,
+  // 'Fresh-seed screens'). Walkers (the path tracker, not TEB) keep every frame and all RANSAC points.
   if (robot.kind == "diff_drive") {
     p.server.local.teb.optim.linear_solver = "banded_lm";
     p.newest_depth_only = true;
     p.perception.ransac.max_points = 4000;
   }
-  // Wheeled robots yield with held-then-braked candidates too (DynamicAvoidanceParams::hold_step_s,
-  // session 20): stepping aside in a mover's lane between posts instead of standing in it.
-  // TurtleBot3 on main 3f49347, on / off: hexagon_dynamic seeds 1-120 110/120 / 106/120 with 3 / 6
-  // runs touching the box (seeds 1-60 57 / 55); three_rooms 1-30 27 / 28 (seed 11 touches a
-  // cube), 31-60 29 / 28; digit_lab_dynamic 1-30 29 / 29, 31-60 30 / 29. Digit (path tracker,
-  // lagging walker): three_rooms 1-30 25 / 26 (other seeds: 3 and 20 touch, 15 does not), 31-60
-  // 25 / 25; digit_lab_dynamic 1-30 30 / 30. Off for walkers.
+  // Wheeled robots yield with held-then-braked candidates too (DynamicAvoidanceParams::hold_step_s):
+  // stepping aside in a mover's lane between posts instead of standing in it, fewer box contacts.
+  // Off for walkers: no gain for a lagging walker (docs/closed-loop-log.md, 'Session 20: held-then-braked ...').
   if (robot.kind == "diff_drive") p.server.local.avoidance.hold_step_s = 0.25;
 
   auto& lim = p.server.local.teb.limits;
@@ -107,9 +96,8 @@ NavigatorParams NavigatorParams::for_robot(const RobotProfile& robot) {
   p.brake_from_last_command = robot.kind == "walker";
   // A walker's 0.5 m-obstacle tracks keep their size while the blob shrinks under the LiDAR's lowest
   // ring, continue when found again, and a shrunken blob's centroid counts as noisier (both opt-ins
-  // of MovingObstacleParams). Digit, seeds 1-10 on vs off: three_rooms 10 vs 7 (seeds 11-20: 7 vs
-  // 6), digit_lab_dynamic, hexagon_static, digit_lab_static 10 vs 10 (session 14). The TurtleBot3
-  // keeps both off (partial_view_noise cost it a run each in three_rooms and hexagon_dynamic).
+  // of MovingObstacleParams): fewer cube contacts for Digit in three_rooms. The TurtleBot3 keeps both
+  // off: they cost it runs (docs/closed-loop-log.md, 'Known causes of failure, measured').
   if (robot.kind == "walker") p.moving_obstacles.radius_floor = p.moving_obstacles.partial_view_noise = true;
   p.behavior_tree = config_dir() + "/behavior_trees/navigate.xml";
   return p;
