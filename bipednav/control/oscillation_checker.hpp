@@ -19,14 +19,9 @@ struct OscillationCheckerParams {
   // While less than window_s has been seen since the start (or reset), less progress is due: that
   // share of min_net_progress_m. Without it a robot that sets off at full speed with small steering
   // corrections of either sign is "oscillating" until it has covered min_net_progress_m (1.15 s at
-  // the TurtleBot3's 0.26 m/s): measured in hexagon_dynamic/turtlebot3, where TEB's yaw command
-  // flips sign every few cycles, FollowPath failed so 1.3-1.4 s after the start on seeds 2 and 5,
-  // and the recovery (Wait from 2.3 s) kept the robot in the box's lane.
-  // Off: on, hexagon_dynamic/turtlebot3 reached the goal without contact in 9 of seeds 1-10 (6
-  // failed) against 8 (5, 6) off, but three_rooms/turtlebot3 lost seed 2 (it touched a cube,
-  // clearance -0.0004 m; 8 (2, 10) against 9 (10) off); digit_lab_dynamic/turtlebot3 9 (5), /digit 10,
-  // hexagon_static/turtlebot3 10, turtlebot3_world 10 and digit_lab_static/turtlebot3 (seeds 1-7)
-  // as off; three_rooms/digit seeds 1, 2 failed as off, 3-10 not run.
+  // the TurtleBot3's 0.26 m/s), as happens in hexagon_dynamic/turtlebot3 where TEB's yaw command
+  // flips sign every few cycles. Off: it won a hexagon_dynamic run and lost a three_rooms one
+  // (docs/closed-loop-log.md, 'Parameter evidence moved from code comments').
   bool prorate_partial_window = false;
 
   void validate() const;

@@ -17,18 +17,12 @@ void ObstacleLayerParams::validate() const {
 }
 
 bool height_aware_maps_for(const RobotProfile& robot) {
-  // On for wheeled robots (TurtleBot3), off for walkers. Screened with TurtleBot3 (same sensors as
-  // Digit): on its OSCILLATION seeds of turtlebot3_world (2, 5, 10) it succeeds with a 5 s or 15 s
-  // decay; with 15 s three_rooms drops 9/10 -> 7/10 (seeds 3, 5: contacts with the moving 0.5 m
-  // cubes, whose camera marks the LiDAR passes over are kept for the lifetime), with 5 s seeds 3
-  // and 5 succeed again. Digit with 15 s: three_rooms seeds 1-4 0/4 (each reached with a cube
-  // contact; 2/4 off), so walkers keep it off. TurtleBot3, seeds 1-10 of the six scenarios
-  // (hexagon_static, hexagon_dynamic, three_rooms, digit_lab_static, digit_lab_dynamic,
-  // turtlebot3_world), off: 10 7 9 10 10 7 = 53/60; on alone: 10 10 9 10 9 10 = 58/60, but then
-  // FaultRun.StaleTimestamps ends 0.258 rad off the goal heading (0.25 allowed; LOAM's turn-onset
-  // yaw lag); on together with LoamParams::reference_from_prior_change (also diff_drive only, see
-  // NavigatorParams::for_robot): 10 8 9 10 9 10 = 56/60 (failed: hexagon_dynamic 5 timeout, 6
-  // contact; three_rooms 10, digit_lab_dynamic 5 contacts) and that fault run ends 0.026 rad off.
+  // On for wheeled robots (TurtleBot3): it keeps turtlebot3_world's low cylinders the LiDAR passes
+  // over, which ended runs in OSCILLATION. The 5 s decay, not 15 s, because camera marks of moving
+  // cubes the LiDAR passes over are kept for the lifetime. Off for walkers: Digit touched more cubes
+  // with it (15 s decay). On together with LoamParams::reference_from_prior_change (NavigatorParams::for_robot),
+  // without which a fault run ends outside the goal's heading tolerance (docs/closed-loop-log.md,
+  // 'Height-aware clearing and mark decay', 'Parameter evidence moved from code comments').
   return robot.kind == "diff_drive";
 }
 

@@ -23,8 +23,8 @@ struct RansacParams {
   // many of the finite points (every k-th input point, k = ceil(size / max_points)); PlaneFit's
   // inliers and inlier_std_m are still counted on all points. A fused frame of the TurtleBot3
   // (two depth clouds and a VLP-16 sweep) has 20k-40k points; the ground's plane needs far fewer.
-  // At 4000 (hexagon_static/turtlebot3 seed 1, 3 interleaved runs each): perception 899 -> 839 ms
-  // median, the run's outputs unchanged there (not in general: the refit plane moves slightly).
+  // Wheeled robots use 4000 (NavigatorParams::for_robot) for less perception CPU; the refit plane
+  // can move slightly (docs/closed-loop-log.md, 'Parameter evidence moved from code comments').
   std::size_t max_points = 0;
 
   void validate() const;
