@@ -13,16 +13,12 @@
 namespace bipednav::navigation {
 namespace {
 
+// Digit's velocity and acceleration limits on a 0.3 m footprint.
 RobotProfile walker() {
   RobotProfile r;
-  r.name = "walker";
   r.footprint_radius_m = 0.3;
-  r.max_vel_x_mps = 0.5;
-  r.max_vel_x_backwards_mps = 0.25;
-  r.max_vel_theta_radps = 0.6;
-  r.acc_lim_x_mps2 = 0.5;
-  r.acc_lim_theta_radps2 = 1.0;
-  r.can_rotate_in_place = true;
+  r.max_vel_x_mps = 0.5, r.max_vel_x_backwards_mps = 0.25, r.max_vel_theta_radps = 0.6;
+  r.acc_lim_x_mps2 = 0.5, r.acc_lim_theta_radps2 = 1.0;
   return r;
 }
 

@@ -101,25 +101,23 @@ struct LevelBitsets {
   }
   // OR over the (2r + 1)^2 square around each cell, separably.
   std::vector<std::uint64_t> dilate(const std::vector<std::uint64_t>& in, int r) const {
-    const int w = g.width, h = g.height;
     std::vector<std::uint64_t> tmp = zeros(), out = zeros();
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x) {
-        std::uint64_t* t = &tmp[g.index(x, y) * words];
-        for (int xx = std::max(0, x - r); xx <= std::min(w - 1, x + r); ++xx) {
-          const std::uint64_t* s = &in[g.index(xx, y) * words];
-          for (std::size_t k = 0; k < words; ++k) t[k] |= s[k];
-        }
-      }
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x) {
+    or_window(in, tmp, r, true);
+    or_window(tmp, out, r, false);
+    return out;
+  }
+  // out |= in over the 2r + 1 cells along x (along_x) or y around each cell.
+  void or_window(const std::vector<std::uint64_t>& in, std::vector<std::uint64_t>& out, int r, bool along_x) const {
+    const int n = along_x ? g.width : g.height;
+    for (int y = 0; y < g.height; ++y)
+      for (int x = 0; x < g.width; ++x) {
         std::uint64_t* o = &out[g.index(x, y) * words];
-        for (int yy = std::max(0, y - r); yy <= std::min(h - 1, y + r); ++yy) {
-          const std::uint64_t* s = &tmp[g.index(x, yy) * words];
+        const int c = along_x ? x : y;
+        for (int i = std::max(0, c - r); i <= std::min(n - 1, c + r); ++i) {
+          const std::uint64_t* s = &in[(along_x ? g.index(i, y) : g.index(x, i)) * words];
           for (std::size_t k = 0; k < words; ++k) o[k] |= s[k];
         }
       }
-    return out;
   }
 };
 
