@@ -6,6 +6,8 @@
 
 #include "bipednav/common/clock.hpp"
 #include "bipednav/common/cpu_time.hpp"
+#include "bipednav/planning/local/moving_obstacle_yield.hpp"
+#include "bipednav/planning/local/sensor_visibility.hpp"
 
 namespace bipednav::navigation {
 

@@ -16,6 +16,7 @@
 #include "bipednav/navigation/navigation_server.hpp"
 #include "bipednav/navigation/sensor_gate.hpp"
 #include "bipednav/perception/pipeline.hpp"
+#include "bipednav/planning/local/moving_obstacle_params.hpp"
 #include "bipednav/planning/local/moving_obstacles.hpp"
 
 namespace bipednav::navigation {

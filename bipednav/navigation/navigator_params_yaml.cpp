@@ -7,6 +7,9 @@
 #include <type_traits>
 #include <vector>
 
+#include "bipednav/planning/local/moving_obstacle_params.hpp"
+#include "bipednav/planning/local/moving_obstacle_yield.hpp"
+
 namespace bipednav::navigation {
 
 namespace {

@@ -9,6 +9,7 @@
 #include "bipednav/common/pose2.hpp"
 #include "bipednav/common/twist.hpp"
 #include "bipednav/mapping/costmap2d.hpp"
+#include "bipednav/planning/local/moving_obstacle_yield.hpp"
 #include "bipednav/planning/local/moving_obstacles.hpp"
 #include "bipednav/planning/local/teb_params.hpp"
 #include "bipednav/planning/local/tracker_params.hpp"

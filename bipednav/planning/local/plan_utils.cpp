@@ -216,4 +216,12 @@ bool OscillationDetector::oscillating() const {
   return small_mean && active && (flips_v >= 3 || flips_w >= 3);
 }
 
+// The distance from p to the segment [a, b].
+double point_segment_distance(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  const Eigen::Vector2d ab = b - a;
+  const double len2 = ab.squaredNorm();
+  const double s = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+  return (p - (a + s * ab)).norm();
+}
+
 }  // namespace bipednav::planning::local

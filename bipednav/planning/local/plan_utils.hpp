@@ -72,6 +72,9 @@ GoalApproach approach_goal(const Pose2& T_map_base, const Pose2& goal, double xy
                            double rotate_gain, double max_vel_theta_radps, double release_m = 0.0,
                            bool* holding = nullptr);
 
+// The distance from p to the segment [a, b].
+double point_segment_distance(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b);
+
 // Detects oscillation in the command history: the mean velocities stay small while the yaw rate
 // (or the forward speed) keeps changing sign.
 class OscillationDetector {

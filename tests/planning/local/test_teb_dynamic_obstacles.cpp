@@ -11,7 +11,9 @@
 #include <memory>
 #include <random>
 
+#include "bipednav/planning/local/moving_obstacle_yield.hpp"
 #include "bipednav/planning/local/moving_obstacles.hpp"
+#include "bipednav/planning/local/obstacle_blobs.hpp"
 #include "bipednav/planning/local/teb_lm.hpp"
 #include "bipednav/planning/local/teb_optimizer.hpp"
 #include "bipednav/planning/local/teb_planner.hpp"

@@ -1,0 +1,52 @@
+#include "bipednav/planning/local/static_structure.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace bipednav::planning::local {
+
+namespace {
+
+constexpr double kNotLethal = std::numeric_limits<double>::infinity();
+
+}  // namespace
+
+void StaticStructure::update(const mapping::Costmap2D& occupancy, double stamp_s) {
+  if (!std::isfinite(stamp_s) || stamp_s <= stamp_s_) return;
+  const mapping::GridGeometry& g = occupancy.geometry();
+  if (since_.size() != g.size() || g != geometry_) {
+    geometry_ = g;
+    since_.assign(g.size(), kNotLethal);
+  }
+  const auto& cost = occupancy.data();
+  for (std::size_t i = 0; i < since_.size(); ++i) {
+    if (cost[i] != mapping::kLethal)
+      since_[i] = kNotLethal;
+    else if (since_[i] == kNotLethal)
+      since_[i] = stamp_s;
+  }
+  stamp_s_ = stamp_s;
+}
+
+void StaticStructure::clear() {
+  since_.clear();
+  geometry_ = {};
+  stamp_s_ = -1e300;
+}
+
+bool StaticStructure::near(const Eigen::Vector2d& p, double margin_m, double min_age_s) const {
+  if (since_.empty() || !p.allFinite()) return false;
+  const auto c = geometry_.world_to_cell_unbounded(p.x(), p.y());
+  if (!c) return false;
+  const int k = static_cast<int>(std::ceil(margin_m / geometry_.resolution_m - 1e-9));
+  const double latest = stamp_s_ - min_age_s;
+  for (int dy = -k; dy <= k; ++dy) {
+    for (int dx = -k; dx <= k; ++dx) {
+      const int x = c->x + dx, y = c->y + dy;
+      if (geometry_.in_bounds(x, y) && since_[geometry_.index(x, y)] <= latest) return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace bipednav::planning::local

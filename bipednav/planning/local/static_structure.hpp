@@ -1,0 +1,29 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "bipednav/mapping/costmap2d.hpp"
+
+namespace bipednav::planning::local {
+
+// Long-standing obstacles of an occupancy grid (kLethal cells, e.g. the global map's occupancy):
+// for every cell, since when it has been lethal without interruption, as of the latest update.
+class StaticStructure {
+ public:
+  // The occupancy at stamp_s (times that do not advance are ignored). A grid of another geometry
+  // starts over.
+  void update(const mapping::Costmap2D& occupancy, double stamp_s);
+  void clear();
+  bool empty() const { return since_.empty(); }
+  // Whether a cell within margin_m of p (map frame) had been lethal for at least min_age_s at the
+  // latest update.
+  bool near(const Eigen::Vector2d& p, double margin_m, double min_age_s) const;
+
+ private:
+  mapping::GridGeometry geometry_;
+  std::vector<double> since_;  // +infinity: not lethal
+  double stamp_s_ = -1e300;
+};
+
+}  // namespace bipednav::planning::local
