@@ -42,14 +42,8 @@ struct DynamicAvoidanceParams {
   // largest gap among those leaving equally soon or not at all. Off: the largest gap alone, which
   // may back off down the obstacle's lane ahead of it instead of stepping out of it
   // (InAMoversLaneExitSweptCorridorLeavesTheLane).
-  // Off: three_rooms/digit seeds 1-10 (5c21777) 6/10 on (6, 8, 9, 10 touch cube_2) against 7/10 off
-  // (3, 5, 10 touch cube_2); on with MovingObstacleParams::partial_view_noise and keep_largest_radius
-  // 7/10 (2, 3, 6); other pairs not measured. Off, seeds 3 and 5 never yield before the contact:
-  // cube_2's track is lost ~6 s before (its blob shrinks as it passes under the LiDAR's lowest ring,
-  // the velocity follows the receding centroid, +x instead of -y, and the track is dropped),
-  // found again <1.5 s before the contact with too few hits or a partial view's radius; seed 10
-  // yields in the lane with the free candidates backing off, which the lagging walker does not
-  // follow before a wrong track of cube_1 behind it makes every candidate run into.
+  // Off: it did not gain on three_rooms/digit (evidence in docs/closed-loop-log.md, 'Parameter
+  // evidence moved from code comments', DynamicAvoidanceParams).
   bool exit_swept_corridor = false;
   // An obstacle's prediction turns back (the velocity reversed) where its leading edge, moving on
   // at constant velocity, would reach a lethal cell of the costmap (searched along the velocity from
@@ -58,9 +52,8 @@ struct DynamicAvoidanceParams {
   // at the end of its lane (y = -2.3, 0.35 m from the wall's face) at 92 s while Digit crosses the
   // lane 1 m in front of it; predicted on into the wall, it left the robot's path free until the
   // turn, and yielding began 0.7 s after it, too late for the walker to leave the lane.
-  // Off: on for Digit (walker defaults, main fec66ac + this), seeds 1-20: three_rooms 17/20 as off
-  // but other seeds: 15, 18, 19 (cube_1, cube_1, cube_2 contacts off) succeed, 3 (NO_PATH_FOUND
-  // after touching cube_2), 4 and 9 (cube_2) fail; digit_lab_dynamic 10/10 as off (session 15).
+  // Off: it moved Digit's three_rooms failures to other seeds without fewer of them (evidence as
+  // above).
   bool reverse_at_structure = false;
 
   void validate() const;
