@@ -83,6 +83,90 @@ Snapshot snapshot(double t, const navigation::Navigator& nav, const sim::Simulat
           sim.actor_poses()};
 }
 
+// What run_scenario keeps of the loop after each step: the travelled path, the periodic trace and
+// the snapshots at replanning moments.
+struct StepRecorder {
+  const RunOptions& o;
+  Pose2 last;
+  Path last_path;
+  std::uint64_t last_path_version = 0;  // the navigator's global path version last compared
+  double next_trace = 0.0;
+
+  // Returns true when it took a periodic trace sample.
+  bool record(const sim::Simulation& sim, const navigation::Navigator& nav, const Twist& cmd, RunResult& out) {
+    out.path_length_m += distance(last, sim.true_pose());
+    last = sim.true_pose();
+    bool sampled = false;
+    if (sim.now_s() + 1e-9 >= next_trace) {
+      next_trace += o.trace_period_s;
+      out.trace.push_back({sim.now_s(), sim.true_pose(), nav.pose(), cmd, nav.status().active_leaf, sim.actor_poses()});
+      sampled = true;
+    }
+    // An unchanged path compares as it did last time (not departed: a departed path becomes last_path).
+    if (nav.global_path_version() != last_path_version) {
+      last_path_version = nav.global_path_version();
+      if (path_departs(last_path, nav.global_path())) {
+        const bool spaced = out.snapshots.empty() || sim.now_s() - out.snapshots.back().t_s >= o.snapshot_spacing_s;
+        if (out.snapshots.size() < o.max_snapshots && !last_path.empty() && spaced)
+          out.snapshots.push_back(snapshot(sim.now_s(), nav, sim));
+        last_path = nav.global_path();
+      }
+    }
+    return sampled;
+  }
+};
+
+// Process CPU per stage (RunResult::stage_cpu_ms) from the simulator's and the navigator's
+// counters and the runner's clock readings: the run's start, the loop's start and end, and the
+// CPU spent inside Simulation::step.
+void record_stage_cpu(RunResult& out, const sim::Simulation& sim, const navigation::Navigator& nav, double cpu_start_ms,
+                      double cpu_loop_ms, double cpu_end_ms, double sim_ms) {
+  const sim::SimulationStats& ss = sim.stats();
+  const navigation::NavigatorCpu& nc = nav.cpu();
+  auto& st = out.stage_cpu_ms;
+  st["setup"] = cpu_loop_ms - cpu_start_ms;
+  st["sim_lidar"] = ss.lidar_cpu_ms;
+  st["sim_depth"] = ss.depth_cpu_ms;
+  st["sim_rest"] = std::max(0.0, sim_ms - ss.lidar_cpu_ms - ss.depth_cpu_ms);
+  st["sensor_gate"] = nc.sensor_gate_ms;
+  st["localization"] = nc.localization_ms;
+  st["perception"] = nc.perception_ms;
+  st["local_map"] = nc.local_map_ms;
+  st["global_map"] = nc.global_map_ms;
+  st["global_planner"] = nc.global_planner_ms;
+  st["local_planner"] = nc.local_planner_ms;
+  st["control"] =
+      std::max(0.0, nc.control_ms - nc.global_planner_ms - nc.local_planner_ms);  // tree, checks, recoveries
+  // Navigator time outside its stages (building the perception input) goes with the runner.
+  st["runner"] = std::max(0.0, (cpu_end_ms - cpu_loop_ms) - sim_ms - nc.total_ms());
+}
+
+// The run's outcome: collisions, clearance, the navigator's counts and result, the true goal error
+// and success (see run_scenario).
+void record_outcome(RunResult& out, const sim::Scenario& scenario, const sim::Simulation& sim,
+                    const navigation::Navigator& nav) {
+  out.first_collision = sim.first_collision();
+  out.collisions = out.first_collision ? 1 : 0;
+  out.min_clearance_m = sim.min_clearance_m();
+  out.replans = nav.replans();
+  out.recoveries = nav.recoveries();
+  out.recovery_log = nav.recovery_log();
+  out.final_state = snapshot(sim.now_s(), nav, sim);
+  out.localization_error_m = distance(nav.pose(), sim.true_pose());
+  const auto& status = nav.status();
+  out.outcome = status.state == navigation::NavState::ACTIVE
+                    ? Result{Outcome::CTRL_PAT_EXCEEDED, "time limit reached before the goal"}
+                    : status.result;
+  if (!scenario.goals.empty()) {
+    const Pose2 goal = scenario.goals.back().pose;
+    out.goal_error_m = distance(goal, sim.true_pose());
+    out.goal_error_rad = std::abs(angle_diff(goal.theta, sim.true_pose().theta));
+  }
+  out.success = status.state == navigation::NavState::SUCCEEDED && out.collisions == 0 &&
+                out.goal_error_m <= 1.25 * scenario.goal_tolerance_m &&
+                out.goal_error_rad <= 1.25 * scenario.goal_tolerance_rad;
+}
+
 }  // namespace
 
 RunResult run_scenario(const sim::Scenario& scenario, const RunOptions& o) {
@@ -110,10 +194,7 @@ RunResult run_scenario(const sim::Scenario& scenario, const RunOptions& o) {
   const std::vector<sim::TimedGoal> goals = sim::goals_with_floods(scenario.goals, faults, scenario.bounds, sp.seed);
   std::size_t next_goal = 0;
   Twist cmd;
-  Pose2 last = sim.true_pose();
-  Path last_path;
-  std::uint64_t last_path_version = 0;  // the navigator's global path version last compared
-  double next_trace = 0.0;
+  StepRecorder recorder{o, sim.true_pose(), {}};
   Stopwatch wall;
   const double cpu_loop_ms = process_cpu_ms();
   double sim_ms = 0.0;
@@ -129,23 +210,7 @@ RunResult run_scenario(const sim::Scenario& scenario, const RunOptions& o) {
     cmd = nav.tick(frame);
     sim_ms += t1_ms - t0_ms;
     if (o.on_step) o.on_step(sim, frame, nav, cmd);
-    out.path_length_m += distance(last, sim.true_pose());
-    last = sim.true_pose();
-    if (sim.now_s() + 1e-9 >= next_trace) {
-      next_trace += o.trace_period_s;
-      out.trace.push_back({sim.now_s(), sim.true_pose(), nav.pose(), cmd, nav.status().active_leaf, sim.actor_poses()});
-      bar.update(static_cast<std::size_t>(sim.now_s() * 10));
-    }
-    // An unchanged path compares as it did last time (not departed: a departed path becomes last_path).
-    if (nav.global_path_version() != last_path_version) {
-      last_path_version = nav.global_path_version();
-      if (path_departs(last_path, nav.global_path())) {
-        const bool spaced = out.snapshots.empty() || sim.now_s() - out.snapshots.back().t_s >= o.snapshot_spacing_s;
-        if (out.snapshots.size() < o.max_snapshots && !last_path.empty() && spaced)
-          out.snapshots.push_back(snapshot(sim.now_s(), nav, sim));
-        last_path = nav.global_path();
-      }
-    }
+    if (recorder.record(sim, nav, cmd, out)) bar.update(static_cast<std::size_t>(sim.now_s() * 10));
     sim.recycle(std::move(frame));  // its clouds' buffers hold the next frames' clouds
     const bool more_goals = next_goal < goals.size();
     const auto state = nav.status().state;
@@ -161,47 +226,11 @@ RunResult run_scenario(const sim::Scenario& scenario, const RunOptions& o) {
   const double cpu_end_ms = process_cpu_ms();
   out.cpu_s = (cpu_end_ms - cpu_start_ms) / 1000.0;
   out.cpu_real_time_factor = out.cpu_s > 0 ? out.time_s / out.cpu_s : 0.0;
-  const sim::SimulationStats& ss = sim.stats();
-  out.depth_images = ss.depth_images;
+  out.depth_images = sim.stats().depth_images;
   out.depth_images_unused = nav.depth_frames_skipped();
-  const navigation::NavigatorCpu& nc = nav.cpu();
-  auto& st = out.stage_cpu_ms;
-  st["setup"] = cpu_loop_ms - cpu_start_ms;
-  st["sim_lidar"] = ss.lidar_cpu_ms;
-  st["sim_depth"] = ss.depth_cpu_ms;
-  st["sim_rest"] = std::max(0.0, sim_ms - ss.lidar_cpu_ms - ss.depth_cpu_ms);
-  st["sensor_gate"] = nc.sensor_gate_ms;
-  st["localization"] = nc.localization_ms;
-  st["perception"] = nc.perception_ms;
-  st["local_map"] = nc.local_map_ms;
-  st["global_map"] = nc.global_map_ms;
-  st["global_planner"] = nc.global_planner_ms;
-  st["local_planner"] = nc.local_planner_ms;
-  st["control"] =
-      std::max(0.0, nc.control_ms - nc.global_planner_ms - nc.local_planner_ms);  // tree, checks, recoveries
-  // Navigator time outside its stages (building the perception input) goes with the runner.
-  st["runner"] = std::max(0.0, (cpu_end_ms - cpu_loop_ms) - sim_ms - nc.total_ms());
-  out.first_collision = sim.first_collision();
-  out.collisions = out.first_collision ? 1 : 0;
-  out.min_clearance_m = sim.min_clearance_m();
-  out.replans = nav.replans();
-  out.recoveries = nav.recoveries();
-  out.recovery_log = nav.recovery_log();
+  record_stage_cpu(out, sim, nav, cpu_start_ms, cpu_loop_ms, cpu_end_ms, sim_ms);
   out.faults = injector.counters();
-  out.final_state = snapshot(sim.now_s(), nav, sim);
-  out.localization_error_m = distance(nav.pose(), sim.true_pose());
-  const auto& status = nav.status();
-  out.outcome = status.state == navigation::NavState::ACTIVE
-                    ? Result{Outcome::CTRL_PAT_EXCEEDED, "time limit reached before the goal"}
-                    : status.result;
-  if (!scenario.goals.empty()) {
-    const Pose2 goal = scenario.goals.back().pose;
-    out.goal_error_m = distance(goal, sim.true_pose());
-    out.goal_error_rad = std::abs(angle_diff(goal.theta, sim.true_pose().theta));
-  }
-  out.success = status.state == navigation::NavState::SUCCEEDED && out.collisions == 0 &&
-                out.goal_error_m <= 1.25 * scenario.goal_tolerance_m &&
-                out.goal_error_rad <= 1.25 * scenario.goal_tolerance_rad;
+  record_outcome(out, scenario, sim, nav);
   return out;
 }
 
