@@ -129,21 +129,19 @@ ActionStep NavigationServer::exe_path(const Path& path, bool first) {
 }
 
 void NavigationServer::begin_recovery(const char* name) {
-  if (recovery_running_) end_recovery(Result{Outcome::RECOVERY_CANCELED, std::string("superseded by ") + name});
+  if (recovery_running()) end_recovery(Result{Outcome::RECOVERY_CANCELED, std::string("superseded by ") + name});
   ++recoveries_;
   if (recovery_log_.size() == kRecoveryLogSize) recovery_log_.erase(recovery_log_.begin());
   recovery_log_.push_back({name, view_.now_s, -1.0, {}});
-  recovery_running_ = true;
   recovery_start_pose_ = view_.pose;
   recovery_start_s_ = view_.now_s;
 }
 
 Result NavigationServer::end_recovery(Result result) {
-  if (recovery_running_ && !recovery_log_.empty()) {
+  if (recovery_running()) {
     recovery_log_.back().end_s = view_.now_s;
     recovery_log_.back().result = result;
   }
-  recovery_running_ = false;
   return result;
 }
 
@@ -154,12 +152,11 @@ ActionStep NavigationServer::end_recovery(ActionStep step) {
 
 void NavigationServer::cancel_recovery() {
   cmd_ = {};
-  if (recovery_running_) end_recovery(Result{Outcome::RECOVERY_CANCELED, "halted by the behavior tree"});
+  if (recovery_running()) end_recovery(Result{Outcome::RECOVERY_CANCELED, "halted by the behavior tree"});
 }
 
 Twist NavigationServer::ramp_to(const Twist& target) const {
-  return control::limit_velocity(target, view_.velocity.is_finite() ? view_.velocity : Twist{},
-                                 std::max(0.0, view_.period_s), limits_);
+  return control::limit_velocity(target, view_.velocity, view_.period_s, limits_);
 }
 
 ActionStep NavigationServer::back_up(double distance_m, double speed_mps, bool first) {

@@ -121,6 +121,8 @@ class NavigationServer {
 
  private:
   void make_global_planner(bool relaxed);
+  // The newest record is still open (end_s < 0).
+  bool recovery_running() const { return !recovery_log_.empty() && recovery_log_.back().end_s < 0.0; }
   void begin_recovery(const char* name);
   Result end_recovery(Result result);  // closes the running record; returns `result`
   ActionStep end_recovery(ActionStep step);
@@ -156,7 +158,6 @@ class NavigationServer {
   double rotated_rad_ = 0.0;
   double last_yaw_ = 0.0;
   std::vector<RecoveryRecord> recovery_log_;
-  bool recovery_running_ = false;
 };
 
 }  // namespace bipednav::navigation
