@@ -122,7 +122,7 @@ void print_summary(const runner::RunResult& r) {
     std::vector<std::pair<std::string, int>> counts;
     for (const auto& rec : r.recovery_log) {
       const std::string key =
-          rec.name + " " + (rec.end_s < 0.0 ? std::string("RUNNING") : std::string(outcome_name(rec.result.outcome)));
+          rec.name + " " + (rec.running() ? std::string("RUNNING") : std::string(outcome_name(rec.result.outcome)));
       auto it = std::find_if(counts.begin(), counts.end(), [&](const auto& c) { return c.first == key; });
       if (it == counts.end())
         counts.emplace_back(key, 1);

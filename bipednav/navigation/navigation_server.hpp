@@ -60,6 +60,8 @@ struct RecoveryRecord {
   double start_s = 0.0;
   double end_s = -1.0;  // -1 while it runs
   Result result;        // SUCCESS or a RECOVERY_* outcome (RECOVERY_CANCELED when halted)
+
+  bool running() const { return end_s < 0.0; }
 };
 
 // One step of a long action: RUNNING with a command, or finished with an outcome.
@@ -121,8 +123,7 @@ class NavigationServer {
 
  private:
   void make_global_planner(bool relaxed);
-  // The newest record is still open (end_s < 0).
-  bool recovery_running() const { return !recovery_log_.empty() && recovery_log_.back().end_s < 0.0; }
+  bool recovery_running() const { return !recovery_log_.empty() && recovery_log_.back().running(); }
   void begin_recovery(const char* name);
   Result end_recovery(Result result);  // closes the running record; returns `result`
   ActionStep end_recovery(ActionStep step);
