@@ -103,7 +103,10 @@ nlohmann::json to_json(const runner::RunResult& r) {
   const sim::FaultCounters& f = r.faults;
   j["faults"] = {{"sweeps_dropped", f.sweeps_dropped},     {"depth_points_nan", f.depth_points_nan},
                  {"odometry_jumps", f.odometry_jumps},     {"odometry_slipped", f.odometry_slipped},
-                 {"messages_delayed", f.messages_delayed}, {"messages_reordered", f.messages_reordered}};
+                 {"messages_delayed", f.messages_delayed}, {"messages_reordered", f.messages_reordered},
+                 {"commands_dropped", f.commands_dropped}};
+  j["watchdog_stops"] = r.watchdog_stops;
+  j["watchdog_stopped_s"] = r.watchdog_stopped_s;
   return j;
 }
 
@@ -133,6 +136,9 @@ void print_summary(const runner::RunResult& r) {
     for (const auto& [key, n] : counts) line += (line.empty() ? "" : ", ") + key + " x" + std::to_string(n);
     std::printf("  recovery outcomes: %s\n", line.c_str());
   }
+  if (r.watchdog_stops > 0)
+    std::printf("  walking controller's watchdog stopped the robot %zu time(s), %.1f s in all (no commands)\n",
+                r.watchdog_stops, r.watchdog_stopped_s);
   std::string stages;
   for (const auto& [name, ms] : r.stage_cpu_ms)
     stages += (stages.empty() ? "" : ", ") + name + " " + std::to_string(static_cast<long>(std::lround(ms)));
@@ -463,7 +469,8 @@ void add_run_commands(CLI::App& app, CLI::App& bench) {
   run->add_option(
       "--fault", args->faults,
       "Inject a fault: type:start_s:duration_s[:value] (lidar_dropout, depth_nan_burst, localization_jump "
-      "(value dx,dy,dyaw), odometry_slip, stale_timestamps, out_of_order_timestamps, goal_flood); repeatable");
+      "(value dx,dy,dyaw), odometry_slip, stale_timestamps, out_of_order_timestamps, goal_flood, command_dropout); "
+      "repeatable");
   run->add_option("--bag", args->bag, "Record the run as a rosbag (ROS build only)");
   run->add_option("--replay", args->replay, "Write a self-contained HTML replay of the run to this file");
   run->add_option("--trace", args->trace,

@@ -116,6 +116,36 @@ struct StepRecorder {
   }
 };
 
+// The navigator's command on its way to the simulated robot: the link (which a command_dropout
+// fault cuts) and the walking controller's watchdog in front of the robot model.
+class CommandLink {
+ public:
+  explicit CommandLink(const control::StopOnSilenceParams& params) : watchdog_(gait_, params) {}
+  CommandLink(const CommandLink&) = delete;
+  CommandLink& operator=(const CommandLink&) = delete;
+
+  void send(const Twist& cmd, double stamp_s, sim::FaultInjector& faults) {
+    if (!faults.drops_command(stamp_s)) watchdog_.send(cmd, stamp_s);
+  }
+  // The command the robot model executes during the step of step_s from now_s.
+  const Twist& to_robot(double now_s, double step_s) {
+    const bool was_stopped = watchdog_.stopped();
+    if (watchdog_.tick(now_s)) {
+      stops_ += was_stopped ? 0 : 1;
+      stopped_s_ += step_s;
+    }
+    return gait_.last();
+  }
+  std::size_t stops() const { return stops_; }
+  double stopped_s() const { return stopped_s_; }
+
+ private:
+  control::GaitCommandBuffer gait_;
+  control::StopOnSilence watchdog_;
+  std::size_t stops_ = 0;
+  double stopped_s_ = 0.0;
+};
+
 // Process CPU per stage (RunResult::stage_cpu_ms) from the simulator's and the navigator's
 // counters and the runner's clock readings: the run's start, the loop's start and end, and the
 // CPU spent inside Simulation::step.
@@ -194,6 +224,7 @@ RunResult run_scenario(const sim::Scenario& scenario, const RunOptions& o) {
   const std::vector<sim::TimedGoal> goals = sim::goals_with_floods(scenario.goals, faults, scenario.bounds, sp.seed);
   std::size_t next_goal = 0;
   Twist cmd;
+  CommandLink link(o.command_watchdog);
   StepRecorder recorder{o, sim.true_pose(), {}};
   Stopwatch wall;
   const double cpu_loop_ms = process_cpu_ms();
@@ -205,9 +236,11 @@ RunResult run_scenario(const sim::Scenario& scenario, const RunOptions& o) {
       nav.set_goal(goals[next_goal].pose);
     }
     const double t0_ms = process_cpu_ms();
-    SensorFrame frame = faults.empty() ? sim.step(cmd) : injector.apply(sim.step(cmd));
+    const Twist& to_robot = link.to_robot(sim.now_s(), sim.params().step_s);
+    SensorFrame frame = faults.empty() ? sim.step(to_robot) : injector.apply(sim.step(to_robot));
     const double t1_ms = process_cpu_ms();
     cmd = nav.tick(frame);
+    link.send(cmd, sim.now_s(), injector);
     sim_ms += t1_ms - t0_ms;
     if (o.on_step) o.on_step(sim, frame, nav, cmd);
     if (recorder.record(sim, nav, cmd, out)) bar.update(static_cast<std::size_t>(sim.now_s() * 10));
@@ -230,6 +263,8 @@ RunResult run_scenario(const sim::Scenario& scenario, const RunOptions& o) {
   out.depth_images_unused = nav.depth_frames_skipped();
   record_stage_cpu(out, sim, nav, cpu_start_ms, cpu_loop_ms, cpu_end_ms, sim_ms);
   out.faults = injector.counters();
+  out.watchdog_stops = link.stops();
+  out.watchdog_stopped_s = link.stopped_s();
   record_outcome(out, scenario, sim, nav);
   return out;
 }

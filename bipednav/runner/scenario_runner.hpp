@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "bipednav/control/gait_command.hpp"
 #include "bipednav/navigation/navigator.hpp"
 #include "bipednav/sim/fault_injection.hpp"
 #include "bipednav/sim/scenario.hpp"
@@ -27,6 +28,10 @@ struct RunOptions {
   std::size_t max_snapshots = 3;       // figure panels at replanning moments
   double snapshot_spacing_s = 5.0;     // ... at least this far apart
   std::vector<sim::Fault> faults;      // injected in addition to the scenario's own
+  // The walking controller's watchdog: the navigator's command reaches the simulated robot through
+  // control::StopOnSilence, as on the robot and in the ROS simulator node, so a lost command link
+  // (fault command_dropout) stops the robot after timeout_s.
+  control::StopOnSilenceParams command_watchdog;
   // A navigation parameters file (navigator_params_yaml.hpp) overlaid on the robot's defaults before
   // localization, local_planner and global_planner (empty: none). The scenario's goal tolerances win.
   std::filesystem::path params_file;
@@ -86,6 +91,10 @@ struct RunResult {
   // render_unused_depth off) or dropped after (on, or with faults).
   std::uint64_t depth_images = 0, depth_images_unused = 0;
   sim::FaultCounters faults;  // what the fault injector did
+  // How often the walking controller's watchdog stopped the robot for want of commands, and the
+  // simulated time it held it stopped.
+  std::size_t watchdog_stops = 0;
+  double watchdog_stopped_s = 0.0;
   std::vector<TraceSample> trace;
   std::vector<Snapshot> snapshots;
   Snapshot final_state;
@@ -104,7 +113,8 @@ mapping::GridGeometry global_geometry_for(const sim::Scenario& scenario, double 
 bool path_departs(const Path& before, const Path& after, double limit_m = 0.5);
 
 // Runs a scenario closed-loop: the simulator's sensor frames feed the Navigator (through the
-// fault injector when the scenario or the options name faults), its command drives the simulated robot; goals are
+// fault injector when the scenario or the options name faults), its command drives the simulated robot
+// (through the walking controller's watchdog, RunOptions::command_watchdog); goals are
 // handed over at their times; the run ends when the last goal succeeded or failed, or at the time limit. Success = the
 // last goal reached (by the navigator, and within 1.25 times the scenario's tolerances by the true
 // pose, which leaves room for the localization error) with zero collisions.

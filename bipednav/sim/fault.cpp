@@ -10,7 +10,7 @@
 namespace bipednav::sim {
 namespace {
 
-constexpr std::array<std::pair<FaultType, const char*>, 7> kNames{{
+constexpr std::array<std::pair<FaultType, const char*>, 8> kNames{{
     {FaultType::LIDAR_DROPOUT, "lidar_dropout"},
     {FaultType::DEPTH_NAN_BURST, "depth_nan_burst"},
     {FaultType::LOCALIZATION_JUMP, "localization_jump"},
@@ -18,6 +18,7 @@ constexpr std::array<std::pair<FaultType, const char*>, 7> kNames{{
     {FaultType::STALE_TIMESTAMPS, "stale_timestamps"},
     {FaultType::OUT_OF_ORDER_TIMESTAMPS, "out_of_order_timestamps"},
     {FaultType::GOAL_FLOOD, "goal_flood"},
+    {FaultType::COMMAND_DROPOUT, "command_dropout"},
 }};
 
 std::vector<double> split_numbers(const std::string& text, char sep, const std::string& what) {

@@ -20,6 +20,7 @@ enum class FaultType {
   STALE_TIMESTAMPS,         // sensor data arrives stamped `delay_s` in the past
   OUT_OF_ORDER_TIMESTAMPS,  // every second message of a source is stamped before the previous one
   GOAL_FLOOD,               // `goal_count` random goals, then the scenario's goal again
+  COMMAND_DROPOUT,          // the walking controller receives no velocity commands during the fault
 };
 
 const char* fault_type_name(FaultType t);

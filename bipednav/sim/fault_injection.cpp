@@ -49,6 +49,12 @@ bool FaultInjector::any_active(double t_s) const {
   return std::any_of(faults_.begin(), faults_.end(), [&](const Fault& f) { return f.active_at(t_s); });
 }
 
+bool FaultInjector::drops_command(double t_s) {
+  if (!active(FaultType::COMMAND_DROPOUT, t_s)) return false;
+  ++counters_.commands_dropped;
+  return true;
+}
+
 void FaultInjector::corrupt_odometry(Odometry& odom) {
   const Pose2 truth = odom.T_odom_base;
   if (!last_true_odom_) {

@@ -20,6 +20,7 @@ std::vector<TimedGoal> goals_with_floods(const std::vector<TimedGoal>& goals, co
 struct FaultCounters {
   std::size_t sweeps_dropped = 0, depth_points_nan = 0, odometry_jumps = 0, odometry_slipped = 0;
   std::size_t messages_delayed = 0, messages_reordered = 0;
+  std::size_t commands_dropped = 0;
 };
 
 // Applies the sensor faults to each simulator frame before the navigator sees it.
@@ -28,6 +29,9 @@ class FaultInjector {
   FaultInjector(std::vector<Fault> faults, std::uint64_t seed);
 
   SensorFrame apply(SensorFrame frame);
+  // Whether a velocity command sent at t_s is lost on its way to the walking controller
+  // (COMMAND_DROPOUT); counts the lost ones.
+  bool drops_command(double t_s);
   const FaultCounters& counters() const { return counters_; }
   bool any_active(double t_s) const;
 

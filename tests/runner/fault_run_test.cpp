@@ -82,6 +82,27 @@ TEST(FaultRun, StaleTimestampsStopTheRobotUntilDataIsFreshAgain) {
   EXPECT_EQ(max_speed_between(r, 6.8, 9.0), 0.0);
 }
 
+// The link from the navigator to the walking controller cut for 3 s: the controller's watchdog
+// stops the robot 0.5 s into the silence and the navigator's commands move it again afterwards.
+TEST(FaultRun, CommandDropoutStopsTheRobotByTheWalkingControllersWatchdog) {
+  const auto r = run_with("hexagon_static", "command_dropout:6:3");
+  expect_safe_success(r, "command dropout");
+  EXPECT_GE(r.faults.commands_dropped, 290u);  // 3 s of 10 ms steps
+  EXPECT_EQ(r.watchdog_stops, 1u);
+  EXPECT_NEAR(r.watchdog_stopped_s, 2.5, 0.05);
+  EXPECT_GT(max_speed_between(r, 6.8, 9.0), 0.0);  // the navigator went on commanding
+  // The robot stands still once it has braked (TurtleBot3: 0.26 m/s at 0.5 m/s^2 and more).
+  const runner::TraceSample* a = nullptr;
+  const runner::TraceSample* b = nullptr;
+  for (const auto& s : r.trace) {
+    if (!a && s.t_s >= 7.3) a = &s;
+    if (s.t_s <= 8.95) b = &s;
+  }
+  ASSERT_TRUE(a && b && b->t_s > a->t_s + 1.0);
+  EXPECT_LT(distance(a->true_pose, b->true_pose), 1e-6);
+  EXPECT_LT(std::abs(a->true_pose.theta - b->true_pose.theta), 1e-6);
+}
+
 TEST(FaultRun, OutOfOrderTimestampsAreDropped) {
   const auto r = run_with("hexagon_static", "out_of_order_timestamps:5:4");
   expect_safe_success(r, "out-of-order timestamps");

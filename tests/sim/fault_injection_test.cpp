@@ -118,6 +118,20 @@ TEST(FaultInjection, GoalFloodGivesRandomGoalsThenTheGoalInForceAgain) {
   EXPECT_EQ(goals_with_floods(goals, {flood}, b, 4)[3].pose.x, out[3].pose.x);  // seeded
 }
 
+TEST(FaultInjection, CommandDropoutLosesTheCommandsSentWhileItLasts) {
+  FaultInjector inj({fault(FaultType::COMMAND_DROPOUT, 2.0, 1.5)}, 1);
+  EXPECT_FALSE(inj.drops_command(1.99));
+  EXPECT_TRUE(inj.drops_command(2.0));
+  EXPECT_TRUE(inj.drops_command(3.49));
+  EXPECT_FALSE(inj.drops_command(3.5));
+  EXPECT_EQ(inj.counters().commands_dropped, 2u);
+  const SensorFrame f = inj.apply(frame_at(2.5));  // the sensors are untouched
+  ASSERT_TRUE(f.lidar.has_value());
+  EXPECT_EQ(f.lidar->points.size(), 10u);
+  EXPECT_EQ(parse_fault("command_dropout:1:2").type, FaultType::COMMAND_DROPOUT);
+  EXPECT_THROW(parse_fault("command_dropout:1:2:3"), Error);  // takes no value
+}
+
 TEST(FaultInjection, ParsesSpecsAndRejectsBadOnes) {
   const Fault j = parse_fault("localization_jump:4:1:0.5,0,0.1");
   EXPECT_EQ(j.type, FaultType::LOCALIZATION_JUMP);
