@@ -38,7 +38,7 @@ NavigationServer::NavigationServer(ServerParams params, RobotProfile robot, mapp
                                    mapping::LocalCostmap& local)
     : params_(std::move(params)),
       robot_(std::move(robot)),
-      limits_(control::VelocityLimits::from_profile(robot_)),
+      limits_(VelocityLimits::from_profile(robot_)),
       global_(global),
       local_(local),
       goal_checker_(params_.goal),
@@ -156,7 +156,7 @@ void NavigationServer::cancel_recovery() {
 }
 
 Twist NavigationServer::ramp_to(const Twist& target) const {
-  return control::limit_velocity(target, view_.velocity, view_.period_s, limits_);
+  return limit_velocity(target, view_.velocity, view_.period_s, limits_);
 }
 
 ActionStep NavigationServer::back_up(double distance_m, double speed_mps, bool first) {

@@ -8,10 +8,10 @@
 #include "bipednav/common/path.hpp"
 #include "bipednav/common/robot_profile.hpp"
 #include "bipednav/common/twist.hpp"
+#include "bipednav/common/velocity_limits.hpp"
 #include "bipednav/control/goal_checker.hpp"
 #include "bipednav/control/oscillation_checker.hpp"
 #include "bipednav/control/progress_checker.hpp"
-#include "bipednav/control/velocity_limiter.hpp"
 #include "bipednav/mapping/global_costmap.hpp"
 #include "bipednav/mapping/local_costmap.hpp"
 #include "bipednav/planning/global/global_planner.hpp"
@@ -50,7 +50,7 @@ struct RobotView {
   Pose2 pose;      // T_map_base
   Twist velocity;  // base frame
   // The control period: the recoveries' commands change by at most the robot's acceleration
-  // limits times this per cycle (control::limit_velocity from `velocity`).
+  // limits times this per cycle (limit_velocity from `velocity`).
   double period_s = 0.1;
 };
 
@@ -133,7 +133,7 @@ class NavigationServer {
 
   ServerParams params_;
   RobotProfile robot_;
-  control::VelocityLimits limits_;
+  VelocityLimits limits_;
   mapping::GlobalCostmap& global_;
   mapping::LocalCostmap& local_;
   std::unique_ptr<planning::GlobalPlanner> global_planner_;

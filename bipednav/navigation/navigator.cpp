@@ -354,9 +354,7 @@ Twist Navigator::yield_to_moving_obstacles(const Twist& cmd) const {
   if (!params_.moving_obstacles.enabled || !sensors_alive() || !localizer_.healthy(now_s_)) return cmd;
   const auto moving = moving_->moving(now_s_);
   if (moving.empty()) return cmd;
-  const planning::local::CommandLimits lim{robot_.max_vel_x_mps, robot_.max_vel_x_backwards_mps,
-                                           robot_.max_vel_theta_radps, robot_.acc_lim_x_mps2,
-                                           robot_.acc_lim_theta_radps2};
+  const VelocityLimits lim = VelocityLimits::from_profile(robot_);
   return planning::local::yield_to_moving_obstacles(cmd, localizer_.T_map_base(), reference_velocity(), moving,
                                                     local_.costmap(), lim, 1.0 / params_.control_rate_hz, now_s_,
                                                     params_.server.local.avoidance)

@@ -18,7 +18,7 @@ void LocalPlannerParams::validate() const {
 }
 
 void LocalPlanner::yield(LocalPlanResult& r, const Pose2& pose, const Twist& current, const mapping::Costmap2D& costmap,
-                         const CommandLimits& lim, double period_s, double now_s) {
+                         const VelocityLimits& lim, double period_s, double now_s) {
   last_yield_ = {};
   last_yield_.cmd = r.cmd;
   if (!moving_ || !moving_->params().enabled) return;

@@ -50,7 +50,7 @@ class LocalPlanner {
   // yield_to_moving_obstacles); a failed cycle whose zero command would be run into becomes a
   // SUCCESS with the evasive command.
   void yield(LocalPlanResult& r, const Pose2& pose, const Twist& current, const mapping::Costmap2D& costmap,
-             const CommandLimits& lim, double period_s, double now_s);
+             const VelocityLimits& lim, double period_s, double now_s);
 
   std::shared_ptr<const MovingObstacleTracker> moving_;
   DynamicAvoidanceParams avoidance_;

@@ -38,7 +38,7 @@ struct Rollout {
   Twist vel;
 };
 
-void step(Rollout& r, const Twist& target, const CommandLimits& lim, double dt) {
+void step(Rollout& r, const Twist& target, const VelocityLimits& lim, double dt) {
   const double dv = std::clamp(target.linear_x - r.vel.linear_x, -lim.acc_lim_x_mps2 * dt, lim.acc_lim_x_mps2 * dt);
   const double dw =
       std::clamp(target.angular_z - r.vel.angular_z, -lim.acc_lim_theta_radps2 * dt, lim.acc_lim_theta_radps2 * dt);
@@ -59,7 +59,7 @@ struct RolloutCheck {
 };
 
 RolloutCheck rollout_check(const Pose2& pose, const Twist& current, const Twist& target,
-                           const std::vector<TrackedObstacle>& moving, const CommandLimits& lim, double now_s,
+                           const std::vector<TrackedObstacle>& moving, const VelocityLimits& lim, double now_s,
                            const DynamicAvoidanceParams& p, std::vector<Pose2>* arc, bool corridors = false,
                            const std::vector<double>* turns = nullptr, double hold_s = kUnbounded) {
   // The prediction of obstacle i at now_s + dt: constant velocity, turned back at its turn time.
@@ -97,7 +97,7 @@ RolloutCheck rollout_check(const Pose2& pose, const Twist& current, const Twist&
 double time_to_collision(const Pose2& pose, const Twist& cmd, const std::vector<TrackedObstacle>& moving, double now_s,
                          const DynamicAvoidanceParams& params) {
   // Instant velocity changes: unlimited acceleration.
-  const CommandLimits lim{1e9, 1e9, 1e9, 1e9, 1e9};
+  const VelocityLimits lim{1e9, 1e9, 1e9, 1e9, 1e9};
   return rollout_check(pose, cmd, cmd, moving, lim, now_s, params, nullptr).ttc_s;
 }
 
@@ -137,7 +137,7 @@ struct Candidate {
   double hold_s = kUnbounded;
 };
 
-std::vector<Candidate> yield_candidates(const Twist& cmd, const CommandLimits& lim, const DynamicAvoidanceParams& p) {
+std::vector<Candidate> yield_candidates(const Twist& cmd, const VelocityLimits& lim, const DynamicAvoidanceParams& p) {
   std::vector<Candidate> cand;
   for (const double f : {0.75, 0.5, 0.25, 0.0}) cand.push_back({{f * cmd.linear_x, 0.0, f * cmd.angular_z}});
   cand.push_back({});
@@ -164,7 +164,7 @@ struct Choice {
 
 Choice choose_candidate(const std::vector<Candidate>& cand, const Twist& cmd, const Pose2& pose, const Twist& cur,
                         const std::vector<TrackedObstacle>& moving, const mapping::Costmap2D& costmap,
-                        const CommandLimits& lim, double now_s, const DynamicAvoidanceParams& p,
+                        const VelocityLimits& lim, double now_s, const DynamicAvoidanceParams& p,
                         const std::vector<double>* turns) {
   const double vf = lim.max_vel_x_mps, wm = lim.max_vel_theta_radps;
   const auto deviation = [&](const Twist& c) {
@@ -202,7 +202,7 @@ Choice choose_candidate(const std::vector<Candidate>& cand, const Twist& cmd, co
 
 YieldDecision yield_to_moving_obstacles(const Twist& cmd, const Pose2& pose, const Twist& current,
                                         const std::vector<TrackedObstacle>& moving, const mapping::Costmap2D& costmap,
-                                        const CommandLimits& lim, double period_s, double now_s,
+                                        const VelocityLimits& lim, double period_s, double now_s,
                                         const DynamicAvoidanceParams& p) {
   YieldDecision out;
   out.cmd = out.target = cmd;
@@ -223,12 +223,12 @@ YieldDecision yield_to_moving_obstacles(const Twist& cmd, const Pose2& pose, con
   out.modified = true;
   if (choice.best == nullptr) {
     out.target = {};
-    out.cmd = clamp_command({}, cur, lim, period_s);
+    out.cmd = limit_velocity({}, cur, period_s, lim);
     out.ttc_s = rollout_check(pose, cur, Twist{}, moving, lim, now_s, p, nullptr, false, turns).ttc_s;
     return out;
   }
   out.target = choice.best->cmd;
-  out.cmd = clamp_command(choice.best->cmd, cur, lim, period_s);
+  out.cmd = limit_velocity(choice.best->cmd, cur, period_s, lim);
   out.ttc_s = choice.ttc_s;  // the corridors and the arc the loop also asked for do not change it
   return out;
 }

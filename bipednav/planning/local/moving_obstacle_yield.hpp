@@ -76,7 +76,7 @@ struct YieldDecision {
 // limits from `current`.
 YieldDecision yield_to_moving_obstacles(const Twist& cmd, const Pose2& pose, const Twist& current,
                                         const std::vector<TrackedObstacle>& moving, const mapping::Costmap2D& costmap,
-                                        const CommandLimits& lim, double period_s, double now_s,
+                                        const VelocityLimits& lim, double period_s, double now_s,
                                         const DynamicAvoidanceParams& params);
 
 }  // namespace bipednav::planning::local

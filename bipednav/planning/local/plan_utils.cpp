@@ -95,18 +95,6 @@ LocalGoal select_local_goal(const Path& plan, const Pose2& T_map_base, const map
   return lg;
 }
 
-Twist clamp_command(const Twist& desired, const Twist& current, const CommandLimits& lim, double period_s) {
-  if (!desired.is_finite()) return {};
-  const Twist cur = current.is_finite() ? current : Twist{};
-  const double dv = lim.acc_lim_x_mps2 * period_s, dw = lim.acc_lim_theta_radps2 * period_s;
-  Twist out;
-  out.linear_x = std::clamp(desired.linear_x, cur.linear_x - dv, cur.linear_x + dv);
-  out.angular_z = std::clamp(desired.angular_z, cur.angular_z - dw, cur.angular_z + dw);
-  out.linear_x = std::clamp(out.linear_x, -lim.max_vel_x_backwards_mps, lim.max_vel_x_mps);
-  out.angular_z = std::clamp(out.angular_z, -lim.max_vel_theta_radps, lim.max_vel_theta_radps);
-  return out;
-}
-
 bool poses_feasible(const std::vector<Pose2>& poses, const mapping::Costmap2D& costmap) {
   if (poses.empty()) return true;
   const auto& g = costmap.geometry();

@@ -8,6 +8,7 @@
 #include "bipednav/common/path.hpp"
 #include "bipednav/common/pose2.hpp"
 #include "bipednav/common/twist.hpp"
+#include "bipednav/common/velocity_limits.hpp"
 #include "bipednav/mapping/costmap2d.hpp"
 
 namespace bipednav::planning::local {
@@ -26,19 +27,6 @@ struct LocalGoal {
 };
 LocalGoal select_local_goal(const Path& plan, const Pose2& T_map_base, const mapping::Costmap2D& costmap,
                             double lookahead_m, double margin_m, double via_sep_m);
-
-// Velocity and acceleration limits of the command.
-struct CommandLimits {
-  double max_vel_x_mps = 0.5;
-  double max_vel_x_backwards_mps = 0.2;
-  double max_vel_theta_radps = 0.8;
-  double acc_lim_x_mps2 = 0.5;
-  double acc_lim_theta_radps2 = 1.0;
-};
-
-// Clamps a desired command to the acceleration limits over one control period from the current
-// velocity, then to the velocity limits (those win). Non-finite input gives zero. linear_y = 0.
-Twist clamp_command(const Twist& desired, const Twist& current, const CommandLimits& lim, double period_s);
 
 // True when none of the poses (and the straight pieces between consecutive ones, sampled at the
 // grid resolution) lies in a lethal cell, or in an inscribed one unless the robot is already in

@@ -29,13 +29,13 @@ void TebPlanner::reset() {
   holding_goal_ = false;
 }
 
-CommandLimits TebPlanner::command_limits() const {
+VelocityLimits TebPlanner::command_limits() const {
   const auto& L = params_.limits;
   return {L.max_vel_x_mps, L.max_vel_x_backwards_mps, L.max_vel_theta_radps, L.acc_lim_x_mps2, L.acc_lim_theta_radps2};
 }
 
 LocalPlanResult TebPlanner::finish(LocalPlanResult r, const Twist& desired, const Twist& current) {
-  r.cmd = clamp_command(desired, current, command_limits(), params_.control_period_s);
+  r.cmd = limit_velocity(desired, current, params_.control_period_s, command_limits());
   if (!r.result.ok()) {
     r.cmd = Twist{};
     return r;

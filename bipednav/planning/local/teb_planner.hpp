@@ -36,7 +36,7 @@ class TebPlanner : public LocalPlanner {
   LocalPlanResult plan(const Pose2& T_map_base, const Twist& current_velocity, const Path& global_plan,
                        const mapping::Costmap2D& local_costmap, double now_s);
   LocalPlanResult finish(LocalPlanResult r, const Twist& desired, const Twist& current);
-  CommandLimits command_limits() const;
+  VelocityLimits command_limits() const;
 
   TebParams params_;
   HomotopyPlanner homotopy_;

@@ -67,8 +67,8 @@ PathTracker::PathTracker(TrackerParams params) : params_(std::move(params)) { pa
 LocalPlanResult PathTracker::compute(const Pose2& T_map_base, const Twist& current_velocity, const Path& global_plan,
                                      const mapping::Costmap2D& local_costmap, double now_s) {
   LocalPlanResult r = follow(T_map_base, current_velocity, global_plan, local_costmap);
-  const CommandLimits lim{params_.max_vel_x_mps, params_.max_vel_x_backwards_mps, params_.max_vel_theta_radps,
-                          params_.acc_lim_x_mps2, params_.acc_lim_theta_radps2};
+  const VelocityLimits lim{params_.max_vel_x_mps, params_.max_vel_x_backwards_mps, params_.max_vel_theta_radps,
+                           params_.acc_lim_x_mps2, params_.acc_lim_theta_radps2};
   yield(r, T_map_base, current_velocity, local_costmap, lim, params_.control_period_s, now_s);
   return r;
 }
@@ -78,8 +78,8 @@ LocalPlanResult PathTracker::follow(const Pose2& T_map_base, const Twist& curren
   if (auto bad = reject_bad_inputs(T_map_base, current_velocity, global_plan, local_costmap)) return *bad;
   LocalPlanResult r;
   r.trajectory.frame_id = global_plan.frame_id;
-  const CommandLimits lim{params_.max_vel_x_mps, 0.0, params_.max_vel_theta_radps, params_.acc_lim_x_mps2,
-                          params_.acc_lim_theta_radps2};
+  const VelocityLimits lim{params_.max_vel_x_mps, 0.0, params_.max_vel_theta_radps, params_.acc_lim_x_mps2,
+                           params_.acc_lim_theta_radps2};
   const Pose2& goal = global_plan.poses.back();
   const GoalApproach ga =
       approach_goal(T_map_base, goal, params_.xy_goal_tolerance_m, params_.yaw_goal_tolerance_rad, params_.rotate_gain,
@@ -92,7 +92,7 @@ LocalPlanResult PathTracker::follow(const Pose2& T_map_base, const Twist& curren
     const Eigen::Vector2d target = T_map_base.inverse().transform(lg.goal.position());
     desired = pure_pursuit_command(target, distance(T_map_base, goal), params_);
   }
-  r.cmd = clamp_command(desired, current_velocity, lim, params_.control_period_s);
+  r.cmd = limit_velocity(desired, current_velocity, params_.control_period_s, lim);
   // Forward-simulate the arc for display and the collision check.
   r.trajectory = simulate_arc(T_map_base, r.cmd, params_.collision_check_horizon_s, global_plan.frame_id);
   if (!poses_keep_clearance(r.trajectory.poses, local_costmap)) {
@@ -119,8 +119,8 @@ bool PathTracker::escape(LocalPlanResult& r, const Pose2& T_map_base, const Twis
   // Away from the nearest lethal cell (any direction when the robot sits on its centre).
   const Eigen::Vector2d away = T_map_base.position() - nearest;
   const double away_yaw = away.norm() > 1e-9 ? std::atan2(away.y(), away.x()) : T_map_base.theta;
-  const CommandLimits lim{params_.max_vel_x_mps, params_.max_vel_x_backwards_mps, params_.max_vel_theta_radps,
-                          params_.acc_lim_x_mps2, params_.acc_lim_theta_radps2};
+  const VelocityLimits lim{params_.max_vel_x_mps, params_.max_vel_x_backwards_mps, params_.max_vel_theta_radps,
+                           params_.acc_lim_x_mps2, params_.acc_lim_theta_radps2};
   const double vb = params_.max_vel_x_backwards_mps, vf = params_.max_vel_x_mps, wm = params_.max_vel_theta_radps;
   // Candidates: a grid of backing, turning and forward commands within one period's acceleration.
   // Score: the clearance gained at the end of the arc, then (to pick a turn on the spot) how
@@ -131,7 +131,7 @@ bool PathTracker::escape(LocalPlanResult& r, const Pose2& T_map_base, const Twis
   Path best_arc;
   for (const double v : {-vb, -0.5 * vb, 0.0, 0.5 * vf, vf}) {
     for (const double w : {-wm, -0.5 * wm, 0.0, 0.5 * wm, wm}) {
-      const Twist c = clamp_command({v, 0.0, w}, current_velocity, lim, params_.control_period_s);
+      const Twist c = limit_velocity({v, 0.0, w}, current_velocity, params_.control_period_s, lim);
       Path arc = simulate_arc(T_map_base, c, params_.collision_check_horizon_s, r.trajectory.frame_id);
       if (!poses_keep_clearance(arc.poses, local_costmap)) continue;
       const Pose2& end = arc.poses.back();

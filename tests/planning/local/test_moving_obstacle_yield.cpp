@@ -100,7 +100,7 @@ TEST(MovingObstacles, WhenEverythingCollidesTheCommandKeepingTheLargestGapWins) 
   const auto tracker = tracker_with({1.1, 0.0}, {-0.3, 0.0}, 2.0);
   const auto moving = tracker->moving(2.0);
   ASSERT_EQ(moving.size(), 1u);
-  const CommandLimits lim{0.5, 0.25, 0.8, 0.5, 1.0};
+  const VelocityLimits lim{0.5, 0.25, 0.8, 0.5, 1.0};
   const auto y =
       yield_to_moving_obstacles({0.5, 0.0, 0.0}, {0, 0, 0}, {}, moving, map, lim, 0.1, 2.0, params.avoidance);
   ASSERT_TRUE(y.modified);
@@ -112,7 +112,7 @@ namespace {
 
 // Where a command takes the robot from rest after t_s, within the acceleration limits (as the
 // yield's rollouts: unicycle, velocity stepped towards the command every 0.1 s).
-Pose2 roll_out(Pose2 pose, const Twist& target, const CommandLimits& lim, double t_s) {
+Pose2 roll_out(Pose2 pose, const Twist& target, const VelocityLimits& lim, double t_s) {
   Twist v;
   for (double t = 0.0; t < t_s - 1e-9; t += 0.1) {
     v.linear_x += std::clamp(target.linear_x - v.linear_x, -0.1 * lim.acc_lim_x_mps2, 0.1 * lim.acc_lim_x_mps2);
@@ -132,7 +132,7 @@ TEST(MovingObstacles, InAMoversLaneExitSweptCorridorLeavesTheLane) {
   // backing off down the lane ahead of the cube; leaving the corridor soonest is walking on
   // forward, turning away from the cube, out of the lane.
   const auto map = test::empty_costmap(0.0, 0.0, 8.0);
-  const CommandLimits lim{0.5, 0.25, 0.6, 0.5, 1.0};
+  const VelocityLimits lim{0.5, 0.25, 0.6, 0.5, 1.0};
   TrackedObstacle cube;
   cube.position = {0.0, 0.9};
   cube.velocity = {0.0, -0.25};
@@ -172,7 +172,7 @@ TEST(MovingObstacles, ReverseAtStructureTurnsAMoverBackAtTheWall) {
   cube.velocity = {0.0, -0.3};
   cube.radius_m = 0.35;
   const std::vector<TrackedObstacle> moving{cube};
-  const CommandLimits lim{0.5, 0.25, 0.6, 0.5, 1.0};
+  const VelocityLimits lim{0.5, 0.25, 0.6, 0.5, 1.0};
   DynamicAvoidanceParams p;
   p.robot_radius_m = 0.38;
   const Pose2 pose{0.2, -0.6, 0.0};
@@ -198,7 +198,7 @@ TEST(MovingObstacles, OfSeveralSafeCommandsTheClosestToThePlannersIsKept) {
   const auto tracker = tracker_with({1.2, -1.6}, {0.0, 0.3}, 2.0);
   const auto moving = tracker->moving(2.0);
   ASSERT_EQ(moving.size(), 1u);
-  const CommandLimits lim{0.5, 0.25, 0.8, 0.5, 1.0};
+  const VelocityLimits lim{0.5, 0.25, 0.8, 0.5, 1.0};
   const Twist cmd{0.5, 0.0, 0.0};
   const auto y = yield_to_moving_obstacles(cmd, {0, 0, 0}, cmd, moving, map, lim, 0.1, 2.0, p);
   ASSERT_TRUE(y.modified);
@@ -225,7 +225,7 @@ TEST(MovingObstacles, BetweenTwoPostsInAMoversLaneHoldStepCandidatesStepAsideIns
     return std::vector<TrackedObstacle>{box};
   };
   const auto moving = box_at(0.6);
-  const CommandLimits lim{0.26, 0.26, 1.82, 2.5, 3.2};
+  const VelocityLimits lim{0.26, 0.26, 1.82, 2.5, 3.2};
   DynamicAvoidanceParams p;
   p.robot_radius_m = 0.2;
   const Twist cmd{0.26, 0.0, 0.0};

@@ -8,18 +8,6 @@
 
 namespace bipednav::planning::local {
 
-TEST(PlanUtils, ClampCommandToAccelerationThenVelocity) {
-  const CommandLimits lim{0.5, 0.2, 0.8, 0.5, 1.0};
-  Twist t = clamp_command({1.0, 0.3, 2.0}, {0.0, 0.0, 0.0}, lim, 0.1);
-  EXPECT_DOUBLE_EQ(t.linear_x, 0.05);
-  EXPECT_DOUBLE_EQ(t.linear_y, 0.0);
-  EXPECT_DOUBLE_EQ(t.angular_z, 0.1);
-  t = clamp_command({-1.0, 0.0, 0.0}, {-0.19, 0.0, 0.0}, lim, 0.1);
-  EXPECT_DOUBLE_EQ(t.linear_x, -0.2);
-  t = clamp_command({NAN, 0.0, 0.0}, {}, lim, 0.1);
-  EXPECT_TRUE(t.is_zero());
-}
-
 TEST(PlanUtils, LocalGoalIsTheLastPlanPoseInsideTheWindow) {
   const auto map = test::empty_costmap(0.0, 0.0, 4.0);  // window [-2, 2]^2
   const Path plan = test::straight_plan(0.0, 0.0, 5.0, 0.0);
