@@ -99,7 +99,7 @@ void LoamOdometry::MovingReference::update(const PointCloud& raw, const SE3& T, 
 }
 
 std::vector<Constraint> LoamOdometry::associate(const LoamFeatures& f, const Vector6d& x,
-                                                const Vector6d& reference_offset) const {
+                                                const Vector6d& reference_offset) {
   const SE3 T = motion_to_se3(x + reference_offset);
   work_.edges.update(raw_edges_, T, p_.scan_period_s);
   work_.planars.update(raw_planars_, T, p_.scan_period_s);
@@ -125,7 +125,7 @@ std::vector<Constraint> LoamOdometry::associate(const LoamFeatures& f, const Vec
   return cs;
 }
 
-OdometryResult LoamOdometry::estimate(const LoamFeatures& f, const SE3& guess, const Vector6d& reference_offset) const {
+OdometryResult LoamOdometry::estimate(const LoamFeatures& f, const SE3& guess, const Vector6d& reference_offset) {
   OdometryResult res;
   res.T_start_end = guess;
   if (!has_reference()) return res;

@@ -69,8 +69,7 @@ class LoamOdometry {
   // ~0.01 rad (7 %) too small, corrected by the next mapping step in a jump (the opposite when
   // slowing down). The difference of two consecutive odometry motions is accurate even when the
   // odometry's scale is not, and no estimate of this class enters it (the loop above stays open).
-  OdometryResult estimate(const LoamFeatures& f, const SE3& guess,
-                          const Vector6d& reference_offset = Vector6d::Zero()) const;
+  OdometryResult estimate(const LoamFeatures& f, const SE3& guess, const Vector6d& reference_offset = Vector6d::Zero());
   // Makes this sweep the reference for the next one; T_start_end is its estimated motion.
   void set_reference(const LoamFeatures& f, const SE3& T_start_end);
   bool has_reference() const { return !raw_edges_.empty() || !raw_planars_.empty(); }
@@ -82,7 +81,7 @@ class LoamOdometry {
   const OdometryParams& params() const { return p_; }
 
  private:
-  std::vector<Constraint> associate(const LoamFeatures& f, const Vector6d& x, const Vector6d& reference_offset) const;
+  std::vector<Constraint> associate(const LoamFeatures& f, const Vector6d& x, const Vector6d& reference_offset);
 
   void deskew_reference() const;
 
@@ -111,7 +110,7 @@ class LoamOdometry {
   // The same, de-skewed to its end with raw_motion_ (computed on demand: stale while ref_stale_).
   mutable PointCloud ref_edges_, ref_planars_;
   mutable bool ref_stale_ = false;
-  mutable Workspace work_;  // estimate() changes it: one object estimates on one thread at a time
+  Workspace work_;
 };
 
 }  // namespace bipednav::localization

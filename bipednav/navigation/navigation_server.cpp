@@ -223,7 +223,7 @@ Result NavigationServer::relax_constraints() {
   return end_recovery({Outcome::SUCCESS, "planner cost weight relaxed"});
 }
 
-bool NavigationServer::goal_reached(const Pose2& goal) const {
+bool NavigationServer::goal_reached(const Pose2& goal) {
   return goal_checker_.reached(view_.pose, goal, view_.velocity, view_.now_s);
 }
 

@@ -99,7 +99,8 @@ class NavigationServer {
   void cancel_recovery();
 
   // Conditions.
-  bool goal_reached(const Pose2& goal) const;
+  // Not const: the goal checker latches the position once it was within tolerance (stateful mode).
+  bool goal_reached(const Pose2& goal);
   Result goal_valid(const Pose2& goal) const;  // SUCCESS, PLAN_OUT_OF_MAP, BLOCKED_GOAL
   Result start_valid() const;                  // SUCCESS, INVALID_START (not finite / off the map), BLOCKED_START
   bool path_valid(const Path& path) const;
@@ -138,7 +139,7 @@ class NavigationServer {
   mapping::LocalCostmap& local_;
   std::unique_ptr<planning::GlobalPlanner> global_planner_;
   std::unique_ptr<planning::local::LocalPlanner> local_planner_;
-  mutable control::GoalChecker goal_checker_;  // latches the position (stateful mode)
+  control::GoalChecker goal_checker_;
   control::ProgressChecker progress_;
   control::OscillationChecker oscillation_;
   RobotView view_;
