@@ -108,6 +108,24 @@ void BtDelay::halt() {
   halt_children();
 }
 
+BtSleep::BtSleep(BtNodeConfig config) : BtNode(std::move(config)) {
+  const int ms = int_param(this->config(), "msec");
+  if (ms < 0) bad_param(this->config(), "msec must be >= 0");
+  duration_s_ = ms * 1e-3;
+}
+
+BtStatus BtSleep::tick(double now_s) {
+  if (!started_) {
+    started_ = true;
+    start_s_ = now_s;
+  }
+  if (now_s - start_s_ + 1e-9 < duration_s_) return BtStatus::RUNNING;
+  started_ = false;
+  return BtStatus::SUCCESS;
+}
+
+void BtSleep::halt() { started_ = false; }
+
 BtStatus BtSetBlackboard::tick(double) {
   const auto& ports = config().ports;
   std::string out_key = ports.at("output_key");

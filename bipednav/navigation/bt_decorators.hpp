@@ -116,6 +116,24 @@ class BtConstantLeaf final : public BtNode {
   BtStatus result_;
 };
 
+// Sleep msec="N" (BehaviorTree.CPP v4's built-in): RUNNING for msec of simulated time after
+// activation, then SUCCESS; a halt restarts the count. A timer that is no recovery (the safety
+// gate's wait for sensor health; the Wait recovery is an MBF recovery with an outcome code).
+class BtSleep final : public BtNode {
+ public:
+  explicit BtSleep(BtNodeConfig config);
+  BtNodeKind kind() const override { return BtNodeKind::Action; }
+
+ protected:
+  BtStatus tick(double now_s) override;
+  void halt() override;
+
+ private:
+  double duration_s_ = 0.0;
+  bool started_ = false;
+  double start_s_ = 0.0;
+};
+
 // SetBlackboard value="42"|"{other_key}" output_key="key": copies a literal (as a string)
 // or another entry (keeping its type) into output_key. Fails when the source is absent.
 class BtSetBlackboard final : public BtNode {

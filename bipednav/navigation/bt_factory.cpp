@@ -57,6 +57,7 @@ BtFactory::BtFactory() {
   add("Delay", decorator(make<BtDelay>(), {P::input("delay_msec", BtType::Int)}));
   add("AlwaysSuccess", leaf(BtNodeKind::Action, constant(BtStatus::SUCCESS)));
   add("AlwaysFailure", leaf(BtNodeKind::Action, constant(BtStatus::FAILURE)));
+  add("Sleep", leaf(BtNodeKind::Action, make<BtSleep>(), {P::input("msec", BtType::Int)}));
   add("SetBlackboard", leaf(BtNodeKind::Action, make<BtSetBlackboard>(),
                             {P::input("value", BtType::Any), P::input("output_key", BtType::String)}));
   add("GoalUpdated",

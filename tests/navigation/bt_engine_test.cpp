@@ -186,6 +186,20 @@ TEST_F(EngineTest, DelayWaitsOnSimulatedTime) {
   EXPECT_EQ(tree.tick(5.8), BtStatus::SUCCESS);
 }
 
+TEST_F(EngineTest, SleepWaitsOnSimulatedTimeThenSucceeds) {
+  auto tree = load(R"(<Sequence><Sleep msec="300"/><Act name="A"/></Sequence>)");
+  EXPECT_EQ(tree.tick(5.0), BtStatus::RUNNING);
+  EXPECT_EQ(tree.tick(5.29), BtStatus::RUNNING);
+  EXPECT_EQ(h.count("start A"), 0);
+  EXPECT_EQ(tree.tick(5.3), BtStatus::SUCCESS);
+  EXPECT_EQ(h.count("start A"), 1);
+  EXPECT_EQ(tree.tick(5.4), BtStatus::RUNNING);  // a new activation sleeps again
+  tree.halt();
+  EXPECT_EQ(tree.tick(5.5), BtStatus::RUNNING);  // the halt restarted the count
+  EXPECT_EQ(tree.tick(5.79), BtStatus::RUNNING);
+  EXPECT_EQ(tree.tick(5.8), BtStatus::SUCCESS);
+}
+
 TEST_F(EngineTest, InverterForceAndKeepRunning) {
   h.conditions["F"] = false;
   EXPECT_EQ(load(R"(<Inverter><Cond name="F"/></Inverter>)").tick(0), BtStatus::SUCCESS);

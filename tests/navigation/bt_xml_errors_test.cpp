@@ -90,6 +90,7 @@ TEST(BtXmlErrors, PortsMissingOrMalformed) {
   expect_error(one_tree("<RateController hz=\"{rate}\"><AlwaysFailure/></RateController>"), ":3",
                "is not a literal double");
   expect_error(one_tree("<Delay delay_msec=\"1.5\"><AlwaysFailure/></Delay>"), ":3", "expected a int");
+  expect_error(one_tree("<Sleep msec=\"-5\"/>"), ":3", "msec must be >= 0");
   expect_error(one_tree("<Parallel success_count=\"3\"><AlwaysSuccess/><AlwaysSuccess/></Parallel>"), ":3",
                "must be in [1, 2]");
   expect_error(one_tree("<RecoveryNode number_of_retries=\"-1\"><AlwaysSuccess/><AlwaysSuccess/></RecoveryNode>"), ":3",
