@@ -1,17 +1,18 @@
 #include "bipednav/planning/local/teb_lm.hpp"
 
-#include <Eigen/Eigenvalues>
-#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <limits>
+
+#include "bipednav/planning/local/band_cholesky.hpp"
+#include "bipednav/planning/local/polynomial_step.hpp"
 
 namespace bipednav::planning::local {
 
 namespace {
 
 constexpr int kB = TebLmSolver::kHalfBandwidth;
-constexpr int kW = kB + 1;  // stored entries per row of the lower band
+constexpr int kW = kB + 1;  // stored entries per row of the lower band (band_cholesky.hpp)
 
 // Ceres' defaults (Solver::Options) for the trust region and the projected line search.
 constexpr double kInitialRadius = 1e4;
@@ -28,110 +29,6 @@ constexpr double kMaxStepContraction = 1e-3;
 constexpr double kMinStepContraction = 0.6;
 constexpr double kMinLineSearchStep = 1e-9;
 constexpr int kMaxLineSearchIterations = 20;
-
-// In-place Cholesky factorisation of a symmetric positive definite band matrix (lower band, row i holds
-// A(i, i - d) at i * kW + d). Returns false if it is not positive definite. Only the envelope is worked
-// on: row i of the factor is zero left of row i's first non-zero of A (first[i]), and skipping those exact
-// zeros leaves every computed entry bit for bit as in the full band loop. Inactive penalties (velocity,
-// acceleration) leave much of the band empty.
-bool band_cholesky(std::vector<double>& a, std::size_t n, std::vector<std::size_t>& first) {
-  first.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    std::size_t d = std::min<std::size_t>(kB, i);
-    while (d > 0 && a[i * kW + d] == 0.0) --d;
-    first[i] = i - d;
-  }
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::size_t j0 = first[i];
-    for (std::size_t j = j0; j <= i; ++j) {
-      double s = a[i * kW + (i - j)];
-      for (std::size_t k = std::max(j0, first[j]); k < j; ++k) s -= a[i * kW + (i - k)] * a[j * kW + (j - k)];
-      if (j == i) {
-        if (!(s > 0.0) || !std::isfinite(s)) return false;
-        a[i * kW] = std::sqrt(s);
-      } else {
-        a[i * kW + (i - j)] = s / a[j * kW];
-      }
-    }
-  }
-  return true;
-}
-
-// Solves L L^T y = b in place.
-void band_solve(const std::vector<double>& l, std::size_t n, std::vector<double>& y) {
-  for (std::size_t i = 0; i < n; ++i) {
-    double s = y[i];
-    const std::size_t j0 = i >= static_cast<std::size_t>(kB) ? i - kB : 0;
-    for (std::size_t j = j0; j < i; ++j) s -= l[i * kW + (i - j)] * y[j];
-    y[i] = s / l[i * kW];
-  }
-  for (std::size_t ii = n; ii-- > 0;) {
-    double s = y[ii];
-    const std::size_t j1 = std::min(n, ii + kB + 1);
-    for (std::size_t j = ii + 1; j < j1; ++j) s -= l[j * kW + (j - ii)] * y[j];
-    y[ii] = s / l[ii * kW];
-  }
-}
-
-// The line search's polynomial step (Ceres' InterpolatingPolynomialMinimizingStepSize with cubic
-// interpolation): the minimiser over [lo, hi] of the polynomial through the samples' values and slopes.
-struct Sample {
-  double x = 0.0, value = 0.0, slope = 0.0;
-  bool valid = false;
-};
-
-double eval_poly(const Eigen::VectorXd& p, double x) {
-  double v = 0.0;
-  for (Eigen::Index i = 0; i < p.size(); ++i) v = v * x + p[i];
-  return v;
-}
-
-double interpolated_step(const Sample& s0, const Sample& prev, const Sample& cur, double lo, double hi) {
-  if (!cur.valid) return std::min(std::max(cur.x * 0.5, lo), hi);
-  std::vector<const Sample*> samples{&s0, &cur};
-  if (prev.valid) samples.push_back(&prev);
-  const int m = 2 * static_cast<int>(samples.size());
-  const int degree = m - 1;
-  Eigen::MatrixXd lhs = Eigen::MatrixXd::Zero(m, m);
-  Eigen::VectorXd rhs(m);
-  int row = 0;
-  for (const Sample* s : samples) {
-    for (int j = 0; j <= degree; ++j) lhs(row, j) = std::pow(s->x, degree - j);
-    rhs[row++] = s->value;
-    for (int j = 0; j < degree; ++j) lhs(row, j) = (degree - j) * std::pow(s->x, degree - j - 1);
-    rhs[row++] = s->slope;
-  }
-  const Eigen::VectorXd poly = lhs.fullPivLu().solve(rhs);
-  double best_x = 0.5 * (lo + hi), best = eval_poly(poly, best_x);
-  const auto consider = [&](double x) {
-    if (!(x >= lo && x <= hi)) return;
-    const double v = eval_poly(poly, x);
-    if (v < best) best = v, best_x = x;
-  };
-  consider(lo);
-  consider(hi);
-  // Critical points: roots of the derivative (real parts, as Ceres takes them).
-  Eigen::VectorXd der(degree);
-  for (int j = 0; j < degree; ++j) der[j] = (degree - j) * poly[j];
-  int lead = 0;
-  while (lead < degree - 1 && der[lead] == 0.0) ++lead;
-  const int dd = degree - 1 - lead;  // degree of the derivative
-  if (dd == 1) {
-    consider(-der[lead + 1] / der[lead]);
-  } else if (dd >= 2) {
-    Eigen::MatrixXd comp = Eigen::MatrixXd::Zero(dd, dd);
-    for (int j = 0; j < dd; ++j) comp(0, j) = -der[lead + 1 + j] / der[lead];
-    for (int j = 1; j < dd; ++j) comp(j, j - 1) = 1.0;
-    if (comp.allFinite()) {
-      Eigen::EigenSolver<Eigen::MatrixXd> es(comp, false);
-      if (es.info() == Eigen::Success) {
-        for (Eigen::Index j = 0; j < es.eigenvalues().size(); ++j) consider(es.eigenvalues()[j].real());
-      }
-    }
-  }
-  for (const Sample* s : samples) consider(s->x);
-  return best_x;
-}
 
 }  // namespace
 
@@ -304,7 +201,7 @@ double TebLmSolver::line_search(const std::vector<double>& z, double cost, const
   double g0 = 0.0, dmax = 0.0;
   for (std::size_t i = 0; i < nz_; ++i) g0 += grad[i] * delta[i], dmax = std::max(dmax, std::abs(delta[i]));
   const auto sample = [&](double a, Mode mode) {
-    Sample s;
+    LineSearchSample s;
     s.x = a;
     for (std::size_t i = 0; i < nz_; ++i) trial_[i] = z[i] + a * delta[i];
     project(trial_);
@@ -315,11 +212,11 @@ double TebLmSolver::line_search(const std::vector<double>& z, double cost, const
     s.valid = std::isfinite(s.value) && std::isfinite(s.slope);
     return s;
   };
-  const Sample s0{0.0, cost, g0, true};
-  Sample prev;
+  const LineSearchSample s0{0.0, cost, g0, true};
+  LineSearchSample prev;
   // The full step is usually accepted: evaluate J^T J there too, so an accepted step needs no further
   // evaluation.
-  Sample cur = sample(1.0, Mode::kFull);
+  LineSearchSample cur = sample(1.0, Mode::kFull);
   *first_accepted = cur.valid && !(cur.value > cost + kSufficientDecrease * g0 * cur.x);
   *first_cost = cur.value;
   int iterations = 0;
@@ -389,10 +286,10 @@ bool TebLmSolver::solve(const TebLmProblem& problem, std::vector<double>& x, std
       aband_[i * kW] += diag / radius;
       step_[i] = scale_[i] * grad_[i];
     }
-    bool valid = band_cholesky(aband_, nz_, envelope_);
+    bool valid = band_cholesky<kB>(aband_, nz_, envelope_);
     double model_change = 0.0;
     if (valid) {
-      band_solve(aband_, nz_, step_);
+      band_solve<kB>(aband_, nz_, step_);
       for (std::size_t i = 0; i < nz_; ++i) step_[i] = -step_[i];
       // model_change = -(s' S g + 1/2 s' S H S s)
       double lin = 0.0, quad = 0.0;
