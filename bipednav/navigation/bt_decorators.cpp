@@ -84,47 +84,45 @@ void BtRateController::halt() {
   halt_children();
 }
 
-BtDelay::BtDelay(BtNodeConfig config) : BtDecoratorNode(std::move(config)) {
-  const int ms = int_param(this->config(), "delay_msec");
-  if (ms < 0) bad_param(this->config(), "delay_msec must be >= 0");
-  delay_s_ = ms * 1e-3;
+BtSimTimer::BtSimTimer(const BtNodeConfig& config, const std::string& msec_port) {
+  const int ms = int_param(config, msec_port);
+  if (ms < 0) bad_param(config, msec_port + " must be >= 0");
+  duration_s_ = ms * 1e-3;
 }
 
-BtStatus BtDelay::tick(double now_s) {
+bool BtSimTimer::elapsed(double now_s) {
   if (!started_) {
     started_ = true;
     start_s_ = now_s;
   }
-  if (now_s - start_s_ + 1e-9 < delay_s_) return BtStatus::RUNNING;
+  return !(now_s - start_s_ + 1e-9 < duration_s_);
+}
+
+BtDelay::BtDelay(BtNodeConfig config) : BtDecoratorNode(std::move(config)), timer_(this->config(), "delay_msec") {}
+
+BtStatus BtDelay::tick(double now_s) {
+  if (!timer_.elapsed(now_s)) return BtStatus::RUNNING;
   const BtStatus s = child(0).execute_tick(now_s);
   if (s == BtStatus::RUNNING) return s;
-  started_ = false;
+  timer_.restart();
   halt_child(0);
   return s;
 }
 
 void BtDelay::halt() {
-  started_ = false;
+  timer_.restart();
   halt_children();
 }
 
-BtSleep::BtSleep(BtNodeConfig config) : BtNode(std::move(config)) {
-  const int ms = int_param(this->config(), "msec");
-  if (ms < 0) bad_param(this->config(), "msec must be >= 0");
-  duration_s_ = ms * 1e-3;
-}
+BtSleep::BtSleep(BtNodeConfig config) : BtNode(std::move(config)), timer_(this->config(), "msec") {}
 
 BtStatus BtSleep::tick(double now_s) {
-  if (!started_) {
-    started_ = true;
-    start_s_ = now_s;
-  }
-  if (now_s - start_s_ + 1e-9 < duration_s_) return BtStatus::RUNNING;
-  started_ = false;
+  if (!timer_.elapsed(now_s)) return BtStatus::RUNNING;
+  timer_.restart();
   return BtStatus::SUCCESS;
 }
 
-void BtSleep::halt() { started_ = false; }
+void BtSleep::halt() { timer_.restart(); }
 
 BtStatus BtSetBlackboard::tick(double) {
   const auto& ports = config().ports;

@@ -77,6 +77,20 @@ class BtRateController final : public BtDecoratorNode {
   BtStatus last_child_result_ = BtStatus::SUCCESS;
 };
 
+// Delay's and Sleep's clock: simulated time counted from the first call of elapsed() after
+// construction or restart(), read from the node's msec port (an int >= 0).
+class BtSimTimer {
+ public:
+  BtSimTimer(const BtNodeConfig& config, const std::string& msec_port);
+  bool elapsed(double now_s);
+  void restart() { started_ = false; }
+
+ private:
+  double duration_s_ = 0.0;
+  bool started_ = false;
+  double start_s_ = 0.0;
+};
+
 // RUNNING for delay_msec of simulated time after activation, then behaves like the child.
 class BtDelay final : public BtDecoratorNode {
  public:
@@ -87,9 +101,7 @@ class BtDelay final : public BtDecoratorNode {
   void halt() override;
 
  private:
-  double delay_s_ = 0.0;
-  bool started_ = false;
-  double start_s_ = 0.0;
+  BtSimTimer timer_;
 };
 
 // The root of another BehaviorTree, on its own (remapped) blackboard; status passes through.
@@ -129,9 +141,7 @@ class BtSleep final : public BtNode {
   void halt() override;
 
  private:
-  double duration_s_ = 0.0;
-  bool started_ = false;
-  double start_s_ = 0.0;
+  BtSimTimer timer_;
 };
 
 // SetBlackboard value="42"|"{other_key}" output_key="key": copies a literal (as a string)

@@ -186,18 +186,19 @@ TEST_F(EngineTest, DelayWaitsOnSimulatedTime) {
   EXPECT_EQ(tree.tick(5.8), BtStatus::SUCCESS);
 }
 
+// As in the safety gate: a timer ahead of a failure, restarted by a halt from above.
 TEST_F(EngineTest, SleepWaitsOnSimulatedTimeThenSucceeds) {
-  auto tree = load(R"(<Sequence><Sleep msec="300"/><Act name="A"/></Sequence>)");
-  EXPECT_EQ(tree.tick(5.0), BtStatus::RUNNING);
-  EXPECT_EQ(tree.tick(5.29), BtStatus::RUNNING);
+  auto tree = load(R"(<Sequence><Sleep msec="300"/><Act name="A"/><AlwaysFailure/></Sequence>)");
+  h.actions["A"] = {0, BtStatus::SUCCESS};
+  for (const double t : {5.0, 5.1, 5.29}) EXPECT_EQ(tree.tick(t), BtStatus::RUNNING) << t;
   EXPECT_EQ(h.count("start A"), 0);
-  EXPECT_EQ(tree.tick(5.3), BtStatus::SUCCESS);
+  EXPECT_EQ(tree.tick(5.3), BtStatus::FAILURE);
   EXPECT_EQ(h.count("start A"), 1);
-  EXPECT_EQ(tree.tick(5.4), BtStatus::RUNNING);  // a new activation sleeps again
+  EXPECT_EQ(tree.tick(6.0), BtStatus::RUNNING);  // a new activation sleeps again
   tree.halt();
-  EXPECT_EQ(tree.tick(5.5), BtStatus::RUNNING);  // the halt restarted the count
-  EXPECT_EQ(tree.tick(5.79), BtStatus::RUNNING);
-  EXPECT_EQ(tree.tick(5.8), BtStatus::SUCCESS);
+  for (const double t : {6.1, 6.39}) EXPECT_EQ(tree.tick(t), BtStatus::RUNNING) << t;  // counted from 6.1
+  EXPECT_EQ(tree.tick(6.4), BtStatus::FAILURE);
+  EXPECT_EQ(h.count("start A"), 2);
 }
 
 TEST_F(EngineTest, InverterForceAndKeepRunning) {
