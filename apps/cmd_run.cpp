@@ -255,23 +255,22 @@ struct BenchRun {
   std::string error;  // what a run that threw said (it counts as failed)
 };
 
-void bench_scenarios(const BenchScenarioArgs& a) {
-  require(a.jobs >= 1 && a.jobs <= 64, "--jobs", "in [1, 64]");
-  require(!a.scenarios.empty() && !a.robots.empty(), "--scenarios/--robots", "not empty");
-  std::vector<sim::Scenario> loaded;
-  for (const auto& name : a.scenarios) loaded.push_back(sim::load_scenario(resolve_scenario(name)));
-  runner::RunOptions base;
-  base.params_file = a.params;
-  // A bad parameters file is reported once here, not as every run's error. The table names a
-  // profile file's robot by its profile name.
-  std::map<std::string, std::string> robot_names;
-  for (const auto& robot : a.robots) {
+// Each robot's name in the table (a profile file's robot by its profile name), after reading its
+// navigation parameters: a bad parameters file is reported once here, not as every run's error.
+std::map<std::string, std::string> robot_names(const std::vector<std::string>& robots, const runner::RunOptions& base) {
+  std::map<std::string, std::string> names;
+  for (const auto& robot : robots) {
     const RobotProfile profile = runner::load_robot(robot);
     runner::navigator_params(profile, base);
-    robot_names[robot] = profile.name;
+    names[robot] = profile.name;
   }
+  return names;
+}
+
+// Every run: per scenario, per robot, the seeds.
+std::vector<BenchRun> bench_runs(const BenchScenarioArgs& a, std::size_t scenarios) {
   std::vector<BenchRun> runs;
-  for (std::size_t k = 0; k < loaded.size(); ++k)
+  for (std::size_t k = 0; k < scenarios; ++k)
     for (const auto& robot : a.robots)
       for (int i = 0; i < a.seeds; ++i) {
         BenchRun& b = runs.emplace_back();
@@ -279,9 +278,14 @@ void bench_scenarios(const BenchScenarioArgs& a) {
         b.robot = robot;
         b.seed = a.first_seed + i;
       }
-  // Runs are independent simulations: --jobs of them at a time, each on one thread. The results do
-  // not depend on --jobs; a run's real-time factor is its own wall time, so it drops when the
-  // jobs share cores.
+  return runs;
+}
+
+// Runs are independent simulations: --jobs of them at a time, each on one thread. The results do
+// not depend on --jobs; a run's real-time factor is its own wall time, so it drops when the
+// jobs share cores.
+void run_all(std::vector<BenchRun>& runs, const std::vector<sim::Scenario>& loaded, const runner::RunOptions& base,
+             int jobs) {
   ProgressBar bar("scenarios", runs.size(), true);
   std::mutex bar_mutex;
   std::atomic<std::size_t> next{0}, done{0};
@@ -301,51 +305,49 @@ void bench_scenarios(const BenchScenarioArgs& a) {
     }
   };
   std::vector<std::thread> threads;
-  for (int j = 1; j < a.jobs; ++j) threads.emplace_back(worker);
+  for (int j = 1; j < jobs; ++j) threads.emplace_back(worker);
   worker();
   for (auto& t : threads) t.join();
   bar.finish();
+}
 
-  nlohmann::json rows = nlohmann::json::array();
-  std::size_t ok_total = 0;
-  for (std::size_t first = 0; first < runs.size(); first += static_cast<std::size_t>(a.seeds)) {
-    int ok = 0;
-    double rtf = 0.0, sim_s = 0.0;
-    nlohmann::json failures = nlohmann::json::array();
-    for (std::size_t i = first; i < first + static_cast<std::size_t>(a.seeds); ++i) {
-      const BenchRun& b = runs[i];
-      const bool success = b.error.empty() && b.result.success;
-      ok += success;
-      rtf += b.result.real_time_factor / a.seeds;
-      sim_s += b.result.time_s / a.seeds;
-      if (success) continue;
-      failures.push_back(b.error.empty()
-                             ? nlohmann::json{{"seed", b.seed},
-                                              {"outcome", std::string(outcome_name(b.result.outcome.outcome))},
-                                              {"collisions", b.result.collisions},
-                                              {"time_s", b.result.time_s},
-                                              {"min_clearance_m", b.result.min_clearance_m}}
-                             : nlohmann::json{{"seed", b.seed}, {"error", b.error}});
-    }
-    ok_total += static_cast<std::size_t>(ok);
-    rows.push_back({{"scenario", a.scenarios[runs[first].scenario]},
-                    {"robot", robot_names[runs[first].robot]},
-                    {"succeeded", ok},
-                    {"runs", a.seeds},
-                    {"mean_rtf", rtf},
-                    {"mean_time_s", sim_s},
-                    {"failures", failures}});
+// A failed run: its outcome, or what it threw.
+nlohmann::json failure_json(const BenchRun& b) {
+  return b.error.empty() ? nlohmann::json{{"seed", b.seed},
+                                          {"outcome", std::string(outcome_name(b.result.outcome.outcome))},
+                                          {"collisions", b.result.collisions},
+                                          {"time_s", b.result.time_s},
+                                          {"min_clearance_m", b.result.min_clearance_m}}
+                         : nlohmann::json{{"seed", b.seed}, {"error", b.error}};
+}
+
+// The row of one scenario and robot: the --seeds runs from `first`; adds their successes to `ok_total`.
+nlohmann::json pair_row(const BenchScenarioArgs& a, const std::vector<BenchRun>& runs, std::size_t first,
+                        const std::map<std::string, std::string>& robot_names, std::size_t& ok_total) {
+  int ok = 0;
+  double rtf = 0.0, sim_s = 0.0;
+  nlohmann::json failures = nlohmann::json::array();
+  for (std::size_t i = first; i < first + static_cast<std::size_t>(a.seeds); ++i) {
+    const BenchRun& b = runs[i];
+    const bool success = b.error.empty() && b.result.success;
+    ok += success;
+    rtf += b.result.real_time_factor / a.seeds;
+    sim_s += b.result.time_s / a.seeds;
+    if (success) continue;
+    failures.push_back(failure_json(b));
   }
-  if (a.json) {
-    std::printf("%s\n", nlohmann::json{{"rows", rows},
-                                       {"succeeded", ok_total},
-                                       {"runs", runs.size()},
-                                       {"first_seed", a.first_seed},
-                                       {"jobs", a.jobs}}
-                            .dump(2)
-                            .c_str());
-    return;
-  }
+  ok_total += static_cast<std::size_t>(ok);
+  return {{"scenario", a.scenarios[runs[first].scenario]},
+          {"robot", robot_names.at(runs[first].robot)},
+          {"succeeded", ok},
+          {"runs", a.seeds},
+          {"mean_rtf", rtf},
+          {"mean_time_s", sim_s},
+          {"failures", failures}};
+}
+
+// The rows as a table: success count, mean real-time factor and the failed seeds of each pair.
+void print_table(const nlohmann::json& rows) {
   std::printf("%-20s %-12s %9s %9s  %s\n", "scenario", "robot", "success", "RTF", "failed seeds");
   for (const auto& r : rows) {
     std::string failed;
@@ -358,6 +360,33 @@ void bench_scenarios(const BenchScenarioArgs& a) {
                 r["robot"].get<std::string>().c_str(), r["succeeded"].get<int>(), r["runs"].get<int>(),
                 r["mean_rtf"].get<double>(), failed.c_str());
   }
+}
+
+void bench_scenarios(const BenchScenarioArgs& a) {
+  require(a.jobs >= 1 && a.jobs <= 64, "--jobs", "in [1, 64]");
+  require(!a.scenarios.empty() && !a.robots.empty(), "--scenarios/--robots", "not empty");
+  std::vector<sim::Scenario> loaded;
+  for (const auto& name : a.scenarios) loaded.push_back(sim::load_scenario(resolve_scenario(name)));
+  runner::RunOptions base;
+  base.params_file = a.params;
+  const std::map<std::string, std::string> names = robot_names(a.robots, base);
+  std::vector<BenchRun> runs = bench_runs(a, loaded.size());
+  run_all(runs, loaded, base, a.jobs);
+  nlohmann::json rows = nlohmann::json::array();
+  std::size_t ok_total = 0;
+  for (std::size_t first = 0; first < runs.size(); first += static_cast<std::size_t>(a.seeds))
+    rows.push_back(pair_row(a, runs, first, names, ok_total));
+  if (a.json) {
+    std::printf("%s\n", nlohmann::json{{"rows", rows},
+                                       {"succeeded", ok_total},
+                                       {"runs", runs.size()},
+                                       {"first_seed", a.first_seed},
+                                       {"jobs", a.jobs}}
+                            .dump(2)
+                            .c_str());
+    return;
+  }
+  print_table(rows);
 }
 
 struct BenchLoopArgs {
