@@ -19,19 +19,9 @@ BtStatus to_status(const ActionStep& step) {
   return BtStatus::FAILURE;
 }
 
-}  // namespace
-
-void Navigator::register_leaves(BtFactory& f) {
-  NavigationServer& srv = *server_;
-  const auto fail_with = [this](BtNode& self, const Result& r) {
-    self.set_output<int>("error_code", static_cast<int>(code(r.outcome)));
-    last_failure_ = r;
-  };
-  f.register_simple_condition(
-      "SensorsAlive", [this](BtNode&, double) { return sensors_alive(); }, bt_leaf_ports("SensorsAlive"));
-  f.register_simple_condition(
-      "IsLocalizationHealthy", [this](BtNode&, double) { return localizer_.healthy(now_s_); },
-      bt_leaf_ports("IsLocalizationHealthy"));
+// The conditions on the navigation server's state (a failed start or goal check reports its outcome).
+template <class FailWith>
+void register_server_conditions(BtFactory& f, NavigationServer& srv, const FailWith& fail_with) {
   f.register_simple_condition(
       "IsStartValid",
       [&srv, fail_with](BtNode& self, double) {
@@ -61,7 +51,11 @@ void Navigator::register_leaves(BtFactory& f) {
   f.register_simple_condition(
       "CanRotateInPlace", [&srv](BtNode&, double) { return srv.can_rotate_in_place(); },
       bt_leaf_ports("CanRotateInPlace"));
+}
 
+// Planning a path to the goal and following it (a failure reports its outcome).
+template <class FailWith>
+void register_path_actions(BtFactory& f, NavigationServer& srv, const FailWith& fail_with) {
   f.register_simple_action(
       "ComputePathToPose",
       [&srv, fail_with](BtNode& self, double, bool) {
@@ -84,6 +78,10 @@ void Navigator::register_leaves(BtFactory& f) {
         return to_status(step);
       },
       [&srv](BtNode&) { srv.stop(); }, bt_leaf_ports("FollowPath"));
+}
+
+// The recoveries and the stop.
+void register_recoveries(BtFactory& f, NavigationServer& srv) {
   f.register_simple_action(
       "BackUp",
       [&srv](BtNode& self, double, bool first) {
@@ -115,6 +113,24 @@ void Navigator::register_leaves(BtFactory& f) {
         return BtStatus::SUCCESS;
       },
       {}, bt_leaf_ports("Stop"));
+}
+
+}  // namespace
+
+void Navigator::register_leaves(BtFactory& f) {
+  NavigationServer& srv = *server_;
+  const auto fail_with = [this](BtNode& self, const Result& r) {
+    self.set_output<int>("error_code", static_cast<int>(code(r.outcome)));
+    last_failure_ = r;
+  };
+  f.register_simple_condition(
+      "SensorsAlive", [this](BtNode&, double) { return sensors_alive(); }, bt_leaf_ports("SensorsAlive"));
+  f.register_simple_condition(
+      "IsLocalizationHealthy", [this](BtNode&, double) { return localizer_.healthy(now_s_); },
+      bt_leaf_ports("IsLocalizationHealthy"));
+  register_server_conditions(f, srv, fail_with);
+  register_path_actions(f, srv, fail_with);
+  register_recoveries(f, srv);
 }
 
 }  // namespace bipednav::navigation
