@@ -35,7 +35,7 @@ void apply_controller_goal_tolerances(ServerParams& params) {
 }
 
 NavigationServer::NavigationServer(ServerParams params, RobotProfile robot, mapping::GlobalCostmap& global,
-                                   mapping::LocalCostmap& local)
+                                   mapping::LocalCostmap& local, const planning::local::MovingObstacleTracker* moving)
     : params_(std::move(params)),
       robot_(std::move(robot)),
       limits_(VelocityLimits::from_profile(robot_)),
@@ -47,7 +47,7 @@ NavigationServer::NavigationServer(ServerParams params, RobotProfile robot, mapp
   params_.validate();
   apply_controller_goal_tolerances(params_);
   make_global_planner(false);
-  local_planner_ = planning::local::make_local_planner(params_.local_planner, params_.local);
+  local_planner_ = planning::local::make_local_planner(params_.local_planner, params_.local, moving);
 }
 
 void NavigationServer::make_global_planner(bool relaxed) {

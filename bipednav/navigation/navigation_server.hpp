@@ -72,12 +72,15 @@ struct ActionStep {
 
 // The Move Base Flex abstract navigation server (section 3.2.1): get_path, exe_path and the
 // recovery behaviours on the navigator's costmaps, reporting MBF outcome codes. move_base is the
-// behavior tree that sequences them (see Navigator). Holds references to the costmaps the
-// Navigator owns; the command it produces is read with command().
+// behavior tree that sequences them (see Navigator). Holds references to the costmaps and the
+// moving-obstacle tracker the Navigator owns; the command it produces is read with command().
 class NavigationServer {
  public:
+  // `moving` (may be null): the tracked moving obstacles the local planner yields to.
   NavigationServer(ServerParams params, RobotProfile robot, mapping::GlobalCostmap& global,
-                   mapping::LocalCostmap& local);
+                   mapping::LocalCostmap& local, const planning::local::MovingObstacleTracker* moving = nullptr);
+  NavigationServer(const NavigationServer&) = delete;
+  NavigationServer& operator=(const NavigationServer&) = delete;
 
   void set_view(const RobotView& view) { view_ = view; }
   // Cells of the global map that changed since the last get_path (for D* Lite's repair).

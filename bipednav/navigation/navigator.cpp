@@ -46,13 +46,15 @@ Navigator::Navigator(NavigatorParams params, RobotProfile robot, const mapping::
       gate_(params_.sensors, lidar_mount_name(robot_), depth_mount_names(robot_)),
       local_(params_.local_map),
       global_(global_geometry, params_.global_map),
+      moving_(params_.moving_obstacles),
+      server_(params_.server, robot_, global_, local_, &moving_),
+      tree_(load_tree_xml(params_.behavior_tree, leaf_factory())),
       local_gate_(params_.local_map.rate_hz),
       global_gate_(params_.global_map.rate_hz),
       control_gate_(params_.control_rate_hz) {
   params_.validate();
   robot_.validate();
   lidar_name_ = lidar_mount_name(robot_);
-  moving_ = std::make_shared<planning::local::MovingObstacleTracker>(params_.moving_obstacles);
   // Where the sensors see (for coasting tracks through their blind zone), with the ranges and the
   // obstacle height the perception pipeline keeps.
   planning::local::SensorVisibilityParams visibility;
@@ -60,28 +62,28 @@ Navigator::Navigator(NavigatorParams params, RobotProfile robot, const mapping::
   visibility.lidar_min_range_m = params_.perception.lidar_min_range_m;
   visibility.lidar_max_range_m = params_.perception.lidar_max_range_m;
   visibility.min_obstacle_height_m = params_.perception.min_obstacle_height_m;
-  moving_->set_visibility(planning::local::SensorVisibility(robot_, visibility));
-  ServerParams server_params = params_.server;
-  server_params.local.moving_obstacles = moving_;
-  server_ = std::make_unique<NavigationServer>(std::move(server_params), robot_, global_, local_);
+  moving_.set_visibility(planning::local::SensorVisibility(robot_, visibility));
+}
+
+BtFactory Navigator::leaf_factory() {
   BtFactory factory;
   register_leaves(factory);
-  tree_ = std::make_unique<BehaviorTree>(load_tree_xml(params_.behavior_tree, factory));
+  return factory;
 }
 
 void Navigator::set_goal(const Pose2& goal) {
   goal_ = goal;
-  tree_->blackboard()->set("goal", goal);
-  server_->on_new_goal();
+  tree_.blackboard()->set("goal", goal);
+  server_.on_new_goal();
   if (status_.state != NavState::ACTIVE) {
-    tree_->halt();
+    tree_.halt();
     status_ = {NavState::ACTIVE, {}, ""};
   }
 }
 
 void Navigator::cancel() {
-  tree_->halt();
-  server_->stop();
+  tree_.halt();
+  server_.stop();
   cmd_ = {};
   goal_.reset();
   status_ = {NavState::IDLE, {Outcome::CTRL_CANCELED, "navigation canceled"}, ""};
@@ -122,8 +124,8 @@ Twist Navigator::tick(const SensorFrame& frame) {
       const CpuScope cpu(cpu_.control_ms);
       control();
     }
-    cpu_.global_planner_ms = server_->global_planner_cpu_ms();
-    cpu_.local_planner_ms = server_->local_planner_cpu_ms();
+    cpu_.global_planner_ms = server_.global_planner_cpu_ms();
+    cpu_.local_planner_ms = server_.local_planner_cpu_ms();
   }
   return cmd_;
 }
@@ -261,7 +263,7 @@ void Navigator::update_maps() {
     const CpuScope cpu(cpu_.global_map_ms);
     Stopwatch sw;
     map_ready_ = map_ready_ || !lidar_obs_.empty() || now_s_ >= 1.0;
-    server_->add_global_changes(global_.update(pose, lidar_obs_, &local_));
+    server_.add_global_changes(global_.update(pose, lidar_obs_, &local_));
     recycle(lidar_obs_, spare_points_);
     timings_.global_map_ms = sw.elapsed_ms();
   }
@@ -272,7 +274,7 @@ Twist Navigator::yield_to_moving_obstacles(const Twist& cmd) const {
   // turning, waiting), which know nothing of moving obstacles. Never on stale perception: with a
   // sensor silent or localization unhealthy the tree's stop stands.
   if (!params_.moving_obstacles.enabled || !sensors_alive() || !localizer_.healthy(now_s_)) return cmd;
-  const auto moving = moving_->moving(now_s_);
+  const auto moving = moving_.moving(now_s_);
   if (moving.empty()) return cmd;
   const VelocityLimits lim = VelocityLimits::from_profile(robot_);
   return planning::local::yield_to_moving_obstacles(cmd, localizer_.T_map_base(), reference_velocity(), moving,
@@ -300,27 +302,27 @@ Twist Navigator::reference_velocity() const {
 bool Navigator::sensors_alive() const { return gate_.all_alive(now_s_); }
 
 void Navigator::control() {
-  server_->set_view({now_s_, localizer_.T_map_base(), reference_velocity(), 1.0 / params_.control_rate_hz});
+  server_.set_view({now_s_, localizer_.T_map_base(), reference_velocity(), 1.0 / params_.control_rate_hz});
   // Plans and goal checks wait for the first map built from the sensors.
   if (status_.state != NavState::ACTIVE || !map_ready_) {
-    server_->stop();
+    server_.stop();
     cmd_ = {};
     return;
   }
   Stopwatch sw;
-  const BtStatus s = tree_->tick(now_s_);
-  status_.active_leaf = tree_->active_leaf();
-  if (auto p = tree_->blackboard()->get<Path>("path"); p && *p != global_path_) {
+  const BtStatus s = tree_.tick(now_s_);
+  status_.active_leaf = tree_.active_leaf();
+  if (auto p = tree_.blackboard()->get<Path>("path"); p && *p != global_path_) {
     global_path_ = std::move(*p);
     ++global_path_version_;
   }
-  cmd_ = yield_to_moving_obstacles(server_->command());
+  cmd_ = yield_to_moving_obstacles(server_.command());
   if (s == BtStatus::SUCCESS || s == BtStatus::FAILURE) finish(s);
   timings_.control_ms = sw.elapsed_ms();
 }
 
 void Navigator::finish(BtStatus s) {
-  server_->stop();
+  server_.stop();
   cmd_ = {};
   if (s == BtStatus::SUCCESS) {
     status_.state = NavState::SUCCEEDED;
@@ -331,7 +333,7 @@ void Navigator::finish(BtStatus s) {
   // The safety gate first: while sensors are silent or localization is unhealthy it halts the
   // navigation below it, so a failure now is the gate's, and error_code may still hold the code
   // of a controller failure the recoveries had overcome before.
-  const int code = tree_->blackboard()->get<int>("error_code").value_or(0);
+  const int code = tree_.blackboard()->get<int>("error_code").value_or(0);
   if (!sensors_alive()) {
     std::string names;
     for (const auto& n : gate_.silent(now_s_)) names += (names.empty() ? "" : ", ") + n;

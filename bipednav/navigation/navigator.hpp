@@ -110,6 +110,10 @@ class Navigator {
  public:
   Navigator(NavigatorParams params, RobotProfile robot, const mapping::GridGeometry& global_geometry,
             const Pose2& initial_pose);
+  // Its stages hold references to each other (the server to the maps and the tracker, the tree's
+  // leaves to the server): not copied or moved.
+  Navigator(const Navigator&) = delete;
+  Navigator& operator=(const Navigator&) = delete;
 
   // One step: returns the velocity command for the walking controller (zero when idle/stopped).
   Twist tick(const SensorFrame& frame);
@@ -125,19 +129,19 @@ class Navigator {
   const Path& global_path() const { return global_path_; }
   // Counts the changes of global_path(): equal versions mean the same path.
   std::uint64_t global_path_version() const { return global_path_version_; }
-  const Path& local_trajectory() const { return server_->local_trajectory(); }
+  const Path& local_trajectory() const { return server_.local_trajectory(); }
   const perception::PerceptionOutput& last_perception() const { return perception_out_; }
   const std::optional<Pose2>& goal() const { return goal_; }
-  std::size_t replans() const { return server_->plans(); }
-  std::size_t recoveries() const { return server_->recoveries(); }
-  const std::vector<RecoveryRecord>& recovery_log() const { return server_->recovery_log(); }
+  std::size_t replans() const { return server_.plans(); }
+  std::size_t recoveries() const { return server_.recoveries(); }
+  const std::vector<RecoveryRecord>& recovery_log() const { return server_.recovery_log(); }
   const NavigatorTimings& timings() const { return timings_; }  // wall time of the last run of each stage
   const NavigatorCpu& cpu() const { return cpu_; }
-  const BehaviorTree& tree() const { return *tree_; }
+  const BehaviorTree& tree() const { return tree_; }
   bool localization_healthy() const { return localizer_.healthy(now_s_); }
   const SensorGate& sensor_gate() const { return gate_; }
   const RobotProfile& robot() const { return robot_; }
-  const planning::local::MovingObstacleTracker& moving_obstacles() const { return *moving_; }
+  const planning::local::MovingObstacleTracker& moving_obstacles() const { return moving_; }
   // Depth frames not processed under NavigatorParams::newest_depth_only (superseded before the
   // local map would have integrated them).
   std::size_t depth_frames_skipped() const { return depth_frames_skipped_; }
@@ -159,6 +163,7 @@ class Navigator {
   Twist reference_velocity() const;  // see NavigatorParams::brake_from_last_command
   void control();
   void register_leaves(BtFactory& factory);
+  BtFactory leaf_factory();  // the engine's nodes and this navigator's leaves
   bool sensors_alive() const;
   void finish(BtStatus status);
   bool depth_superseded(const SensorFrame& frame, const Admission& admitted, std::size_t i);
@@ -171,9 +176,9 @@ class Navigator {
   SensorGate gate_;
   mapping::LocalCostmap local_;
   mapping::GlobalCostmap global_;
-  std::shared_ptr<planning::local::MovingObstacleTracker> moving_;  // shared with the local planner
-  std::unique_ptr<NavigationServer> server_;
-  std::unique_ptr<BehaviorTree> tree_;
+  planning::local::MovingObstacleTracker moving_;  // the local planner reads it too
+  NavigationServer server_;
+  BehaviorTree tree_;
   RateGate local_gate_, global_gate_, control_gate_;
   perception::PerceptionOutput perception_out_;
   perception::PerceptionInput perception_in_;  // this tick's admitted clouds (buffer kept between ticks)

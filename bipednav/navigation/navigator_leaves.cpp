@@ -118,7 +118,7 @@ void register_recoveries(BtFactory& f, NavigationServer& srv) {
 }  // namespace
 
 void Navigator::register_leaves(BtFactory& f) {
-  NavigationServer& srv = *server_;
+  NavigationServer& srv = server_;
   const auto fail_with = [this](BtNode& self, const Result& r) {
     self.set_output<int>("error_code", static_cast<int>(code(r.outcome)));
     last_failure_ = r;

@@ -100,12 +100,12 @@ void Navigator::track_moving_obstacles() {
   // The obstacle points of every sensor since the last local map update, in the map frame.
   marking_points(local_obs_, moving_points_, moving_heights_);
   if (moving_points_.empty()) return;
-  moving_->set_static_structure(global_.occupancy(), now_s_);  // walls' pieces are not movers
-  moving_->update(moving_points_, moving_heights_, localizer_.T_map_base(), now_s_);
+  moving_.set_static_structure(global_.occupancy(), now_s_);  // walls' pieces are not movers
+  moving_.update(moving_points_, moving_heights_, localizer_.T_map_base(), now_s_);
   // Points on moving obstacles stay out of the global map's own LiDAR input (their trail would
   // block the lanes they crossed); the local map marks them, and merge_local carries the local
   // map's cells into the global map, so the global planner routes round a mover where it is seen.
-  const auto moving = moving_->moving(now_s_);
+  const auto moving = moving_.moving(now_s_);
   if (moving.empty()) return;
   const MoverCircles movers(moving, params_.moving_obstacles.global_map_margin_m);
   const auto on_mover = [&](const Eigen::Vector3f& p) { return movers.contain(p); };

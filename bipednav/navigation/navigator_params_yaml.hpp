@@ -21,8 +21,8 @@ namespace bipednav::navigation {
 // Every key is optional: the file is overlaid on parameters that already hold the robot's
 // defaults (NavigatorParams::for_robot). `bipednav params --robot R` prints the full layout.
 // Left out (not tunable from a file): localization.loam.T_world_lidar_initial and
-// output_deskewed (the Localizer sets them), perception.ransac.prior_normal (taken from
-// perception.prior_ground) and server.local.moving_obstacles (the navigator's tracker).
+// output_deskewed (the Localizer sets them) and perception.ransac.prior_normal (taken from
+// perception.prior_ground).
 //
 // The footstep navigator of the humanoids (FootstepNavigatorParams, `bipednav run` with a robot of
 // kind humanoid) reads a file of its own layout the same way, e.g.

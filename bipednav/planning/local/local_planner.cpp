@@ -53,7 +53,8 @@ std::optional<LocalPlanResult> reject_bad_inputs(const Pose2& T_map_base, const 
   return r;
 }
 
-std::unique_ptr<LocalPlanner> make_local_planner(std::string_view name, const LocalPlannerParams& params) {
+std::unique_ptr<LocalPlanner> make_local_planner(std::string_view name, const LocalPlannerParams& params,
+                                                 const MovingObstacleTracker* moving) {
   using Maker = std::unique_ptr<LocalPlanner> (*)(const LocalPlannerParams&);
   static constexpr std::pair<std::string_view, Maker> kTable[] = {
       {"teb",
@@ -69,7 +70,7 @@ std::unique_ptr<LocalPlanner> make_local_planner(std::string_view name, const Lo
     if (key != name) continue;
     auto planner = make(params);
     planner->set_avoidance_params(params.avoidance);
-    planner->set_moving_obstacles(params.moving_obstacles);
+    planner->set_moving_obstacles(moving);
     return planner;
   }
   throw ParamError("local_planner", "\"teb\" or \"tracker\", got \"" + std::string(name) + "\"");

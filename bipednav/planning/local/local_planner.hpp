@@ -40,8 +40,9 @@ class LocalPlanner {
   virtual void reset() = 0;
   virtual std::string_view name() const = 0;
 
-  // The tracked obstacles to yield to (the navigator's tracker, fed from the sensors); none by default.
-  void set_moving_obstacles(std::shared_ptr<const MovingObstacleTracker> tracker) { moving_ = std::move(tracker); }
+  // The tracked obstacles to yield to (the navigator's tracker, fed from the sensors; not owned, it
+  // must outlive the planner); none by default.
+  void set_moving_obstacles(const MovingObstacleTracker* tracker) { moving_ = tracker; }
   void set_avoidance_params(const DynamicAvoidanceParams& params) { avoidance_ = (params.validate(), params); }
   const YieldDecision& last_yield() const { return last_yield_; }
 
@@ -52,7 +53,7 @@ class LocalPlanner {
   void yield(LocalPlanResult& r, const Pose2& pose, const Twist& current, const mapping::Costmap2D& costmap,
              const VelocityLimits& lim, double period_s, double now_s);
 
-  std::shared_ptr<const MovingObstacleTracker> moving_;
+  const MovingObstacleTracker* moving_ = nullptr;
   DynamicAvoidanceParams avoidance_;
   YieldDecision last_yield_;
 };
@@ -61,8 +62,6 @@ struct LocalPlannerParams {
   TebParams teb;
   TrackerParams tracker;
   DynamicAvoidanceParams avoidance;
-  // The tracked moving obstacles the planner yields to (set by the navigator; may be null).
-  std::shared_ptr<const MovingObstacleTracker> moving_obstacles;
   void validate() const;
 };
 
@@ -71,6 +70,8 @@ std::optional<LocalPlanResult> reject_bad_inputs(const Pose2& T_map_base, const 
                                                  const Path& global_plan, const mapping::Costmap2D& local_costmap);
 
 // Factory table: "teb" or "tracker"; throws ParamError for another name.
-std::unique_ptr<LocalPlanner> make_local_planner(std::string_view name, const LocalPlannerParams& params);
+// `moving` (may be null): the tracked moving obstacles the planner yields to (set_moving_obstacles).
+std::unique_ptr<LocalPlanner> make_local_planner(std::string_view name, const LocalPlannerParams& params,
+                                                 const MovingObstacleTracker* moving = nullptr);
 
 }  // namespace bipednav::planning::local

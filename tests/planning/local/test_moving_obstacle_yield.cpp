@@ -59,11 +59,11 @@ TEST(MovingObstacles, HeadOnPredictedCollisionMakesTheTrackerStopOrBackOff) {
   ASSERT_TRUE(r0.result.ok());
   EXPECT_GT(r0.cmd.linear_x, 0.4);
   // A box 1.7 m ahead walking at us at 0.3 m/s (seen from t = 0 to 2 s).
-  params.moving_obstacles = tracker_with({2.3, 0.0}, {-0.3, 0.0}, 2.0);
-  ASSERT_EQ(params.moving_obstacles->moving(2.0).size(), 1u);
+  const auto box = tracker_with({2.3, 0.0}, {-0.3, 0.0}, 2.0);
+  ASSERT_EQ(box->moving(2.0).size(), 1u);
   for (const char* name : {"tracker", "teb"}) {
     SCOPED_TRACE(name);
-    auto planner = make_local_planner(name, params);
+    auto planner = make_local_planner(name, params, box.get());
     const auto r = planner->compute({0, 0, 0}, cruise, plan, map, 2.0);
     ASSERT_TRUE(r.result.ok()) << r.result.message;
     EXPECT_TRUE(planner->last_yield().modified);
@@ -71,7 +71,7 @@ TEST(MovingObstacles, HeadOnPredictedCollisionMakesTheTrackerStopOrBackOff) {
     EXPECT_LT(r.cmd.linear_x, 0.5);
     EXPECT_LE(planner->last_yield().target.linear_x, 0.25);
     EXPECT_GT(planner->last_yield().ttc_s,
-              time_to_collision({0, 0, 0}, cruise, params.moving_obstacles->moving(2.0), 2.0, params.avoidance));
+              time_to_collision({0, 0, 0}, cruise, box->moving(2.0), 2.0, params.avoidance));
   }
 }
 
@@ -81,8 +81,8 @@ TEST(MovingObstacles, ObstacleThatPassesBeforeTheRobotArrivesChangesNothing) {
   LocalPlannerParams params;
   params.avoidance.robot_radius_m = 0.3;
   // Crossing 3 m ahead, already past the robot's lane, moving away from it.
-  params.moving_obstacles = tracker_with({3.0, -1.0}, {0.0, -0.3}, 2.0);
-  auto planner = make_local_planner("tracker", params);
+  const auto crossing = tracker_with({3.0, -1.0}, {0.0, -0.3}, 2.0);
+  auto planner = make_local_planner("tracker", params, crossing.get());
   const auto r = planner->compute({0, 0, 0}, {0.5, 0.0, 0.0}, plan, map, 2.0);
   ASSERT_TRUE(r.result.ok());
   EXPECT_FALSE(planner->last_yield().modified);

@@ -462,7 +462,7 @@ TEST(TebDynamicObstacles, PlannerUsesTheTrackerWhenEnabled) {
     TebParams p;
     p.optim.dynamic_obstacles = enabled;
     TebPlanner planner(p);
-    planner.set_moving_obstacles(tracker);
+    planner.set_moving_obstacles(tracker.get());
     const LocalPlanResult r = planner.compute({0, 0, 0}, {}, plan, costmap, now);
     ASSERT_FALSE(planner.candidates().empty());
     for (const auto& c : planner.candidates()) {
@@ -486,18 +486,18 @@ TEST(TebDynamicObstacles, PlannerTracksUseTheLargestRadiusGrowthAndLead) {
   ASSERT_EQ(tracker->moving(now).size(), 1u);
   TebParams p;
   TebPlanner off(p);
-  off.set_moving_obstacles(tracker);
+  off.set_moving_obstacles(tracker.get());
   EXPECT_TRUE(off.band_moving(now).empty());
   p.optim.dynamic_obstacles = true;
   p.optim.dynamic_obstacle_largest_radius = false;
   p.optim.dynamic_obstacle_growth_mps = 0.0;
   TebPlanner latest(p);
-  latest.set_moving_obstacles(tracker);
+  latest.set_moving_obstacles(tracker.get());
   p.optim.dynamic_obstacle_largest_radius = true;
   p.optim.dynamic_obstacle_growth_mps = 0.07;
   p.optim.dynamic_obstacle_lead_s = 0.8;
   TebPlanner largest(p);
-  largest.set_moving_obstacles(tracker);
+  largest.set_moving_obstacles(tracker.get());
   const auto a = latest.band_moving(now), b = largest.band_moving(now);
   ASSERT_EQ(a.size(), 1u);
   ASSERT_EQ(b.size(), 1u);
