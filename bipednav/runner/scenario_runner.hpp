@@ -50,7 +50,7 @@ struct RunOptions {
 struct TraceSample {
   double t_s = 0.0;
   Pose2 true_pose, estimated_pose;
-  Twist cmd;
+  Twist cmd;  // the navigator's (under a command_dropout fault the robot's watchdog may have stopped it)
   std::string active_leaf;
   std::vector<SE3> actors;
 };
