@@ -10,6 +10,17 @@
 #include "bipednav/planning/local/sensor_visibility.hpp"
 
 namespace bipednav::navigation {
+namespace {
+
+// Parameters are checked before any stage is built from them, so a bad value is reported as the
+// ParamError naming it (not as whatever a stage makes of it).
+template <class Params>
+Params validated(Params p) {
+  p.validate();
+  return p;
+}
+
+}  // namespace
 
 std::string lidar_mount_name(const RobotProfile& robot) {
   const SensorMount* lidar = robot.lidar();
@@ -39,8 +50,9 @@ const char* nav_state_name(NavState s) {
 
 Navigator::Navigator(NavigatorParams params, RobotProfile robot, const mapping::GridGeometry& global_geometry,
                      const Pose2& initial_pose)
-    : params_(std::move(params)),
-      robot_(std::move(robot)),
+    : params_(validated(std::move(params))),
+      robot_(validated(std::move(robot))),
+      command_limits_(VelocityLimits::from_profile(robot_)),
       perception_(params_.perception),
       localizer_(params_.localization, robot_, initial_pose),
       gate_(params_.sensors, lidar_mount_name(robot_), depth_mount_names(robot_)),
@@ -48,12 +60,10 @@ Navigator::Navigator(NavigatorParams params, RobotProfile robot, const mapping::
       global_(global_geometry, params_.global_map),
       moving_(params_.moving_obstacles),
       server_(params_.server, robot_, global_, local_, &moving_),
-      tree_(load_tree_xml(params_.behavior_tree, leaf_factory())),
+      tree_(load_tree_xml(params_.behavior_tree, leaf_factory())),  // no leaf runs before the constructor ends
       local_gate_(params_.local_map.rate_hz),
       global_gate_(params_.global_map.rate_hz),
       control_gate_(params_.control_rate_hz) {
-  params_.validate();
-  robot_.validate();
   lidar_name_ = lidar_mount_name(robot_);
   // Where the sensors see (for coasting tracks through their blind zone), with the ranges and the
   // obstacle height the perception pipeline keeps.
@@ -276,10 +286,9 @@ Twist Navigator::yield_to_moving_obstacles(const Twist& cmd) const {
   if (!params_.moving_obstacles.enabled || !sensors_alive() || !localizer_.healthy(now_s_)) return cmd;
   const auto moving = moving_.moving(now_s_);
   if (moving.empty()) return cmd;
-  const VelocityLimits lim = VelocityLimits::from_profile(robot_);
   return planning::local::yield_to_moving_obstacles(cmd, localizer_.T_map_base(), reference_velocity(), moving,
-                                                    local_.costmap(), lim, 1.0 / params_.control_rate_hz, now_s_,
-                                                    params_.server.local.avoidance)
+                                                    local_.costmap(), command_limits_, 1.0 / params_.control_rate_hz,
+                                                    now_s_, params_.server.local.avoidance)
       .cmd;
 }
 

@@ -38,3 +38,21 @@ TEST(NavigatorParams, LocalPlannersAimAtAShareOfTheGoalCheckersTolerance) {
   own.controller_goal_tolerance_fraction = 1.5;
   EXPECT_THROW(own.validate(), ParamError);
 }
+
+// Bad parameters are reported by name before any stage is built from them (an empty tree path
+// used to reach the XML loader first and come back as an unreadable file).
+TEST(NavigatorParams, TheNavigatorNamesABadParameterBeforeBuildingItsStages) {
+  RobotProfile robot;
+  navigation::NavigatorParams p = navigation::NavigatorParams::for_robot(robot);
+  p.behavior_tree.clear();
+  const mapping::GridGeometry grid{100, 100, 0.1, -5.0, -5.0};
+  try {
+    navigation::Navigator nav(p, robot, grid, {});
+    FAIL() << "an empty behavior_tree must be rejected";
+  } catch (const ParamError& e) {
+    EXPECT_NE(std::string(e.what()).find("behavior_tree"), std::string::npos) << e.what();
+  }
+  robot.max_vel_x_mps = -1.0;
+  EXPECT_THROW(navigation::Navigator(navigation::NavigatorParams::for_robot(RobotProfile{}), robot, grid, {}),
+               ParamError);
+}
