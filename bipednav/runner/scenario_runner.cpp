@@ -73,6 +73,15 @@ bool path_departs(const Path& before, const Path& after, double limit_m) {
 
 namespace {
 
+// navigator_params with the scenario's goal tolerances.
+navigation::NavigatorParams scenario_navigator_params(const sim::Scenario& scenario, const RobotProfile& robot,
+                                                      const RunOptions& o) {
+  auto params = navigator_params(robot, o);
+  params.server.goal.xy_tolerance_m = scenario.goal_tolerance_m;
+  params.server.goal.yaw_tolerance_rad = scenario.goal_tolerance_rad;
+  return params;
+}
+
 Snapshot snapshot(double t, const navigation::Navigator& nav, const sim::Simulation& sim) {
   return {t,
           sim.true_pose(),
@@ -114,6 +123,11 @@ struct StepRecorder {
     }
     return sampled;
   }
+  // The trace ends with the final step (the robot's last command), not the last periodic sample.
+  void finish(const sim::Simulation& sim, const navigation::Navigator& nav, const Twist& cmd, RunResult& out) const {
+    if (out.trace.empty() || out.trace.back().t_s + 1e-9 < sim.now_s())
+      out.trace.push_back({sim.now_s(), sim.true_pose(), nav.pose(), cmd, nav.status().active_leaf, sim.actor_poses()});
+  }
 };
 
 // The navigator's command on its way to the simulated robot: the link (which a command_dropout
@@ -145,6 +159,15 @@ class CommandLink {
   std::size_t stops_ = 0;
   double stopped_s_ = 0.0;
 };
+
+// Simulated, wall and process CPU time of the run, and their ratios (the real-time factors).
+void record_times(RunResult& out, double time_s, double wall_ms, double cpu_start_ms, double cpu_end_ms) {
+  out.wall_s = wall_ms / 1000.0;
+  out.time_s = time_s;
+  out.real_time_factor = out.wall_s > 0 ? out.time_s / out.wall_s : 0.0;
+  out.cpu_s = (cpu_end_ms - cpu_start_ms) / 1000.0;
+  out.cpu_real_time_factor = out.cpu_s > 0 ? out.time_s / out.cpu_s : 0.0;
+}
 
 // Process CPU per stage (RunResult::stage_cpu_ms) from the simulator's and the navigator's
 // counters and the runner's clock readings: the run's start, the loop's start and end, and the
@@ -208,16 +231,16 @@ RunResult run_scenario(const sim::Scenario& scenario, const RunOptions& o) {
   sim::SimulationParams sp;
   sp.seed = o.seed.value_or(scenario.seed);
   sim::Simulation sim(scenario.world, robot, scenario.start, sp);
-  auto params = navigator_params(robot, o);
-  params.server.goal.xy_tolerance_m = scenario.goal_tolerance_m;
-  params.server.goal.yaw_tolerance_rad = scenario.goal_tolerance_rad;
+  const auto params = scenario_navigator_params(scenario, robot, o);
   navigation::Navigator nav(params, robot, global_geometry_for(scenario, params.global_map.resolution_m),
                             scenario.start);
   const double limit = o.time_limit_s.value_or(scenario.time_limit_s);
   std::vector<sim::Fault> faults = scenario.faults;
   faults.insert(faults.end(), o.faults.begin(), o.faults.end());
   sim::FaultInjector injector(faults, sp.seed);
-  if (faults.empty() && !o.render_unused_depth && params.newest_depth_only)
+  // Without sensor faults the navigator may decline depth images before they are rendered.
+  const bool sensor_faults = injector.has_sensor_faults();
+  if (!sensor_faults && !o.render_unused_depth && params.newest_depth_only)
     sim.set_depth_demand([&nav](const std::string& camera, double capture_s, double stamp_s, bool newer_in_step) {
       return nav.wants_depth(camera, capture_s, stamp_s, newer_in_step);
     });
@@ -237,7 +260,7 @@ RunResult run_scenario(const sim::Scenario& scenario, const RunOptions& o) {
     }
     const double t0_ms = process_cpu_ms();
     const Twist& to_robot = link.to_robot(sim.now_s(), sim.params().step_s);
-    SensorFrame frame = faults.empty() ? sim.step(to_robot) : injector.apply(sim.step(to_robot));
+    SensorFrame frame = sensor_faults ? injector.apply(sim.step(to_robot)) : sim.step(to_robot);
     const double t1_ms = process_cpu_ms();
     cmd = nav.tick(frame);
     link.send(cmd, sim.now_s(), injector);
@@ -249,16 +272,10 @@ RunResult run_scenario(const sim::Scenario& scenario, const RunOptions& o) {
     const auto state = nav.status().state;
     if (!more_goals && (state == navigation::NavState::SUCCEEDED || state == navigation::NavState::FAILED)) break;
   }
-  // The trace ends with the final step (the robot's last command), not the last periodic sample.
-  if (out.trace.empty() || out.trace.back().t_s + 1e-9 < sim.now_s())
-    out.trace.push_back({sim.now_s(), sim.true_pose(), nav.pose(), cmd, nav.status().active_leaf, sim.actor_poses()});
+  recorder.finish(sim, nav, cmd, out);
   bar.finish();
-  out.wall_s = wall.elapsed_ms() / 1000.0;
-  out.time_s = sim.now_s();
-  out.real_time_factor = out.wall_s > 0 ? out.time_s / out.wall_s : 0.0;
-  const double cpu_end_ms = process_cpu_ms();
-  out.cpu_s = (cpu_end_ms - cpu_start_ms) / 1000.0;
-  out.cpu_real_time_factor = out.cpu_s > 0 ? out.time_s / out.cpu_s : 0.0;
+  const double wall_ms = wall.elapsed_ms(), cpu_end_ms = process_cpu_ms();
+  record_times(out, sim.now_s(), wall_ms, cpu_start_ms, cpu_end_ms);
   out.depth_images = sim.stats().depth_images;
   out.depth_images_unused = nav.depth_frames_skipped();
   record_stage_cpu(out, sim, nav, cpu_start_ms, cpu_loop_ms, cpu_end_ms, sim_ms);

@@ -49,6 +49,12 @@ bool FaultInjector::any_active(double t_s) const {
   return std::any_of(faults_.begin(), faults_.end(), [&](const Fault& f) { return f.active_at(t_s); });
 }
 
+bool FaultInjector::has_sensor_faults() const {
+  return std::any_of(faults_.begin(), faults_.end(), [](const Fault& f) {
+    return f.type != FaultType::COMMAND_DROPOUT && f.type != FaultType::GOAL_FLOOD;
+  });
+}
+
 bool FaultInjector::drops_command(double t_s) {
   if (!active(FaultType::COMMAND_DROPOUT, t_s)) return false;
   ++counters_.commands_dropped;

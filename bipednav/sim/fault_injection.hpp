@@ -23,12 +23,15 @@ struct FaultCounters {
   std::size_t commands_dropped = 0;
 };
 
-// Applies the sensor faults to each simulator frame before the navigator sees it.
+// Applies the sensor faults to each simulator frame before the navigator sees it, and the
+// command faults to the navigator's commands on their way to the robot.
 class FaultInjector {
  public:
   FaultInjector(std::vector<Fault> faults, std::uint64_t seed);
 
   SensorFrame apply(SensorFrame frame);
+  // Whether any fault touches the sensor data (apply() changes nothing without one).
+  bool has_sensor_faults() const;
   // Whether a velocity command sent at t_s is lost on its way to the walking controller
   // (COMMAND_DROPOUT); counts the lost ones.
   bool drops_command(double t_s);
