@@ -31,13 +31,7 @@ void VelocityLimits::validate() const {
 }
 
 VelocityLimits VelocityLimits::from_profile(const RobotProfile& robot) {
-  VelocityLimits l;
-  l.max_vel_x_mps = robot.max_vel_x_mps;
-  l.max_vel_x_backwards_mps = robot.max_vel_x_backwards_mps;
-  l.max_vel_y_mps = 0.0;
-  l.max_vel_theta_radps = robot.max_vel_theta_radps;
-  l.acc_lim_x_mps2 = robot.acc_lim_x_mps2;
-  l.acc_lim_theta_radps2 = robot.acc_lim_theta_radps2;
+  const VelocityLimits l = forward_yaw_of(robot);
   l.validate();
   return l;
 }

@@ -6,8 +6,7 @@
 namespace bipednav {
 
 // Velocity and acceleration limits of a planar command (the walking controller's interface).
-// max_vel_y_mps = 0 for forward/yaw-only robots (Digit's and a diff-drive's interface). The first
-// five fields come first so that {vx, vx_back, wz, ax, awz} lists a forward/yaw-only robot.
+// max_vel_y_mps = 0 for forward/yaw-only robots (Digit's and a diff-drive's interface).
 struct VelocityLimits {
   double max_vel_x_mps = 0.26;
   double max_vel_x_backwards_mps = 0.15;
@@ -20,6 +19,18 @@ struct VelocityLimits {
   void validate() const;
   // The limits of a robot profile (lateral motion disabled: the profiles are forward/yaw only).
   static VelocityLimits from_profile(const RobotProfile& robot);
+  // The forward/yaw limits of any struct with the five fields of these names (a profile, TEB's and
+  // the tracker's parameters); no lateral motion.
+  template <class P>
+  static VelocityLimits forward_yaw_of(const P& p) {
+    VelocityLimits l;
+    l.max_vel_x_mps = p.max_vel_x_mps;
+    l.max_vel_x_backwards_mps = p.max_vel_x_backwards_mps;
+    l.max_vel_theta_radps = p.max_vel_theta_radps;
+    l.acc_lim_x_mps2 = p.acc_lim_x_mps2;
+    l.acc_lim_theta_radps2 = p.acc_lim_theta_radps2;
+    return l;
+  }
 };
 
 // The one command limiter of the project (TEB, the tracker, the yield, the recoveries).

@@ -97,7 +97,11 @@ RolloutCheck rollout_check(const Pose2& pose, const Twist& current, const Twist&
 double time_to_collision(const Pose2& pose, const Twist& cmd, const std::vector<TrackedObstacle>& moving, double now_s,
                          const DynamicAvoidanceParams& params) {
   // Instant velocity changes: unlimited acceleration.
-  const VelocityLimits lim{1e9, 1e9, 1e9, 1e9, 1e9};
+  const VelocityLimits lim{.max_vel_x_mps = 1e9,
+                           .max_vel_x_backwards_mps = 1e9,
+                           .max_vel_theta_radps = 1e9,
+                           .acc_lim_x_mps2 = 1e9,
+                           .acc_lim_theta_radps2 = 1e9};
   return rollout_check(pose, cmd, cmd, moving, lim, now_s, params, nullptr).ttc_s;
 }
 

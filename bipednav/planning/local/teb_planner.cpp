@@ -29,10 +29,7 @@ void TebPlanner::reset() {
   holding_goal_ = false;
 }
 
-VelocityLimits TebPlanner::command_limits() const {
-  const auto& L = params_.limits;
-  return {L.max_vel_x_mps, L.max_vel_x_backwards_mps, L.max_vel_theta_radps, L.acc_lim_x_mps2, L.acc_lim_theta_radps2};
-}
+VelocityLimits TebPlanner::command_limits() const { return VelocityLimits::forward_yaw_of(params_.limits); }
 
 LocalPlanResult TebPlanner::finish(LocalPlanResult r, const Twist& desired, const Twist& current) {
   r.cmd = limit_velocity(desired, current, params_.control_period_s, command_limits());

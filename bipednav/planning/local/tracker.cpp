@@ -67,8 +67,7 @@ PathTracker::PathTracker(TrackerParams params) : params_(std::move(params)) { pa
 LocalPlanResult PathTracker::compute(const Pose2& T_map_base, const Twist& current_velocity, const Path& global_plan,
                                      const mapping::Costmap2D& local_costmap, double now_s) {
   LocalPlanResult r = follow(T_map_base, current_velocity, global_plan, local_costmap);
-  const VelocityLimits lim{params_.max_vel_x_mps, params_.max_vel_x_backwards_mps, params_.max_vel_theta_radps,
-                           params_.acc_lim_x_mps2, params_.acc_lim_theta_radps2};
+  const VelocityLimits lim = VelocityLimits::forward_yaw_of(params_);
   yield(r, T_map_base, current_velocity, local_costmap, lim, params_.control_period_s, now_s);
   return r;
 }
@@ -78,8 +77,8 @@ LocalPlanResult PathTracker::follow(const Pose2& T_map_base, const Twist& curren
   if (auto bad = reject_bad_inputs(T_map_base, current_velocity, global_plan, local_costmap)) return *bad;
   LocalPlanResult r;
   r.trajectory.frame_id = global_plan.frame_id;
-  const VelocityLimits lim{params_.max_vel_x_mps, 0.0, params_.max_vel_theta_radps, params_.acc_lim_x_mps2,
-                           params_.acc_lim_theta_radps2};
+  VelocityLimits lim = VelocityLimits::forward_yaw_of(params_);
+  lim.max_vel_x_backwards_mps = 0.0;
   const Pose2& goal = global_plan.poses.back();
   const GoalApproach ga =
       approach_goal(T_map_base, goal, params_.xy_goal_tolerance_m, params_.yaw_goal_tolerance_rad, params_.rotate_gain,
@@ -119,8 +118,7 @@ bool PathTracker::escape(LocalPlanResult& r, const Pose2& T_map_base, const Twis
   // Away from the nearest lethal cell (any direction when the robot sits on its centre).
   const Eigen::Vector2d away = T_map_base.position() - nearest;
   const double away_yaw = away.norm() > 1e-9 ? std::atan2(away.y(), away.x()) : T_map_base.theta;
-  const VelocityLimits lim{params_.max_vel_x_mps, params_.max_vel_x_backwards_mps, params_.max_vel_theta_radps,
-                           params_.acc_lim_x_mps2, params_.acc_lim_theta_radps2};
+  const VelocityLimits lim = VelocityLimits::forward_yaw_of(params_);
   const double vb = params_.max_vel_x_backwards_mps, vf = params_.max_vel_x_mps, wm = params_.max_vel_theta_radps;
   // Candidates: a grid of backing, turning and forward commands within one period's acceleration.
   // Score: the clearance gained at the end of the arc, then (to pick a turn on the spot) how
