@@ -72,8 +72,9 @@ struct ActionStep {
 
 // The Move Base Flex abstract navigation server (section 3.2.1): get_path, exe_path and the
 // recovery behaviours on the navigator's costmaps, reporting MBF outcome codes. move_base is the
-// behavior tree that sequences them (see Navigator). Holds references to the costmaps and the
-// moving-obstacle tracker the Navigator owns; the command it produces is read with command().
+// behavior tree that sequences them (see Navigator). Holds references to the costmaps the
+// Navigator owns (and its local planner a pointer to the Navigator's moving-obstacle tracker); the
+// command it produces is read with command().
 class NavigationServer {
  public:
   // `moving` (may be null): the tracked moving obstacles the local planner yields to.

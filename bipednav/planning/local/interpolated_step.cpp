@@ -1,4 +1,4 @@
-#include "bipednav/planning/local/polynomial_step.hpp"
+#include "bipednav/planning/local/interpolated_step.hpp"
 
 #include <Eigen/Core>
 #include <Eigen/Eigenvalues>

@@ -5,7 +5,7 @@
 #include <limits>
 
 #include "bipednav/planning/local/band_cholesky.hpp"
-#include "bipednav/planning/local/polynomial_step.hpp"
+#include "bipednav/planning/local/interpolated_step.hpp"
 
 namespace bipednav::planning::local {
 
