@@ -120,6 +120,8 @@ TEST(FaultInjection, GoalFloodGivesRandomGoalsThenTheGoalInForceAgain) {
 
 TEST(FaultInjection, CommandDropoutLosesTheCommandsSentWhileItLasts) {
   FaultInjector inj({fault(FaultType::COMMAND_DROPOUT, 2.0, 1.5)}, 1);
+  EXPECT_FALSE(inj.has_sensor_faults());  // the frames need not pass through apply()
+  EXPECT_TRUE(FaultInjector({fault(FaultType::LIDAR_DROPOUT, 2.0, 1.5)}, 1).has_sensor_faults());
   EXPECT_FALSE(inj.drops_command(1.99));
   EXPECT_TRUE(inj.drops_command(2.0));
   EXPECT_TRUE(inj.drops_command(3.49));
