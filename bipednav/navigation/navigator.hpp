@@ -138,6 +138,7 @@ class Navigator {
   const NavigatorTimings& timings() const { return timings_; }  // wall time of the last run of each stage
   const NavigatorCpu& cpu() const { return cpu_; }
   const BehaviorTree& tree() const { return tree_; }
+  const NavigationServer& server() const { return server_; }
   bool localization_healthy() const { return localizer_.healthy(now_s_); }
   const SensorGate& sensor_gate() const { return gate_; }
   const RobotProfile& robot() const { return robot_; }

@@ -39,6 +39,17 @@ TEST(NavigatorParams, LocalPlannersAimAtAShareOfTheGoalCheckersTolerance) {
   EXPECT_THROW(own.validate(), ParamError);
 }
 
+// The local planner yields to the navigator's own tracker (held by value; the planner keeps a pointer).
+TEST(NavigatorParams, TheLocalPlannerReadsTheNavigatorsMovingObstacleTracker) {
+  for (const char* kind : {"diff_drive", "walker"}) {
+    RobotProfile robot;
+    robot.kind = kind;
+    const navigation::Navigator nav(navigation::NavigatorParams::for_robot(robot), robot,
+                                    mapping::GridGeometry{100, 100, 0.1, -5.0, -5.0}, {});
+    EXPECT_EQ(nav.server().local_planner().moving_obstacles(), &nav.moving_obstacles()) << kind;
+  }
+}
+
 // Bad parameters are reported by name before any stage is built from them (an empty tree path
 // used to reach the XML loader first and come back as an unreadable file).
 TEST(NavigatorParams, TheNavigatorNamesABadParameterBeforeBuildingItsStages) {

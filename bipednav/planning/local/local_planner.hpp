@@ -45,6 +45,7 @@ class LocalPlanner {
   void set_moving_obstacles(const MovingObstacleTracker* tracker) { moving_ = tracker; }
   void set_avoidance_params(const DynamicAvoidanceParams& params) { avoidance_ = (params.validate(), params); }
   const YieldDecision& last_yield() const { return last_yield_; }
+  const MovingObstacleTracker* moving_obstacles() const { return moving_; }
 
  protected:
   // Replaces r.cmd by a command that yields to the predicted moving obstacles (see
