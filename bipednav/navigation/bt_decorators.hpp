@@ -4,7 +4,7 @@
 #include "bipednav/navigation/bt_node.hpp"
 
 // Decorators (BehaviorTree.CPP v4 semantics; RateController as in Nav2, on the tree's
-// simulated clock), the SubTree node and the engine's built-in leaves.
+// simulated clock) and the SubTree node; the engine's built-in leaves are in bt_leaves.hpp.
 namespace bipednav::navigation {
 
 class BtDecoratorNode : public BtNode {
@@ -77,20 +77,6 @@ class BtRateController final : public BtDecoratorNode {
   BtStatus last_child_result_ = BtStatus::SUCCESS;
 };
 
-// Delay's and Sleep's clock: simulated time counted from the first call of elapsed() after
-// construction or restart(), read from the node's msec port (an int >= 0).
-class BtSimTimer {
- public:
-  BtSimTimer(const BtNodeConfig& config, const std::string& msec_port);
-  bool elapsed(double now_s);
-  void restart() { started_ = false; }
-
- private:
-  double duration_s_ = 0.0;
-  bool started_ = false;
-  double start_s_ = 0.0;
-};
-
 // RUNNING for delay_msec of simulated time after activation, then behaves like the child.
 class BtDelay final : public BtDecoratorNode {
  public:
@@ -113,56 +99,6 @@ class BtSubTreeNode final : public BtNode {
  protected:
   BtStatus tick(double now_s) override { return child(0).execute_tick(now_s); }
   void halt() override { halt_children(); }
-};
-
-// AlwaysSuccess / AlwaysFailure.
-class BtConstantLeaf final : public BtNode {
- public:
-  BtConstantLeaf(BtNodeConfig config, BtStatus result) : BtNode(std::move(config)), result_(result) {}
-  BtNodeKind kind() const override { return BtNodeKind::Action; }
-
- protected:
-  BtStatus tick(double) override { return result_; }
-
- private:
-  BtStatus result_;
-};
-
-// Sleep msec="N" (BehaviorTree.CPP v4's built-in): RUNNING for msec of simulated time after
-// activation, then SUCCESS; a halt restarts the count. A timer that is no recovery (the safety
-// gate's wait for sensor health; the Wait recovery is an MBF recovery with an outcome code).
-class BtSleep final : public BtNode {
- public:
-  explicit BtSleep(BtNodeConfig config);
-  BtNodeKind kind() const override { return BtNodeKind::Action; }
-
- protected:
-  BtStatus tick(double now_s) override;
-  void halt() override;
-
- private:
-  BtSimTimer timer_;
-};
-
-// SetBlackboard value="42"|"{other_key}" output_key="key": copies a literal (as a string)
-// or another entry (keeping its type) into output_key. Fails when the source is absent.
-class BtSetBlackboard final : public BtNode {
- public:
-  using BtNode::BtNode;
-  BtNodeKind kind() const override { return BtNodeKind::Action; }
-
- protected:
-  BtStatus tick(double now_s) override;
-};
-
-// GoalUpdated goal="{goal}" active_goal="{active_goal}": SUCCESS while both are set and
-// differ (a new goal arrived since the running navigation copied it to active_goal).
-class BtGoalUpdated final : public BtCondition {
- public:
-  using BtCondition::BtCondition;
-
- protected:
-  bool check(double now_s) override;
 };
 
 }  // namespace bipednav::navigation

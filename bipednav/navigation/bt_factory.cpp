@@ -2,6 +2,7 @@
 
 #include "bipednav/navigation/bt_controls.hpp"
 #include "bipednav/navigation/bt_decorators.hpp"
+#include "bipednav/navigation/bt_leaves.hpp"
 
 namespace bipednav::navigation {
 namespace {

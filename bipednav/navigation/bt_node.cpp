@@ -103,4 +103,26 @@ BtStatus BtStatefulAction::tick(double now_s) {
   return status() == BtStatus::RUNNING ? on_running(now_s) : on_start(now_s);
 }
 
+int bt_int_param(const BtNodeConfig& config, const std::string& port) {
+  return std::get<int>(bt_literal_param(config, port, BtType::Int));
+}
+
+void bt_param_error(const BtNodeConfig& config, const std::string& what) {
+  throw FileError(config.file, std::to_string(config.line), config.id + ": " + what);
+}
+
+BtSimTimer::BtSimTimer(const BtNodeConfig& config, const std::string& msec_port) {
+  const int ms = bt_int_param(config, msec_port);
+  if (ms < 0) bt_param_error(config, msec_port + " must be >= 0");
+  duration_s_ = ms * 1e-3;
+}
+
+bool BtSimTimer::elapsed(double now_s) {
+  if (!started_) {
+    started_ = true;
+    start_s_ = now_s;
+  }
+  return !(now_s - start_s_ + 1e-9 < duration_s_);
+}
+
 }  // namespace bipednav::navigation

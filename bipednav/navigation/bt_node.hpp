@@ -200,5 +200,23 @@ class BtLambdaAction final : public BtStatefulAction {
 // The literal value of a built-in node's parameter port (defaults already filled in).
 // Throws FileError naming the XML line when it is missing or not a literal of `type`.
 BtValue bt_literal_param(const BtNodeConfig& config, const std::string& port, BtType type);
+// The same for an Int port.
+int bt_int_param(const BtNodeConfig& config, const std::string& port);
+// Throws FileError naming the node's XML line: a parameter that parsed but makes no sense.
+[[noreturn]] void bt_param_error(const BtNodeConfig& config, const std::string& what);
+
+// Delay's and Sleep's clock: simulated time counted from the first call of elapsed() after
+// construction or restart(), read from the node's msec port (an int >= 0).
+class BtSimTimer {
+ public:
+  BtSimTimer(const BtNodeConfig& config, const std::string& msec_port);
+  bool elapsed(double now_s);
+  void restart() { started_ = false; }
+
+ private:
+  double duration_s_ = 0.0;
+  bool started_ = false;
+  double start_s_ = 0.0;
+};
 
 }  // namespace bipednav::navigation
