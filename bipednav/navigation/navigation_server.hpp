@@ -116,6 +116,8 @@ class NavigationServer {
   const Twist& command() const { return cmd_; }
   const Path& local_trajectory() const { return trajectory_; }
   const planning::local::LocalPlanner& local_planner() const { return *local_planner_; }
+  // The robot's command limits (the recoveries ramp within them).
+  const VelocityLimits& velocity_limits() const { return limits_; }
   const planning::PlanResult& last_plan() const { return last_plan_; }
   std::size_t plans() const { return plans_; }
   std::size_t recoveries() const { return recoveries_; }

@@ -52,7 +52,6 @@ Navigator::Navigator(NavigatorParams params, RobotProfile robot, const mapping::
                      const Pose2& initial_pose)
     : params_(validated(std::move(params))),
       robot_(validated(std::move(robot))),
-      command_limits_(VelocityLimits::from_profile(robot_)),
       perception_(params_.perception),
       localizer_(params_.localization, robot_, initial_pose),
       gate_(params_.sensors, lidar_mount_name(robot_), depth_mount_names(robot_)),
@@ -286,9 +285,9 @@ Twist Navigator::yield_to_moving_obstacles(const Twist& cmd) const {
   if (!params_.moving_obstacles.enabled || !sensors_alive() || !localizer_.healthy(now_s_)) return cmd;
   const auto moving = moving_.moving(now_s_);
   if (moving.empty()) return cmd;
-  return planning::local::yield_to_moving_obstacles(cmd, localizer_.T_map_base(), reference_velocity(), moving,
-                                                    local_.costmap(), command_limits_, 1.0 / params_.control_rate_hz,
-                                                    now_s_, params_.server.local.avoidance)
+  return planning::local::yield_to_moving_obstacles(
+             cmd, localizer_.T_map_base(), reference_velocity(), moving, local_.costmap(), server_.velocity_limits(),
+             1.0 / params_.control_rate_hz, now_s_, params_.server.local.avoidance)
       .cmd;
 }
 

@@ -172,7 +172,6 @@ class Navigator {
 
   NavigatorParams params_;
   RobotProfile robot_;
-  VelocityLimits command_limits_;  // the robot's, for the yield over the recoveries' commands
   perception::PerceptionPipeline perception_;
   Localizer localizer_;
   SensorGate gate_;
