@@ -7,17 +7,10 @@
 
 #include "bipednav/common/error.hpp"
 #include "bipednav/common/rng.hpp"
+#include "test_limits.hpp"
 
 namespace bipednav {
 namespace {
-
-VelocityLimits limits(double vx, double vx_back, double wz, double ax, double awz) {
-  return {.max_vel_x_mps = vx,
-          .max_vel_x_backwards_mps = vx_back,
-          .max_vel_theta_radps = wz,
-          .acc_lim_x_mps2 = ax,
-          .acc_lim_theta_radps2 = awz};
-}
 
 struct TebLikeParams {
   double max_vel_x_mps = 0.4, max_vel_x_backwards_mps = 0.2, max_vel_theta_radps = 0.9;
@@ -25,7 +18,7 @@ struct TebLikeParams {
   double min_obstacle_dist_m = 0.3;  // not a limit of the command
 };
 
-VelocityLimits digit_like() { return limits(0.5, 0.2, 0.6, 0.4, 1.0); }
+VelocityLimits digit_like() { return test::forward_yaw_limits(0.5, 0.2, 0.6, 0.4, 1.0); }
 
 TEST(VelocityLimits, ClampsVelocityAndAcceleration) {
   const VelocityLimits l = digit_like();
@@ -37,7 +30,7 @@ TEST(VelocityLimits, ClampsVelocityAndAcceleration) {
   EXPECT_DOUBLE_EQ(limit_velocity({-1.0, 0, 0}, {-0.19, 0, 0}, 0.1, l).linear_x, -0.2);
   EXPECT_DOUBLE_EQ(limit_velocity({0.3, 0, 0.3}, {0.3, 0, 0.3}, 0.0, l).linear_x, 0.3);
   EXPECT_DOUBLE_EQ(limit_velocity({0.5, 0, 0}, {0.1, 0, 0}, 0.0, l).linear_x, 0.1);  // no time, no change
-  const Twist from_rest = limit_velocity({1.0, 0.3, 2.0}, {}, 0.1, limits(0.5, 0.2, 0.8, 0.5, 1.0));
+  const Twist from_rest = limit_velocity({1.0, 0.3, 2.0}, {}, 0.1, test::forward_yaw_limits(0.5, 0.2, 0.8, 0.5, 1.0));
   EXPECT_DOUBLE_EQ(from_rest.linear_x, 0.05);
   EXPECT_DOUBLE_EQ(from_rest.angular_z, 0.1);
 }

@@ -2,6 +2,7 @@
 
 #include "bipednav/navigation/navigator.hpp"
 #include "bipednav/planning/local/plan_utils.hpp"
+#include "test_limits.hpp"
 
 using namespace bipednav;
 using navigation::acceleration_reference;
@@ -13,11 +14,7 @@ TEST(AccelerationReference, SlowingDownContinuesFromTheLastCommand) {
   EXPECT_DOUBLE_EQ(ref.angular_z, -0.2);
   EXPECT_DOUBLE_EQ(ref.linear_y, 0.02);
   // A stop then brakes one full period's change below the last command.
-  const VelocityLimits lim{.max_vel_x_mps = 0.5,
-                           .max_vel_x_backwards_mps = 0.25,
-                           .max_vel_theta_radps = 0.6,
-                           .acc_lim_x_mps2 = 0.5,
-                           .acc_lim_theta_radps2 = 1.0};
+  const VelocityLimits lim = test::forward_yaw_limits(0.5, 0.25, 0.6, 0.5, 1.0);
   const Twist cmd = limit_velocity({}, ref, 0.1, lim);
   EXPECT_NEAR(cmd.linear_x, 0.25, 1e-12);
   EXPECT_NEAR(cmd.angular_z, -0.1, 1e-12);

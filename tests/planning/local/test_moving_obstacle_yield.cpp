@@ -10,6 +10,7 @@
 #include "bipednav/planning/local/moving_obstacles.hpp"
 #include "local_test_utils.hpp"
 #include "moving_obstacle_test_utils.hpp"
+#include "test_limits.hpp"
 
 namespace bipednav::planning::local {
 
@@ -100,11 +101,7 @@ TEST(MovingObstacles, WhenEverythingCollidesTheCommandKeepingTheLargestGapWins) 
   const auto tracker = tracker_with({1.1, 0.0}, {-0.3, 0.0}, 2.0);
   const auto moving = tracker->moving(2.0);
   ASSERT_EQ(moving.size(), 1u);
-  const VelocityLimits lim{.max_vel_x_mps = 0.5,
-                           .max_vel_x_backwards_mps = 0.25,
-                           .max_vel_theta_radps = 0.8,
-                           .acc_lim_x_mps2 = 0.5,
-                           .acc_lim_theta_radps2 = 1.0};
+  const VelocityLimits lim = bipednav::test::forward_yaw_limits(0.5, 0.25, 0.8, 0.5, 1.0);
   const auto y =
       yield_to_moving_obstacles({0.5, 0.0, 0.0}, {0, 0, 0}, {}, moving, map, lim, 0.1, 2.0, params.avoidance);
   ASSERT_TRUE(y.modified);
@@ -136,11 +133,7 @@ TEST(MovingObstacles, InAMoversLaneExitSweptCorridorLeavesTheLane) {
   // backing off down the lane ahead of the cube; leaving the corridor soonest is walking on
   // forward, turning away from the cube, out of the lane.
   const auto map = test::empty_costmap(0.0, 0.0, 8.0);
-  const VelocityLimits lim{.max_vel_x_mps = 0.5,
-                           .max_vel_x_backwards_mps = 0.25,
-                           .max_vel_theta_radps = 0.6,
-                           .acc_lim_x_mps2 = 0.5,
-                           .acc_lim_theta_radps2 = 1.0};
+  const VelocityLimits lim = bipednav::test::forward_yaw_limits(0.5, 0.25, 0.6, 0.5, 1.0);
   TrackedObstacle cube;
   cube.position = {0.0, 0.9};
   cube.velocity = {0.0, -0.25};
@@ -180,11 +173,7 @@ TEST(MovingObstacles, ReverseAtStructureTurnsAMoverBackAtTheWall) {
   cube.velocity = {0.0, -0.3};
   cube.radius_m = 0.35;
   const std::vector<TrackedObstacle> moving{cube};
-  const VelocityLimits lim{.max_vel_x_mps = 0.5,
-                           .max_vel_x_backwards_mps = 0.25,
-                           .max_vel_theta_radps = 0.6,
-                           .acc_lim_x_mps2 = 0.5,
-                           .acc_lim_theta_radps2 = 1.0};
+  const VelocityLimits lim = bipednav::test::forward_yaw_limits(0.5, 0.25, 0.6, 0.5, 1.0);
   DynamicAvoidanceParams p;
   p.robot_radius_m = 0.38;
   const Pose2 pose{0.2, -0.6, 0.0};
@@ -210,11 +199,7 @@ TEST(MovingObstacles, OfSeveralSafeCommandsTheClosestToThePlannersIsKept) {
   const auto tracker = tracker_with({1.2, -1.6}, {0.0, 0.3}, 2.0);
   const auto moving = tracker->moving(2.0);
   ASSERT_EQ(moving.size(), 1u);
-  const VelocityLimits lim{.max_vel_x_mps = 0.5,
-                           .max_vel_x_backwards_mps = 0.25,
-                           .max_vel_theta_radps = 0.8,
-                           .acc_lim_x_mps2 = 0.5,
-                           .acc_lim_theta_radps2 = 1.0};
+  const VelocityLimits lim = bipednav::test::forward_yaw_limits(0.5, 0.25, 0.8, 0.5, 1.0);
   const Twist cmd{0.5, 0.0, 0.0};
   const auto y = yield_to_moving_obstacles(cmd, {0, 0, 0}, cmd, moving, map, lim, 0.1, 2.0, p);
   ASSERT_TRUE(y.modified);
@@ -241,11 +226,7 @@ TEST(MovingObstacles, BetweenTwoPostsInAMoversLaneHoldStepCandidatesStepAsideIns
     return std::vector<TrackedObstacle>{box};
   };
   const auto moving = box_at(0.6);
-  const VelocityLimits lim{.max_vel_x_mps = 0.26,
-                           .max_vel_x_backwards_mps = 0.26,
-                           .max_vel_theta_radps = 1.82,
-                           .acc_lim_x_mps2 = 2.5,
-                           .acc_lim_theta_radps2 = 3.2};
+  const VelocityLimits lim = bipednav::test::forward_yaw_limits(0.26, 0.26, 1.82, 2.5, 3.2);
   DynamicAvoidanceParams p;
   p.robot_radius_m = 0.2;
   const Twist cmd{0.26, 0.0, 0.0};
