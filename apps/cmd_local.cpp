@@ -73,7 +73,7 @@ void local_plan(const PlanOptions& o) {
   planning::local::LocalPlannerParams params;
   params.teb.homotopy.num_threads = o.threads;
   params.validate();
-  std::unique_ptr<LocalPlanner> planner = planning::local::make_local_planner(o.planner, params);
+  std::unique_ptr<LocalPlanner> planner = planning::local::make_local_planner(o.planner, params, nullptr);
   // The global plan is the straight line; the local planner finds its way around obstacles.
   Path plan;
   const double len = distance(start, goal);

@@ -77,9 +77,10 @@ struct ActionStep {
 // command it produces is read with command().
 class NavigationServer {
  public:
-  // `moving` (may be null): the tracked moving obstacles the local planner yields to.
+  // `moving`: the tracked moving obstacles the local planner yields to; nullptr, said explicitly,
+  // for a server whose planner yields to none.
   NavigationServer(ServerParams params, RobotProfile robot, mapping::GlobalCostmap& global,
-                   mapping::LocalCostmap& local, const planning::local::MovingObstacleTracker* moving = nullptr);
+                   mapping::LocalCostmap& local, const planning::local::MovingObstacleTracker* moving);
   NavigationServer(const NavigationServer&) = delete;
   NavigationServer& operator=(const NavigationServer&) = delete;
 

@@ -25,7 +25,7 @@ RobotProfile walker() {
 struct NavigationServerRecovery : ::testing::Test {
   mapping::GlobalCostmap global{mapping::GridGeometry{200, 200, 0.05, -5.0, -5.0}};
   mapping::LocalCostmap local{};
-  NavigationServer server{ServerParams{}, walker(), global, local};
+  NavigationServer server{ServerParams{}, walker(), global, local, nullptr};
 
   void at(double t, const Pose2& pose = {}, const Twist& velocity = {}) { server.set_view({t, pose, velocity, 0.1}); }
   // Marks a wall of points at x = wall_x (map frame) in the local map around the robot at the origin.

@@ -71,8 +71,9 @@ std::optional<LocalPlanResult> reject_bad_inputs(const Pose2& T_map_base, const 
                                                  const Path& global_plan, const mapping::Costmap2D& local_costmap);
 
 // Factory table: "teb" or "tracker"; throws ParamError for another name.
-// `moving` (may be null): the tracked moving obstacles the planner yields to (set_moving_obstacles).
+// `moving`: the tracked moving obstacles the planner yields to (set_moving_obstacles); nullptr, said
+// explicitly, for a planner that yields to none.
 std::unique_ptr<LocalPlanner> make_local_planner(std::string_view name, const LocalPlannerParams& params,
-                                                 const MovingObstacleTracker* moving = nullptr);
+                                                 const MovingObstacleTracker* moving);
 
 }  // namespace bipednav::planning::local

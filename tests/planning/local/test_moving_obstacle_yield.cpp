@@ -54,7 +54,7 @@ TEST(MovingObstacles, HeadOnPredictedCollisionMakesTheTrackerStopOrBackOff) {
   LocalPlannerParams params;
   params.avoidance.robot_radius_m = 0.3;
   // No moving obstacles: full speed ahead.
-  auto free_tracker = make_local_planner("tracker", params);
+  auto free_tracker = make_local_planner("tracker", params, nullptr);
   const Twist cruise{0.5, 0.0, 0.0};
   const auto r0 = free_tracker->compute({0, 0, 0}, cruise, plan, map, 2.0);
   ASSERT_TRUE(r0.result.ok());

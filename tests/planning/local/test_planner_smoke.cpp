@@ -8,13 +8,13 @@ namespace bipednav::planning::local {
 
 TEST(LocalPlannerFactory, MakesBothAndRejectsUnknown) {
   LocalPlannerParams p;
-  EXPECT_EQ(make_local_planner("teb", p)->name(), "teb");
-  EXPECT_EQ(make_local_planner("tracker", p)->name(), "tracker");
-  EXPECT_THROW(make_local_planner("dwa", p), ParamError);
+  EXPECT_EQ(make_local_planner("teb", p, nullptr)->name(), "teb");
+  EXPECT_EQ(make_local_planner("tracker", p, nullptr)->name(), "tracker");
+  EXPECT_THROW(make_local_planner("dwa", p, nullptr), ParamError);
 }
 
 TEST(TebPlannerSmoke, StraightEmptyPathGivesForwardCommand) {
-  auto planner = make_local_planner("teb", {});
+  auto planner = make_local_planner("teb", {}, nullptr);
   const auto map = test::empty_costmap(0.0, 0.0);
   const Path plan = test::straight_plan(0.0, 0.0, 3.0, 0.0);
   const auto r = planner->compute({0.0, 0.0, 0.0}, {}, plan, map, 0.0);
