@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "apps/cmd_route.hpp"
 #include "apps/scenario_files.hpp"
 #include "bipednav/common/progress.hpp"
 #include "bipednav/runner/scenario_runner.hpp"
@@ -130,9 +131,10 @@ nlohmann::json pair_row(const BenchScenarioArgs& a, const std::vector<BenchRun>&
           {"failures", failures}};
 }
 
-// The rows as a table: success count, mean real-time factor and the failed seeds of each pair.
+// The rows as a table: success count, mean real-time factor, the route's margin and the failed
+// seeds of each pair.
 void print_table(const nlohmann::json& rows) {
-  std::printf("%-20s %-12s %9s %9s  %s\n", "scenario", "robot", "success", "RTF", "failed seeds");
+  std::printf("%-20s %-12s %9s %9s %9s  %s\n", "scenario", "robot", "success", "RTF", "margin", "failed seeds");
   for (const auto& r : rows) {
     std::string failed;
     for (const auto& f : r["failures"]) {
@@ -140,9 +142,12 @@ void print_table(const nlohmann::json& rows) {
                 (f.contains("error") ? std::string("error") : f["outcome"].get<std::string>()) +
                 (f.contains("collisions") && f["collisions"].get<int>() > 0 ? ", collision" : "") + ")";
     }
-    std::printf("%-20s %-12s %4d / %-3d %8.1fx  %s\n", r["scenario"].get<std::string>().c_str(),
+    const auto& margin = r["route_margin_m"];
+    char margin_text[32] = "-";
+    if (!margin.is_null()) std::snprintf(margin_text, sizeof margin_text, "%+.3f m", margin.get<double>());
+    std::printf("%-20s %-12s %4d / %-3d %8.1fx %9s  %s\n", r["scenario"].get<std::string>().c_str(),
                 r["robot"].get<std::string>().c_str(), r["succeeded"].get<int>(), r["runs"].get<int>(),
-                r["mean_rtf"].get<double>(), failed.c_str());
+                r["mean_rtf"].get<double>(), margin_text, failed.c_str());
   }
 }
 
@@ -158,8 +163,15 @@ void bench_scenarios(const BenchScenarioArgs& a) {
   run_all(runs, loaded, base, a.jobs);
   nlohmann::json rows = nlohmann::json::array();
   std::size_t ok_total = 0;
-  for (std::size_t first = 0; first < runs.size(); first += static_cast<std::size_t>(a.seeds))
-    rows.push_back(pair_row(a, runs, first, names, ok_total));
+  for (std::size_t first = 0; first < runs.size(); first += static_cast<std::size_t>(a.seeds)) {
+    nlohmann::json row = pair_row(a, runs, first, names, ok_total);
+    // The room the static world leaves the robot on its way (`bipednav route`): a pair with a margin
+    // near or below zero fails by geometry, whatever the navigation does.
+    constexpr double kRouteResolutionM = 0.01;
+    row["route_margin_m"] = route_report(loaded[runs[first].scenario], runner::load_robot(runs[first].robot),
+                                         kRouteResolutionM)["min_margin_m"];
+    rows.push_back(std::move(row));
+  }
   if (a.json) {
     std::printf("%s\n", nlohmann::json{{"rows", rows},
                                        {"succeeded", ok_total},

@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "apps/bench_sim.hpp"
+#include "apps/cmd_route.hpp"
 #include "apps/commands.hpp"
 #include "bipednav/common/clock.hpp"
 #include "bipednav/common/error.hpp"
@@ -270,6 +271,7 @@ void add_sim_commands(CLI::App& app, CLI::App& bench) {
   cmd->add_flag("--quiet", opt->quiet, "No progress bar");
   cmd->callback([opt] { run_sim_command(*opt); });
   add_sim_bench(bench);
+  add_route_command(app);
 }
 
 }  // namespace bipednav::app

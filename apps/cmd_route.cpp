@@ -1,0 +1,98 @@
+#include "apps/cmd_route.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <memory>
+#include <string>
+
+#include "apps/scenario_files.hpp"
+#include "bipednav/runner/scenario_runner.hpp"
+#include "bipednav/sim/route_clearance.hpp"
+
+namespace bipednav::app {
+
+namespace {
+
+struct RouteArgs {
+  std::string scenario;
+  std::string robot;  // empty: the scenario's
+  double resolution_m = 0.01;
+  bool json = false;
+};
+
+// JSON has no infinity: an unbounded route (no obstacles) is null.
+nlohmann::json finite_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+void print_report(const nlohmann::json& r) {
+  std::printf("%s with %s: needs %.3f m from its centre to any obstacle (footprint + sway)\n",
+              r["scenario"].get<std::string>().c_str(), r["robot"].get<std::string>().c_str(),
+              r["needed_m"].get<double>());
+  for (const auto& g : r["routes"]) {
+    const auto& goal = g["goal"];
+    std::printf("  to goal (%.2f, %.2f): ", goal[0].get<double>(), goal[1].get<double>());
+    if (!g["connected"].get<bool>()) {
+      std::printf("no route (start or goal inside an obstacle or outside the bounds, or walled off)\n");
+    } else if (g["widest_m"].is_null()) {
+      std::printf("no obstacles\n");
+    } else {
+      const auto& b = g["bottleneck"];
+      std::printf("widest route keeps %.3f m, narrowest at (%.2f, %.2f) next to %s: margin %+.3f m\n",
+                  g["widest_m"].get<double>(), b[0].get<double>(), b[1].get<double>(),
+                  g["bottleneck_obstacle"].get<std::string>().c_str(), g["margin_m"].get<double>());
+    }
+  }
+}
+
+void run_route(const RouteArgs& a) {
+  const sim::Scenario s = sim::load_scenario(resolve_scenario(a.scenario));
+  const RobotProfile robot = runner::load_robot(a.robot.empty() ? s.robot : a.robot);
+  const nlohmann::json r = route_report(s, robot, a.resolution_m);
+  if (a.json)
+    std::printf("%s\n", r.dump(2).c_str());
+  else
+    print_report(r);
+}
+
+}  // namespace
+
+nlohmann::json route_report(const sim::Scenario& scenario, const RobotProfile& robot, double resolution_m) {
+  sim::RouteClearanceParams p = sim::RouteClearanceParams::for_robot(robot);
+  p.resolution_m = resolution_m;
+  const double needed = sim::needed_clearance_m(robot);
+  nlohmann::json routes = nlohmann::json::array();
+  double min_margin = std::numeric_limits<double>::infinity();
+  const auto found = sim::scenario_routes(scenario, p);
+  for (std::size_t i = 0; i < found.size(); ++i) {
+    const sim::RouteClearance& c = found[i];
+    const double margin = c.connected ? c.widest_m - needed : -needed;
+    min_margin = std::min(min_margin, margin);
+    const Pose2& goal = scenario.goals[i].pose;
+    routes.push_back({{"goal", {goal.x, goal.y}},
+                      {"connected", c.connected},
+                      {"widest_m", finite_or_null(c.widest_m)},
+                      {"margin_m", finite_or_null(margin)},
+                      {"bottleneck", {c.bottleneck.x(), c.bottleneck.y()}},
+                      {"bottleneck_obstacle", c.bottleneck_obstacle}});
+  }
+  return {{"scenario", scenario.name},    {"robot", robot.name}, {"needed_m", needed},
+          {"resolution_m", resolution_m}, {"routes", routes},    {"min_margin_m", finite_or_null(min_margin)}};
+}
+
+void add_route_command(CLI::App& app) {
+  auto a = std::make_shared<RouteArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "route",
+      "The widest route of a scenario's static world from the start to each goal (ground truth, before any "
+      "sensing), against the room the robot needs: can it get there at all, and with what margin");
+  cmd->add_option("scenario", a->scenario, "Scenario name (scenarios/NAME.yaml) or file")->required();
+  cmd->add_option("--robot", a->robot, "Robot profile (name in config/ or a file); default: the scenario's");
+  cmd->add_option("--resolution", a->resolution_m, "Grid of route centre positions, m")
+      ->capture_default_str()
+      ->check(CLI::Range(0.001, 1.0));
+  cmd->add_flag("--json", a->json, "Print one JSON object");
+  cmd->callback([a] { run_route(*a); });
+}
+
+}  // namespace bipednav::app
