@@ -179,11 +179,12 @@ RouteClearance widest_route(const World& world, const RouteArea& area, const Eig
       names.push_back(g.name);
     }
   }
-  FootprintIndex index(std::move(footprints), std::move(names), area, 0.5);
-  RouteGrid g{area.min, params.resolution_m, 0, 0, {}};
-  g.nx = static_cast<int>(std::floor((area.max.x() - area.min.x()) / g.res)) + 1;
-  g.ny = static_cast<int>(std::floor((area.max.y() - area.min.y()) / g.res)) + 1;
-  require(static_cast<double>(g.nx) * g.ny <= 1e8, "route_clearance.resolution_m", "at most 1e8 cells in the area");
+  const double cells_x = std::floor((area.max.x() - area.min.x()) / params.resolution_m) + 1.0;
+  const double cells_y = std::floor((area.max.y() - area.min.y()) / params.resolution_m) + 1.0;
+  require(cells_x * cells_y <= 2e7, "route_clearance.resolution_m", "coarse enough for at most 2e7 cells in the area");
+  RouteGrid g{area.min, params.resolution_m, static_cast<int>(cells_x), static_cast<int>(cells_y), {}};
+  // Buckets no smaller than the cells: never more buckets than cells.
+  FootprintIndex index(std::move(footprints), std::move(names), area, std::max(0.5, params.resolution_m));
   g.clearance.assign(static_cast<std::size_t>(g.nx) * static_cast<std::size_t>(g.ny),
                      std::numeric_limits<double>::quiet_NaN());
   std::vector<std::int64_t> parent;

@@ -71,6 +71,8 @@ TEST(WidestRoute, RejectsBadParameters) {
   p.resolution_m = 0.0;
   EXPECT_THROW(widest_route(World{}, kArea, {0, 0}, {1, 1}, p), ParamError);
   EXPECT_THROW(widest_route(World{}, RouteArea{{1, 1}, {0, 2}}, {0, 0}, {1, 1}), ParamError);
+  // 4e14 cells of 1 cm: refused before anything is allocated.
+  EXPECT_THROW(widest_route(World{}, RouteArea{{-1e5, -1e5}, {1e5, 1e5}}, {0, 0}, {1, 1}), ParamError);
 }
 
 // The scenarios (Digit's slab, 1.6 m): the goal of hexagon_dynamic and turtlebot3_world,
