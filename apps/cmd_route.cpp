@@ -8,6 +8,7 @@
 #include <string>
 
 #include "apps/scenario_files.hpp"
+#include "bipednav/common/error.hpp"
 #include "bipednav/runner/scenario_runner.hpp"
 #include "bipednav/sim/route_clearance.hpp"
 
@@ -17,7 +18,8 @@ namespace {
 
 struct RouteArgs {
   std::string scenario;
-  std::string robot;  // empty: the scenario's
+  std::string world, start = "0,0,0", goal;  // instead of a scenario
+  std::string robot;                         // empty: the scenario's
   double resolution_m = 0.01;
   bool json = false;
 };
@@ -46,7 +48,10 @@ void print_report(const nlohmann::json& r) {
 }
 
 void run_route(const RouteArgs& a) {
-  const sim::Scenario s = sim::load_scenario(resolve_scenario(a.scenario));
+  if (a.world.empty() == a.scenario.empty()) throw Error("route needs a SCENARIO or --world FILE (not both)");
+  if (!a.world.empty() && a.goal.empty()) throw Error("--world needs --goal x,y,yaw");
+  const sim::Scenario s = a.world.empty() ? sim::load_scenario(resolve_scenario(a.scenario))
+                                          : scenario_from_world(a.world, a.robot, a.start, a.goal);
   const RobotProfile robot = runner::load_robot(a.robot.empty() ? s.robot : a.robot);
   const nlohmann::json r = route_report(s, robot, a.resolution_m);
   if (a.json)
@@ -86,7 +91,10 @@ void add_route_command(CLI::App& app) {
       "route",
       "The widest route of a scenario's static world from the start to each goal (ground truth, before any "
       "sensing), against the room the robot needs: can it get there at all, and with what margin");
-  cmd->add_option("scenario", a->scenario, "Scenario name (scenarios/NAME.yaml) or file")->required();
+  cmd->add_option("scenario", a->scenario, "Scenario name (scenarios/NAME.yaml) or file");
+  cmd->add_option("--world", a->world, "A Gazebo .world file instead of a scenario");
+  cmd->add_option("--start", a->start, "With --world: start pose x,y[,yaw]")->capture_default_str();
+  cmd->add_option("--goal", a->goal, "With --world: goal pose x,y[,yaw]");
   cmd->add_option("--robot", a->robot, "Robot profile (name in config/ or a file); default: the scenario's");
   cmd->add_option("--resolution", a->resolution_m, "Grid of route centre positions, m")
       ->capture_default_str()

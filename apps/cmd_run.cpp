@@ -7,7 +7,6 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/bench_closed_loop.hpp"
-#include "apps/cli_pose.hpp"
 #include "apps/cmd_run_footsteps.hpp"
 #include "apps/commands.hpp"
 #include "apps/scenario_files.hpp"
@@ -16,8 +15,6 @@
 #include "bipednav/runner/replay_recorder.hpp"
 #include "bipednav/runner/run_figure.hpp"
 #include "bipednav/runner/scenario_runner.hpp"
-#include "bipednav/sim/sdf_world.hpp"
-#include "bipednav/sim/world_drawing.hpp"
 #include "bipednav/viz/replay_html.hpp"
 
 #ifdef BIPEDNAV_WITH_ROSBAG
@@ -31,24 +28,6 @@
 namespace bipednav::app {
 
 namespace {
-
-// A scenario around any Gazebo world file.
-sim::Scenario scenario_from_world(const std::string& world_file, const std::string& robot, const std::string& start,
-                                  const std::string& goal) {
-  sim::Scenario s;
-  const std::filesystem::path file(world_file);
-  s.name = file.stem().string();
-  s.world = sim::load_sdf_world(file, {file.parent_path() / "../models", scenario_dir() / "worlds"});
-  s.robot = robot.empty() ? "turtlebot3" : robot;
-  s.start = parse_pose(start, "--start");
-  s.goals = {{0.0, parse_pose(goal, "--goal")}};
-  s.time_limit_s = 180.0;
-  const sim::Bounds2 b = sim::world_bounds(s.world);
-  s.bounds = {std::min({b.min_x_m, s.start.x, s.goals[0].pose.x}), std::min({b.min_y_m, s.start.y, s.goals[0].pose.y}),
-              std::max({b.max_x_m, s.start.x, s.goals[0].pose.x}), std::max({b.max_y_m, s.start.y, s.goals[0].pose.y})};
-  s.validate();
-  return s;
-}
 
 nlohmann::json to_json(const runner::RunResult& r) {
   nlohmann::json j;

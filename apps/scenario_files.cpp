@@ -1,6 +1,11 @@
 #include "apps/scenario_files.hpp"
 
+#include <algorithm>
+
+#include "apps/cli_pose.hpp"
 #include "bipednav/common/error.hpp"
+#include "bipednav/sim/sdf_world.hpp"
+#include "bipednav/sim/world_drawing.hpp"
 
 #ifndef BIPEDNAV_SOURCE_DIR
 #define BIPEDNAV_SOURCE_DIR "."
@@ -15,6 +20,23 @@ std::filesystem::path resolve_scenario(const std::string& name) {
   const auto p = scenario_dir() / (name + ".yaml");
   if (std::filesystem::exists(p)) return p;
   throw Error("no scenario '" + name + "' (neither a file nor scenarios/" + name + ".yaml)");
+}
+
+sim::Scenario scenario_from_world(const std::string& world_file, const std::string& robot, const std::string& start,
+                                  const std::string& goal) {
+  sim::Scenario s;
+  const std::filesystem::path file(world_file);
+  s.name = file.stem().string();
+  s.world = sim::load_sdf_world(file, {file.parent_path() / "../models", scenario_dir() / "worlds"});
+  s.robot = robot.empty() ? "turtlebot3" : robot;
+  s.start = parse_pose(start, "--start");
+  s.goals = {{0.0, parse_pose(goal, "--goal")}};
+  s.time_limit_s = 180.0;
+  const sim::Bounds2 b = sim::world_bounds(s.world);
+  s.bounds = {std::min({b.min_x_m, s.start.x, s.goals[0].pose.x}), std::min({b.min_y_m, s.start.y, s.goals[0].pose.y}),
+              std::max({b.max_x_m, s.start.x, s.goals[0].pose.x}), std::max({b.max_y_m, s.start.y, s.goals[0].pose.y})};
+  s.validate();
+  return s;
 }
 
 }  // namespace bipednav::app
