@@ -40,16 +40,18 @@ struct BenchRun {
   std::string error;  // what a run that threw said (it counts as failed)
 };
 
-// Each robot's name in the table (a profile file's robot by its profile name), after reading its
-// navigation parameters: a bad parameters file is reported once here, not as every run's error.
-std::map<std::string, std::string> robot_names(const std::vector<std::string>& robots, const runner::RunOptions& base) {
-  std::map<std::string, std::string> names;
+// Each robot's profile (its name in the table: a profile file's robot by its profile name; its
+// footprint for the route margin), after reading its navigation parameters: a bad parameters file
+// is reported once here, not as every run's error.
+std::map<std::string, RobotProfile> robot_profiles(const std::vector<std::string>& robots,
+                                                   const runner::RunOptions& base) {
+  std::map<std::string, RobotProfile> profiles;
   for (const auto& robot : robots) {
     const RobotProfile profile = runner::load_robot(robot);
     runner::navigator_params(profile, base);
-    names[robot] = profile.name;
+    profiles[robot] = profile;
   }
-  return names;
+  return profiles;
 }
 
 // Every run: per scenario, per robot, the seeds.
@@ -108,7 +110,7 @@ nlohmann::json failure_json(const BenchRun& b) {
 
 // The row of one scenario and robot: the --seeds runs from `first`; adds their successes to `ok_total`.
 nlohmann::json pair_row(const BenchScenarioArgs& a, const std::vector<BenchRun>& runs, std::size_t first,
-                        const std::map<std::string, std::string>& robot_names, std::size_t& ok_total) {
+                        const std::map<std::string, RobotProfile>& profiles, std::size_t& ok_total) {
   int ok = 0;
   double rtf = 0.0, sim_s = 0.0;
   nlohmann::json failures = nlohmann::json::array();
@@ -123,7 +125,7 @@ nlohmann::json pair_row(const BenchScenarioArgs& a, const std::vector<BenchRun>&
   }
   ok_total += static_cast<std::size_t>(ok);
   return {{"scenario", a.scenarios[runs[first].scenario]},
-          {"robot", robot_names.at(runs[first].robot)},
+          {"robot", profiles.at(runs[first].robot).name},
           {"succeeded", ok},
           {"runs", a.seeds},
           {"mean_rtf", rtf},
@@ -158,18 +160,18 @@ void bench_scenarios(const BenchScenarioArgs& a) {
   for (const auto& name : a.scenarios) loaded.push_back(sim::load_scenario(resolve_scenario(name)));
   runner::RunOptions base;
   base.params_file = a.params;
-  const std::map<std::string, std::string> names = robot_names(a.robots, base);
+  const std::map<std::string, RobotProfile> profiles = robot_profiles(a.robots, base);
   std::vector<BenchRun> runs = bench_runs(a, loaded.size());
   run_all(runs, loaded, base, a.jobs);
   nlohmann::json rows = nlohmann::json::array();
   std::size_t ok_total = 0;
   for (std::size_t first = 0; first < runs.size(); first += static_cast<std::size_t>(a.seeds)) {
-    nlohmann::json row = pair_row(a, runs, first, names, ok_total);
+    nlohmann::json row = pair_row(a, runs, first, profiles, ok_total);
     // The room the static world leaves the robot on its way (`bipednav route`): a pair with a margin
     // near or below zero fails by geometry, whatever the navigation does.
     constexpr double kRouteResolutionM = 0.01;
-    row["route_margin_m"] = route_report(loaded[runs[first].scenario], runner::load_robot(runs[first].robot),
-                                         kRouteResolutionM)["min_margin_m"];
+    row["route_margin_m"] =
+        route_report(loaded[runs[first].scenario], profiles.at(runs[first].robot), kRouteResolutionM)["min_margin_m"];
     rows.push_back(std::move(row));
   }
   if (a.json) {

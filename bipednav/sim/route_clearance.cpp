@@ -164,13 +164,14 @@ double search_widest(RouteGrid& g, FootprintIndex& index, std::size_t start, std
 
 }  // namespace
 
-RouteClearance widest_route(const World& world, const RouteArea& area, const Eigen::Vector2d& start,
-                            const Eigen::Vector2d& goal, const RouteClearanceParams& params) {
+std::vector<RouteClearance> widest_routes(const World& world, const RouteArea& area, const Eigen::Vector2d& start,
+                                          const std::vector<Eigen::Vector2d>& goals,
+                                          const RouteClearanceParams& params) {
   params.validate();
   require(area.min.allFinite() && area.max.allFinite() && (area.max.array() > area.min.array()).all(),
           "route_clearance.area", "finite, min < max");
-  RouteClearance out;
-  if (!inside(area, start) || !inside(area, goal)) return out;
+  std::vector<RouteClearance> out(goals.size());
+  if (!inside(area, start)) return out;
   std::vector<Footprint2D> footprints;
   std::vector<std::string> names;
   for (const Geometry& g : world.statics) {
@@ -185,29 +186,39 @@ RouteClearance widest_route(const World& world, const RouteArea& area, const Eig
   RouteGrid g{area.min, params.resolution_m, static_cast<int>(cells_x), static_cast<int>(cells_y), {}};
   // Buckets no smaller than the cells: never more buckets than cells.
   FootprintIndex index(std::move(footprints), std::move(names), area, std::max(0.5, params.resolution_m));
+  // One grid and one clearance cache for every goal: the searches share the cells they evaluate.
   g.clearance.assign(static_cast<std::size_t>(g.nx) * static_cast<std::size_t>(g.ny),
                      std::numeric_limits<double>::quiet_NaN());
   std::vector<std::int64_t> parent;
-  const std::size_t s = g.cell_of(start), t = g.cell_of(goal);
-  out.widest_m = search_widest(g, index, s, t, parent, out.cells_searched);
-  out.connected = out.widest_m > 0.0;
-  if (!out.connected) return out;
-  // The narrowest cell of the route found.
-  std::size_t narrowest = t;
-  for (std::int64_t i = static_cast<std::int64_t>(t); i >= 0; i = parent[static_cast<std::size_t>(i)])
-    if (g.clearance[static_cast<std::size_t>(i)] < g.clearance[narrowest]) narrowest = static_cast<std::size_t>(i);
-  out.bottleneck = g.center(narrowest);
-  out.bottleneck_obstacle = index.name(index.nearest(out.bottleneck).second);
+  const std::size_t s = g.cell_of(start);
+  for (std::size_t k = 0; k < goals.size(); ++k) {
+    if (!inside(area, goals[k])) continue;
+    RouteClearance& r = out[k];
+    const std::size_t t = g.cell_of(goals[k]);
+    r.widest_m = search_widest(g, index, s, t, parent, r.cells_searched);
+    r.connected = r.widest_m > 0.0;
+    if (!r.connected) continue;
+    // The narrowest cell of the route found.
+    std::size_t narrowest = t;
+    for (std::int64_t i = static_cast<std::int64_t>(t); i >= 0; i = parent[static_cast<std::size_t>(i)])
+      if (g.clearance[static_cast<std::size_t>(i)] < g.clearance[narrowest]) narrowest = static_cast<std::size_t>(i);
+    r.bottleneck = g.center(narrowest);
+    r.bottleneck_obstacle = index.name(index.nearest(r.bottleneck).second);
+  }
   return out;
+}
+
+RouteClearance widest_route(const World& world, const RouteArea& area, const Eigen::Vector2d& start,
+                            const Eigen::Vector2d& goal, const RouteClearanceParams& params) {
+  return widest_routes(world, area, start, {goal}, params).front();
 }
 
 std::vector<RouteClearance> scenario_routes(const Scenario& scenario, const RouteClearanceParams& params) {
   const Bounds& b = scenario.bounds;
-  const RouteArea area{{b.min_x_m, b.min_y_m}, {b.max_x_m, b.max_y_m}};
-  std::vector<RouteClearance> out;
-  for (const TimedGoal& g : scenario.goals)
-    out.push_back(widest_route(scenario.world, area, scenario.start.position(), g.pose.position(), params));
-  return out;
+  std::vector<Eigen::Vector2d> goals;
+  for (const TimedGoal& g : scenario.goals) goals.push_back(g.pose.position());
+  return widest_routes(scenario.world, RouteArea{{b.min_x_m, b.min_y_m}, {b.max_x_m, b.max_y_m}},
+                       scenario.start.position(), goals, params);
 }
 
 }  // namespace bipednav::sim

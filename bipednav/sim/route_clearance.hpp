@@ -54,6 +54,11 @@ struct RouteArea {
 // or a non-finite or empty area.
 RouteClearance widest_route(const World& world, const RouteArea& area, const Eigen::Vector2d& start,
                             const Eigen::Vector2d& goal, const RouteClearanceParams& params = {});
+// The same from one start to several goals (one result per goal, in their order), sharing the
+// footprints and the clearances computed.
+std::vector<RouteClearance> widest_routes(const World& world, const RouteArea& area, const Eigen::Vector2d& start,
+                                          const std::vector<Eigen::Vector2d>& goals,
+                                          const RouteClearanceParams& params = {});
 
 // The widest route from a scenario's start to each of its goals (in their order) within its bounds.
 std::vector<RouteClearance> scenario_routes(const Scenario& scenario, const RouteClearanceParams& params = {});
