@@ -3,17 +3,14 @@
 #include "apps/bench_closed_loop.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <map>
-#include <mutex>
 #include <nlohmann/json.hpp>
-#include <thread>
 
+#include "apps/bench_runs.hpp"
 #include "apps/cmd_route.hpp"
 #include "apps/scenario_files.hpp"
-#include "bipednav/common/progress.hpp"
 #include "bipednav/runner/scenario_runner.hpp"
 
 namespace bipednav::app {
@@ -40,20 +37,6 @@ struct BenchRun {
   std::string error;  // what a run that threw said (it counts as failed)
 };
 
-// Each robot's profile (its name in the table: a profile file's robot by its profile name; its
-// footprint for the route margin), after reading its navigation parameters: a bad parameters file
-// is reported once here, not as every run's error.
-std::map<std::string, RobotProfile> robot_profiles(const std::vector<std::string>& robots,
-                                                   const runner::RunOptions& base) {
-  std::map<std::string, RobotProfile> profiles;
-  for (const auto& robot : robots) {
-    const RobotProfile profile = runner::load_robot(robot);
-    runner::navigator_params(profile, base);
-    profiles[robot] = profile;
-  }
-  return profiles;
-}
-
 // Every run: per scenario, per robot, the seeds.
 std::vector<BenchRun> bench_runs(const BenchScenarioArgs& a, std::size_t scenarios) {
   std::vector<BenchRun> runs;
@@ -73,29 +56,17 @@ std::vector<BenchRun> bench_runs(const BenchScenarioArgs& a, std::size_t scenari
 // jobs share cores.
 void run_all(std::vector<BenchRun>& runs, const std::vector<sim::Scenario>& loaded, const runner::RunOptions& base,
              int jobs) {
-  ProgressBar bar("scenarios", runs.size(), true);
-  std::mutex bar_mutex;
-  std::atomic<std::size_t> next{0}, done{0};
-  auto worker = [&] {
-    for (std::size_t i = next++; i < runs.size(); i = next++) {
-      BenchRun& b = runs[i];
-      runner::RunOptions o = base;
-      o.robot = b.robot;
-      o.seed = static_cast<std::uint64_t>(b.seed);
-      try {
-        b.result = runner::run_scenario(loaded[b.scenario], o);
-      } catch (const std::exception& e) {
-        b.error = e.what();
-      }
-      const std::lock_guard lock(bar_mutex);
-      bar.update(++done);
+  run_in_parallel(runs.size(), jobs, "scenarios", [&](std::size_t i) {
+    BenchRun& b = runs[i];
+    runner::RunOptions o = base;
+    o.robot = b.robot;
+    o.seed = static_cast<std::uint64_t>(b.seed);
+    try {
+      b.result = runner::run_scenario(loaded[b.scenario], o);
+    } catch (const std::exception& e) {
+      b.error = e.what();
     }
-  };
-  std::vector<std::thread> threads;
-  for (int j = 1; j < jobs; ++j) threads.emplace_back(worker);
-  worker();
-  for (auto& t : threads) t.join();
-  bar.finish();
+  });
 }
 
 // A failed run: its outcome, or what it threw.

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/bench_closed_loop.hpp"
+#include "apps/bench_worlds.hpp"
 #include "apps/cmd_run_footsteps.hpp"
 #include "apps/commands.hpp"
 #include "apps/scenario_files.hpp"
@@ -33,18 +34,26 @@ nlohmann::json to_json(const runner::RunResult& r) {
   nlohmann::json j;
   j["scenario"] = r.scenario;
   j["robot"] = r.robot;
+  j["seed"] = r.seed;
   j["success"] = r.success;
-  j["outcome"] = std::string(outcome_name(r.outcome.outcome));
-  j["outcome_code"] = code(r.outcome.outcome);
-  j["message"] = r.outcome.message;
+  j["verdict"] = r.verdict;
+  j["navigator_outcome"] = std::string(outcome_name(r.outcome.outcome));
+  j["navigator_outcome_code"] = code(r.outcome.outcome);
+  j["navigator_message"] = r.outcome.message;
   j["collisions"] = r.collisions;
   if (r.first_collision) {
     j["first_collision"] = {{"time_s", r.first_collision->time_s},
                             {"x_m", r.first_collision->point.x()},
                             {"y_m", r.first_collision->point.y()},
-                            {"obstacle", r.first_collision->obstacle}};
+                            {"obstacle", r.first_collision->obstacle},
+                            {"penetration_m", r.first_collision->penetration_m},
+                            {"robot_standing", sim::robot_standing(*r.first_collision)}};
   }
   j["time_s"] = r.time_s;
+  j["first_arrival_s"] = r.first_arrival_s ? nlohmann::json(*r.first_arrival_s) : nlohmann::json(nullptr);
+  const auto pose = [](const Pose2& p) { return nlohmann::json{{"x_m", p.x}, {"y_m", p.y}, {"yaw_rad", p.theta}}; };
+  j["final_true_pose"] = pose(r.final_true_pose);
+  j["final_estimated_pose"] = pose(r.final_estimated_pose);
   j["path_length_m"] = r.path_length_m;
   j["min_clearance_m"] = r.min_clearance_m;
   j["goal_error_m"] = r.goal_error_m;
@@ -77,9 +86,11 @@ nlohmann::json to_json(const runner::RunResult& r) {
 }
 
 void print_summary(const runner::RunResult& r) {
-  std::printf("%s with %s: %s (%s%s%s)\n", r.scenario.c_str(), r.robot.c_str(), r.success ? "SUCCESS" : "FAILED",
-              std::string(outcome_name(r.outcome.outcome)).c_str(), r.outcome.message.empty() ? "" : ": ",
-              r.outcome.message.c_str());
+  if (r.success)
+    std::printf("%s with %s: SUCCESS (goal reached at t = %.1f s, nothing touched)\n", r.scenario.c_str(),
+                r.robot.c_str(), r.time_s);
+  else
+    std::printf("%s with %s: FAILED (%s)\n", r.scenario.c_str(), r.robot.c_str(), r.verdict.c_str());
   std::printf("  time %.1f s, path %.2f m, min clearance %.3f m, collisions %d\n", r.time_s, r.path_length_m,
               r.min_clearance_m, r.collisions);
   std::printf("  goal error %.3f m / %.3f rad, localization error %.3f m\n", r.goal_error_m, r.goal_error_rad,
@@ -257,6 +268,7 @@ void add_run_commands(CLI::App& app, CLI::App& bench) {
   });
 
   add_closed_loop_benches(bench);
+  add_world_benches(bench);
 
   auto pa = std::make_shared<ParamsArgs>();
   CLI::App* params = app.add_subcommand(

@@ -1,6 +1,8 @@
 #include "apps/scenario_files.hpp"
 
 #include <algorithm>
+#include <cstdlib>
+#include <sstream>
 
 #include "apps/cli_pose.hpp"
 #include "bipednav/common/error.hpp"
@@ -22,15 +24,33 @@ std::filesystem::path resolve_scenario(const std::string& name) {
   throw Error("no scenario '" + name + "' (neither a file nor scenarios/" + name + ".yaml)");
 }
 
+std::vector<std::filesystem::path> world_model_paths(const std::filesystem::path& world_file) {
+  std::vector<std::filesystem::path> paths;
+  if (const char* env = std::getenv("GAZEBO_MODEL_PATH")) {
+    std::stringstream ss(env);
+    for (std::string dir; std::getline(ss, dir, ':');)
+      if (!dir.empty()) paths.emplace_back(dir);
+  }
+  paths.push_back(world_file.parent_path() / "../models");
+  paths.push_back(scenario_dir() / "worlds");
+  paths.push_back(scenario_dir() / "worlds" / "turtlebot3" / "models");
+  return paths;
+}
+
 sim::Scenario scenario_from_world(const std::string& world_file, const std::string& robot, const std::string& start,
                                   const std::string& goal) {
+  return scenario_from_world(std::filesystem::path(world_file), robot, parse_pose(start, "--start"),
+                             parse_pose(goal, "--goal"));
+}
+
+sim::Scenario scenario_from_world(const std::filesystem::path& file, const std::string& robot, const Pose2& start,
+                                  const Pose2& goal) {
   sim::Scenario s;
-  const std::filesystem::path file(world_file);
   s.name = file.stem().string();
-  s.world = sim::load_sdf_world(file, {file.parent_path() / "../models", scenario_dir() / "worlds"});
+  s.world = sim::load_sdf_world(file, world_model_paths(file));
   s.robot = robot.empty() ? "turtlebot3" : robot;
-  s.start = parse_pose(start, "--start");
-  s.goals = {{0.0, parse_pose(goal, "--goal")}};
+  s.start = start;
+  s.goals = {{0.0, goal}};
   s.time_limit_s = 180.0;
   const sim::Bounds2 b = sim::world_bounds(s.world);
   s.bounds = {std::min({b.min_x_m, s.start.x, s.goals[0].pose.x}), std::min({b.min_y_m, s.start.y, s.goals[0].pose.y}),

@@ -90,6 +90,13 @@ struct Loop {
     out.summary.min_clearance_m = std::min(out.summary.min_clearance_m, e.min_clearance_m);
     out.max_body_z_m = std::max(out.max_body_z_m, s.body_z_m);
     out.rough_landings += e.landing_spread_m > nav.planner().lattice().actions().flatness_threshold_m;
+    if (out.contacts.empty() && !e.contacts.empty()) {
+      // Contacts happen while a foot swings: the body moves over the step.
+      const double dt = walker.time_s() - (out.steps.empty() ? 0.0 : out.steps.back().t_s);
+      if (dt > 0.0)
+        out.first_contact_velocity =
+            Twist{distance(before, s.body) / dt, 0.0, angle_diff(s.body.theta, before.theta) / dt};
+    }
     out.contacts.insert(out.contacts.end(), e.contacts.begin(), e.contacts.end());
     out.summary.trace.push_back({s.t_s, s.body, s.estimated_body, {}, a.name, {}});
     out.steps.push_back(std::move(s));
@@ -150,7 +157,8 @@ FootstepRunResult run_footstep_scenario(const sim::Scenario& scenario, const Foo
   r.collisions = static_cast<int>(out.contacts.size());
   if (!out.contacts.empty()) {
     const sim::BodyContact& c = out.contacts.front();
-    r.first_collision = sim::CollisionEvent{c.time_s, loop.walker.body_pose(), c.point, c.part, c.penetration_m};
+    r.first_collision = sim::CollisionEvent{c.time_s, loop.walker.body_pose(), c.point,
+                                            c.part,   c.penetration_m,         out.first_contact_velocity};
   }
   r.replans = loop.nav.plans() > 0 ? loop.nav.plans() - 1 : 0;
   const Pose2 body = loop.walker.body_pose();
@@ -158,8 +166,10 @@ FootstepRunResult run_footstep_scenario(const sim::Scenario& scenario, const Foo
   r.localization_error_m = distance(sim::body_between(est.pose, loop.nav.to_map(loop.walker.odom_swing()).pose), body);
   r.goal_error_m = distance(out.goal, body);
   r.goal_error_rad = std::abs(angle_diff(out.goal.theta, body.theta));
-  r.success = r.outcome.ok() && r.collisions == 0 && r.goal_error_m <= 1.25 * scenario.goal_tolerance_m &&
-              r.goal_error_rad <= 1.25 * scenario.goal_tolerance_rad;
+  r.seed = options.seed.value_or(scenario.seed);
+  r.final_true_pose = body;
+  r.final_estimated_pose = sim::body_between(est.pose, loop.nav.to_map(loop.walker.odom_swing()).pose);
+  judge_run(r, scenario.goal_tolerance_m, scenario.goal_tolerance_rad);
   return out;
 }
 

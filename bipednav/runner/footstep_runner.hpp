@@ -54,6 +54,7 @@ struct FootstepRunResult {
   std::vector<ExecutedStep> steps;
   footstep::FootstepPlan first_plan, last_plan;
   std::vector<sim::BodyContact> contacts;  // ground-truth whole-body collisions
+  Twist first_contact_velocity;            // the body's mean velocity over the step of the first contact
   mapping::Heightmap map;                  // the navigator's heightmap at the end
   footstep::BodyModel body;
   Pose2 goal;

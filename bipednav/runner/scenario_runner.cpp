@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "bipednav/common/clock.hpp"
 #include "bipednav/common/cpu_time.hpp"
@@ -194,10 +195,42 @@ void record_stage_cpu(RunResult& out, const sim::Simulation& sim, const navigati
   st["runner"] = std::max(0.0, (cpu_end_ms - cpu_loop_ms) - sim_ms - nc.total_ms());
 }
 
+std::string fixed(double v, int digits) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.*f", digits, v);
+  return text;
+}
+
+}  // namespace
+
+void judge_run(RunResult& r, double goal_tolerance_m, double goal_tolerance_rad) {
+  const bool reported = r.outcome.ok();
+  const bool inside = r.goal_error_m <= goal_tolerance_m && r.goal_error_rad <= goal_tolerance_rad;
+  r.success = reported && r.collisions == 0 && inside;
+  std::string why;
+  if (r.first_collision) {
+    const sim::CollisionEvent& c = *r.first_collision;
+    why = "the robot touched " + c.obstacle + " at t = " + fixed(c.time_s, 1) + " s" +
+          (sim::robot_standing(c) ? " while standing still" : "");
+  }
+  if (!inside && reported)
+    why += (why.empty() ? "" : "; ") + std::string("the true pose is ") + fixed(r.goal_error_m, 2) + " m / " +
+           fixed(r.goal_error_rad, 2) + " rad from the goal";
+  if (!reported) {
+    const std::string navigator =
+        std::string(outcome_name(r.outcome.outcome)) + (r.outcome.message.empty() ? "" : ": " + r.outcome.message);
+    r.verdict = why.empty() ? navigator : navigator + "; " + why;
+  } else {
+    r.verdict = why.empty() ? "" : "navigator reported SUCCESS, but " + why;
+  }
+}
+
+namespace {
+
 // The run's outcome: collisions, clearance, the navigator's counts and result, the true goal error
 // and success (see run_scenario).
 void record_outcome(RunResult& out, const sim::Scenario& scenario, const sim::Simulation& sim,
-                    const navigation::Navigator& nav) {
+                    const navigation::Navigator& nav, double time_limit_s) {
   out.first_collision = sim.first_collision();
   out.collisions = out.first_collision ? 1 : 0;
   out.min_clearance_m = sim.min_clearance_m();
@@ -207,17 +240,18 @@ void record_outcome(RunResult& out, const sim::Scenario& scenario, const sim::Si
   out.final_state = snapshot(sim.now_s(), nav, sim);
   out.localization_error_m = distance(nav.pose(), sim.true_pose());
   const auto& status = nav.status();
-  out.outcome = status.state == navigation::NavState::ACTIVE
-                    ? Result{Outcome::CTRL_PAT_EXCEEDED, "time limit reached before the goal"}
-                    : status.result;
+  const bool stopped_at_contact = out.first_collision && sim.now_s() < time_limit_s;
+  out.outcome = status.state != navigation::NavState::ACTIVE ? status.result
+                : stopped_at_contact ? Result{Outcome::CTRL_CANCELED, "run stopped at the first contact"}
+                                     : Result{Outcome::CTRL_PAT_EXCEEDED, "time limit reached before the goal"};
   if (!scenario.goals.empty()) {
     const Pose2 goal = scenario.goals.back().pose;
     out.goal_error_m = distance(goal, sim.true_pose());
     out.goal_error_rad = std::abs(angle_diff(goal.theta, sim.true_pose().theta));
   }
-  out.success = status.state == navigation::NavState::SUCCEEDED && out.collisions == 0 &&
-                out.goal_error_m <= 1.25 * scenario.goal_tolerance_m &&
-                out.goal_error_rad <= 1.25 * scenario.goal_tolerance_rad;
+  out.final_true_pose = sim.true_pose();
+  out.final_estimated_pose = nav.pose();
+  judge_run(out, scenario.goal_tolerance_m, scenario.goal_tolerance_rad);
 }
 
 }  // namespace
@@ -226,6 +260,7 @@ RunResult run_scenario(const sim::Scenario& scenario, const RunOptions& o) {
   const double cpu_start_ms = process_cpu_ms();
   RunResult out;
   out.scenario = scenario.name;
+  out.seed = o.seed.value_or(scenario.seed);
   const RobotProfile robot = load_robot(o.robot.empty() ? scenario.robot : o.robot, o.config_dir);
   out.robot = robot.name;
   sim::SimulationParams sp;
@@ -266,8 +301,13 @@ RunResult run_scenario(const sim::Scenario& scenario, const RunOptions& o) {
     link.send(cmd, sim.now_s(), injector);
     sim_ms += t1_ms - t0_ms;
     if (o.on_step) o.on_step(sim, frame, nav, cmd);
+    if (!out.first_arrival_s && next_goal == goals.size() && !goals.empty() &&
+        distance(sim.true_pose(), goals.back().pose) <= scenario.goal_tolerance_m &&
+        std::abs(angle_diff(goals.back().pose.theta, sim.true_pose().theta)) <= scenario.goal_tolerance_rad)
+      out.first_arrival_s = sim.now_s();
     if (recorder.record(sim, nav, cmd, out)) bar.update(static_cast<std::size_t>(sim.now_s() * 10));
     sim.recycle(std::move(frame));  // its clouds' buffers hold the next frames' clouds
+    if (o.stop_on_contact && sim.first_collision()) break;
     const bool more_goals = next_goal < goals.size();
     const auto state = nav.status().state;
     if (!more_goals && (state == navigation::NavState::SUCCEEDED || state == navigation::NavState::FAILED)) break;
@@ -282,7 +322,7 @@ RunResult run_scenario(const sim::Scenario& scenario, const RunOptions& o) {
   out.faults = injector.counters();
   out.watchdog_stops = link.stops();
   out.watchdog_stopped_s = link.stopped_s();
-  record_outcome(out, scenario, sim, nav);
+  record_outcome(out, scenario, sim, nav, limit);
   return out;
 }
 

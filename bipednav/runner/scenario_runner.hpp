@@ -28,6 +28,9 @@ struct RunOptions {
   std::size_t max_snapshots = 3;       // figure panels at replanning moments
   double snapshot_spacing_s = 5.0;     // ... at least this far apart
   std::vector<sim::Fault> faults;      // injected in addition to the scenario's own
+  // End the run at the first contact, its verdict known (benchmarks); the navigator's outcome is then
+  // CTRL_CANCELED unless it had finished.
+  bool stop_on_contact = false;
   // The walking controller's watchdog: the navigator's command reaches the simulated robot through
   // control::StopOnSilence, as on the robot and in the ROS simulator node, so a lost command link
   // (fault command_dropout) stops the robot after timeout_s.
@@ -66,11 +69,20 @@ struct Snapshot {
 
 struct RunResult {
   std::string scenario, robot;
+  std::uint64_t seed = 0;  // the simulator's
+  // The run's verdict (run_scenario): the navigator reported SUCCESS, the true pose ended within the
+  // scenario's goal tolerances, and nothing was touched.
   bool success = false;
-  Result outcome;
+  // Why the run failed, in words ("navigator reported SUCCESS, but the robot touched wall_3 at
+  // t = 12.4 s"; "true pose 0.61 m from the goal"); empty on success.
+  std::string verdict;
+  Result outcome;  // the navigator's
   int collisions = 0;
   std::optional<sim::CollisionEvent> first_collision;
   double time_s = 0.0;
+  Pose2 final_true_pose, final_estimated_pose;
+  // The first time the true pose was within the last goal's tolerances (once every goal was given).
+  std::optional<double> first_arrival_s;
   double path_length_m = 0.0;
   double min_clearance_m = 0.0;
   double goal_error_m = 0.0, goal_error_rad = 0.0;
@@ -116,9 +128,13 @@ bool path_departs(const Path& before, const Path& after, double limit_m = 0.5);
 // fault injector when the scenario or the options name faults), its command drives the simulated robot
 // (through the walking controller's watchdog, RunOptions::command_watchdog); goals are
 // handed over at their times; the run ends when the last goal succeeded or failed, or at the time limit. Success = the
-// last goal reached (by the navigator, and within 1.25 times the scenario's tolerances by the true
-// pose, which leaves room for the localization error) with zero collisions.
+// navigator reported the last goal reached, the true pose ends within the scenario's tolerances
+// (the controllers aim inside them, ServerParams::controller_goal_tolerance_fraction, to leave room
+// for the localization error) and nothing was touched.
 RunResult run_scenario(const sim::Scenario& scenario, const RunOptions& options);
+// That rule: sets r.success and r.verdict (why a run failed, in words) from the navigator's outcome,
+// the first contact and the true goal error against the tolerances. The footstep runs use it too.
+void judge_run(RunResult& r, double goal_tolerance_m, double goal_tolerance_rad);
 // The navigator's parameters for a run of `robot`: its defaults, options.params_file, then the
 // localization / planner options (without the scenario's goal tolerances).
 navigation::NavigatorParams navigator_params(const RobotProfile& robot, const RunOptions& options);

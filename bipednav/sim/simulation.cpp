@@ -125,8 +125,12 @@ void Simulation::update_collision() {
   proximity_ = collision_.nearest(robot_.state().pose.position(), t);
   min_clearance_m_ = std::min(min_clearance_m_, proximity_.clearance_m);
   if (proximity_.clearance_m < 0.0 && !first_collision_)
-    first_collision_ =
-        CollisionEvent{t, robot_.state().pose, proximity_.point, proximity_.obstacle, -proximity_.clearance_m};
+    first_collision_ = CollisionEvent{t,
+                                      robot_.state().pose,
+                                      proximity_.point,
+                                      proximity_.obstacle,
+                                      -proximity_.clearance_m,
+                                      robot_.state().velocity};
 }
 
 std::vector<SE3> Simulation::actor_poses() const {

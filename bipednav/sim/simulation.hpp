@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -43,7 +44,14 @@ struct CollisionEvent {
   Eigen::Vector2d point{0, 0};  // contact point on the obstacle
   std::string obstacle;         // geometry name
   double penetration_m = 0.0;   // -clearance at detection (>= 0)
+  Twist velocity;               // true body velocity then (base frame; a walker's sway in linear_y)
 };
+
+// Whether the robot stood still when it was touched (a person walked into it): its forward speed
+// and yaw rate at most these. A walker's sway, its gait stepping in place, is not motion.
+inline bool robot_standing(const CollisionEvent& e, double max_speed_mps = 0.05, double max_yaw_rate_radps = 0.1) {
+  return std::abs(e.velocity.linear_x) <= max_speed_mps && std::abs(e.velocity.angular_z) <= max_yaw_rate_radps;
+}
 
 // Cost of the sensors, for benchmarks: wall clock, and process CPU time (see cpu_time.hpp).
 struct SimulationStats {

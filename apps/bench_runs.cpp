@@ -1,0 +1,41 @@
+#include "apps/bench_runs.hpp"
+
+#include <atomic>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include "bipednav/common/progress.hpp"
+
+namespace bipednav::app {
+
+void run_in_parallel(std::size_t n, int jobs, const std::string& label, const std::function<void(std::size_t)>& work) {
+  ProgressBar bar(label, n, true);
+  std::mutex bar_mutex;
+  std::atomic<std::size_t> next{0}, done{0};
+  auto worker = [&] {
+    for (std::size_t i = next++; i < n; i = next++) {
+      work(i);
+      const std::lock_guard lock(bar_mutex);
+      bar.update(++done);
+    }
+  };
+  std::vector<std::thread> threads;
+  for (int j = 1; j < jobs; ++j) threads.emplace_back(worker);
+  worker();
+  for (auto& t : threads) t.join();
+  bar.finish();
+}
+
+std::map<std::string, RobotProfile> robot_profiles(const std::vector<std::string>& robots,
+                                                   const runner::RunOptions& base) {
+  std::map<std::string, RobotProfile> profiles;
+  for (const auto& robot : robots) {
+    const RobotProfile profile = runner::load_robot(robot);
+    runner::navigator_params(profile, base);
+    profiles[robot] = profile;
+  }
+  return profiles;
+}
+
+}  // namespace bipednav::app
