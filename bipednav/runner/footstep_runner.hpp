@@ -74,8 +74,8 @@ navigation::FootstepNavigatorParams footstep_navigator_params(const std::filesys
 // The humanoid closed loop: head depth views (two, every second step) -> GICP-corrected kinematic
 // odometry -> Kalman heightmap -> ARA* footsteps (replanned when invalid) -> the walker executes
 // each step relative to its stance foot on the true terrain with a whole-body collision check.
-// Success = the navigator reached the goal, the true body is within 1.25x the scenario's
-// tolerance and no body part collided.
+// Success (judge_run) = the navigator reached the goal, the true body is within the scenario's
+// tolerances and no body part collided.
 FootstepRunResult run_footstep_scenario(const sim::Scenario& scenario, const FootstepRunOptions& options);
 
 // The navigator's heightmap with the last plan (faint), the executed feet, the robot and the goal.
