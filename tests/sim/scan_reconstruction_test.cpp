@@ -9,40 +9,16 @@
 #include "bipednav/perception/lidar_model.hpp"
 #include "bipednav/perception/scan_rings.hpp"
 #include "bipednav/perception/scan_times.hpp"
-#include "bipednav/sim/raycaster.hpp"
-#include "bipednav/sim/vlp16.hpp"
+#include "simulated_room.hpp"
 
 using namespace bipednav;
 
 namespace {
 
-// A closed room (floor, ceiling, four walls, a pillar): every beam returns.
-sim::World room() {
-  sim::World w;
-  const auto box = [&](const char* name, double x, double y, double z, double sx, double sy, double sz) {
-    w.statics.push_back({name, make_se3(x, y, z, 0, 0, 0), sim::Box{{sx, sy, sz}}});
-  };
-  box("floor", 0, 0, -0.05, 40, 30, 0.1);
-  box("ceiling", 0, 0, 6.05, 40, 30, 0.1);
-  box("north", 0, 15, 3, 40, 0.2, 6);
-  box("south", 0, -15, 3, 40, 0.2, 6);
-  box("east", 20, 0, 3, 0.2, 30, 6);
-  box("west", -20, 0, 3, 0.2, 30, 6);
-  box("pillar", 3, 2, 3, 0.5, 0.5, 6);
-  return w;
-}
-
-// One sweep of the simulator's VLP-16 (with range noise) while the sensor moves and turns.
+// One sweep of the simulator's VLP-16 while the sensor moves and turns.
 PointCloud simulated_sweep() {
-  const sim::World w = room();
-  const sim::RayCaster caster(w);
-  sim::Vlp16Params p;
-  sim::Vlp16 lidar(p, "lidar", 5);
   const auto pose_at = [](double t) { return make_se3(1.0 * t, 0.3 * t, 1.2, 0.02, -0.01, 0.8 * t); };
-  std::optional<PointCloud> sweep;
-  for (double t = 0.01; !sweep && t < 1.0; t += 0.01) sweep = lidar.fire_until(t, caster, pose_at);
-  EXPECT_TRUE(sweep.has_value());
-  return sweep ? *sweep : PointCloud{};
+  return test::simulated_vlp16_sweeps(test::lidar_room(), pose_at, 1).front();
 }
 
 }  // namespace
