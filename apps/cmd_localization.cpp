@@ -233,7 +233,9 @@ void run_odometry(const OdometryOptions& o) {
 
 struct BenchOptions {
   std::string scenario = "scenarios/three_rooms.yaml";
-  std::string data_dir;  // holding 251370668.pcd, 251371071.pcd, relative.txt
+  std::string data_dir;   // holding 251370668.pcd, 251371071.pcd, relative.txt
+  std::string kitti_dir;  // a KITTI odometry folder (default: tests/data/lidar/kitti00_f0-15)
+  std::string humanoid_scenario = "nao_drift_walk";
   int sweeps = 100;
   bool json_out = false;
 };
@@ -340,14 +342,21 @@ json bench_gicp(const BenchOptions& o) {
 
 void add_localization_bench(CLI::App& bench) {
   auto o = std::make_shared<BenchOptions>();
-  CLI::App* b = bench.add_subcommand("localization", "LOAM per simulated VLP-16 sweep and GICP on the scan pair");
+  CLI::App* b = bench.add_subcommand(
+      "localization",
+      "LOAM per simulated VLP-16 sweep, GICP on the scan pair, LOAM and GICP odometry on KITTI HDL-64E sweeps");
   b->add_option("--scenario", o->scenario, "Scenario for the simulated sweeps")->capture_default_str();
   b->add_option("--data-dir", o->data_dir, "Directory of the fast_gicp scan pair");
+  b->add_option("--kitti-dir", o->kitti_dir, "KITTI odometry folder for the HDL-64E rows (skipped when absent)");
+  b->add_option("--humanoid-scenario", o->humanoid_scenario, "Footstep scenario of the humanoid drift rows")
+      ->capture_default_str();
   b->add_option("--sweeps", o->sweeps, "Simulated sweeps for LOAM")->capture_default_str()->check(CLI::Range(2, 10000));
   b->add_flag("--json", o->json_out, "Print one JSON object");
   b->callback([o] {
     json j = bench_loam(*o);
     j.update(bench_gicp(*o));
+    j.update(bench_kitti_odometry(o->kitti_dir));
+    j.update(bench_humanoid_drift(o->humanoid_scenario));
     if (o->json_out)
       std::printf("%s\n", j.dump(2).c_str());
     else
@@ -398,9 +407,9 @@ void add_localization_commands(CLI::App& app, CLI::App& bench) {
     // Options of the other kind of input are an error, not silently dropped.
     const char* const scenario_only[] = {"--duration",   "--waypoints", "--speed",
                                          "--config-dir", "--no-prior",  "--planar"};
-    const char* const recording_only[] = {"--format",    "--topic",      "--lidar",       "--gt",
-                                          "--method",    "--out",        "--deskew",      "--max-sweeps",
-                                          "--map-voxel", "--gicp-voxel", "--rpe-distance"};
+    const char* const recording_only[] = {"--format",    "--topic",      "--lidar",        "--gt",
+                                          "--method",    "--out",        "--deskew",       "--max-sweeps",
+                                          "--map-voxel", "--gicp-voxel", "--rpe-distance", "--registration-reference"};
     std::string wrong;
     for (const char* name : recording ? std::vector<const char*>(std::begin(scenario_only), std::end(scenario_only))
                                       : std::vector<const char*>(std::begin(recording_only), std::end(recording_only)))

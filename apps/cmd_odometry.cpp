@@ -45,6 +45,8 @@ void add_recorded_odometry_options(CLI::App& d, RecordedOdometryCli& o) {
   d.add_option("--gicp-voxel", o.gicp_voxel_m, "gicp: input leaf size in m")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
+  d.add_flag("--registration-reference", o.registration_reference,
+             "Also evaluate against the sweeps' own trajectory: each registered directly onto the first (GICP)");
   d.add_option("--rpe-distance", o.rpe_distance_m, "RPE path distance in m")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
@@ -150,7 +152,9 @@ json run_recorded_odometry_command(const RecordedOdometryCli& o) {
   ro.max_sweeps = o.max_sweeps;
   ro.progress = isatty(STDERR_FILENO) != 0;
   const runner::RecordedOdometryResult r = runner::run_recorded_odometry(seq, ro);
-  json j = {{"input", o.path},
+  fs::path input = fs::path(o.path).lexically_normal();
+  if (input.filename().empty()) input = input.parent_path();
+  json j = {{"input", input.filename().string()},
             {"format", format},
             {"lidar", ro.lidar},
             {"method", ro.method},
@@ -171,6 +175,9 @@ json run_recorded_odometry_command(const RecordedOdometryCli& o) {
             {"evaluation", nullptr}};
   if (!r.truth.empty())
     j["evaluation"] = evaluation_json(runner::evaluate_trajectory(r.truth, r.estimate, o.rpe_distance_m));
+  if (o.registration_reference)
+    j["evaluation_against_registration"] = evaluation_json(
+        runner::evaluate_trajectory(runner::direct_registration_trajectory(seq), r.estimate, o.rpe_distance_m));
   if (!o.out.empty()) {
     write_outputs(o.out, r, ro.method);
     std::ofstream(fs::path(o.out) / "run.json") << j.dump(2) << "\n";

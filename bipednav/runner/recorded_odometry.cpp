@@ -178,6 +178,28 @@ RecordedOdometryResult run_recorded_odometry(const SweepSequence& seq, const Rec
   return r;
 }
 
+std::vector<SE3> direct_registration_trajectory(const SweepSequence& seq, double voxel_m, double min_range_m) {
+  if (seq.count == 0 || !seq.read) throw Error("direct_registration_trajectory: no sweeps");
+  perception::VoxelGridParams vp;
+  vp.leaf_size_m = Eigen::Vector3d::Constant(voxel_m);
+  const localization::GicpParams p{
+      .max_iterations = 200, .converged_translation_m = 1e-5, .converged_rotation_rad = 1e-6};
+  const auto load = [&](std::size_t i) {
+    const PointCloud raw = seq.read(i);
+    PointCloud kept;
+    for (const Eigen::Vector3f& q : raw.points)
+      if (q.allFinite() && q.norm() > min_range_m) kept.points.push_back(q);
+    return localization::prepare_gicp_cloud(perception::voxel_downsample(kept, vp), p);
+  };
+  const localization::GicpCloud first = load(0);
+  std::vector<SE3> T{SE3::Identity()};
+  for (std::size_t i = 1; i < seq.count; ++i) {
+    const SE3 guess = i < 2 ? SE3::Identity() : T.back() * T[i - 2].inverse() * T.back();
+    T.push_back(localization::gicp_align(load(i), first, guess, p).T_target_source);
+  }
+  return T;
+}
+
 TrajectoryEvaluation evaluate_trajectory(const std::vector<SE3>& truth, const std::vector<SE3>& estimate,
                                          double rpe_distance_m) {
   TrajectoryEvaluation e;

@@ -69,6 +69,13 @@ struct RecordedOdometryResult {
 // FileError from the readers.
 RecordedOdometryResult run_recorded_odometry(const SweepSequence& seq, const RecordedOdometryOptions& o);
 
+// The sweeps' own trajectory, for recordings whose reference poses are missing or in doubt: each
+// sweep registered directly onto the first (GICP on `voxel_m` voxels without the points closer
+// than `min_range_m`, from the previous result extrapolated), not chained, so that no odometry
+// error accumulates in it; valid while every sweep overlaps the first. T_first_lidar per sweep.
+std::vector<SE3> direct_registration_trajectory(const SweepSequence& seq, double voxel_m = 0.2,
+                                                double min_range_m = 3.0);
+
 // The estimate against the truth (equal lengths): ATE after SE(3) alignment, RPE over one frame
 // and over `rpe_distance_m` of path, KITTI's relative errors over its 100..800 m segments and over
 // every whole-metre length the path allows (from every frame), and the end-point error.

@@ -10,8 +10,6 @@
 #include "bipednav/common/error.hpp"
 #include "bipednav/io/kitti_sequence.hpp"
 #include "bipednav/io/pcd.hpp"
-#include "bipednav/localization/gicp.hpp"
-#include "bipednav/perception/voxel_grid.hpp"
 #include "simulated_room.hpp"
 #include "test_data.hpp"
 
@@ -89,32 +87,6 @@ TEST(RecordedOdometry, GicpBaselineFollowsTheSimulatedSweeps) {
   EXPECT_LT(end_error(r), 0.3);  // no de-skew: each sweep is a distorted snapshot
 }
 
-// The sweeps' own trajectory: each sweep registered directly onto the first (GICP, 0.2 m voxels,
-// the ego car's 3 m removed), not chained, so no odometry error accumulates in it (chained and
-// direct registrations agree within 0.02 m over the 16 sweeps).
-std::vector<SE3> direct_registration(const io::SweepFiles& files) {
-  const auto load = [&](std::size_t i) {
-    const PointCloud raw = io::read_sweep(files, i);
-    PointCloud kept;
-    for (const Eigen::Vector3f& p : raw.points)
-      if (p.head<2>().norm() > 3.0f) kept.points.push_back(p);
-    perception::VoxelGridParams vp;
-    vp.leaf_size_m = Eigen::Vector3d::Constant(0.2);
-    return localization::prepare_gicp_cloud(perception::voxel_downsample(kept, vp), localization::GicpParams{});
-  };
-  localization::GicpParams p;
-  p.max_iterations = 200;
-  p.converged_translation_m = 1e-5;
-  p.converged_rotation_rad = 1e-6;
-  const localization::GicpCloud first = load(0);
-  std::vector<SE3> T{SE3::Identity()};
-  for (std::size_t i = 1; i < files.files.size(); ++i) {
-    const SE3 guess = i < 2 ? SE3::Identity() : T.back() * T[i - 2].inverse() * T.back();
-    T.push_back(localization::gicp_align(load(i), first, guess, p).T_target_source);
-  }
-  return T;
-}
-
 TEST(RecordedOdometry, KittiHdl64SweepsFollowTheirOwnGeometryAndReadTheSameAsPcd) {
   BIPEDNAV_REQUIRE_DATA(first_sweep, "lidar/kitti00_f0-15/velodyne/000000.bin");
   const fs::path root = first_sweep.parent_path().parent_path();
@@ -130,7 +102,9 @@ TEST(RecordedOdometry, KittiHdl64SweepsFollowTheirOwnGeometryAndReadTheSameAsPcd
   EXPECT_LE(r.ring_count, 66u);
   EXPECT_EQ(r.unhealthy, 0u);
 
-  const TrajectoryEvaluation own = evaluate_trajectory(direct_registration(files), r.estimate);
+  // The sweeps' own trajectory (chained and direct GICP agree within 0.02 m over the 16 sweeps).
+  const TrajectoryEvaluation own =
+      evaluate_trajectory(direct_registration_trajectory(sweep_sequence_from_files(files)), r.estimate);
   EXPECT_LE(own.end_point_error_m, 0.10);
   EXPECT_LE(own.kitti_short.translation_percent, 1.0);
   // poses.txt: the path it gives (12.9 m) is 10 % longer than the sweeps' own (11.7 m, measured by
