@@ -36,12 +36,8 @@ PointCloud read_kitti_sweep(const fs::path& file) {
 }
 
 SE3 parse_kitti_calib_tr(std::string_view text, const std::string& name) {
-  std::size_t pos = 0, line_no = 0;
-  while (pos < text.size()) {
-    std::size_t end = text.find('\n', pos);
-    if (end == std::string_view::npos) end = text.size();
-    const std::string_view line = text.substr(pos, end - pos);
-    pos = end + 1;
+  std::size_t line_no = 0;
+  for (const std::string_view line : detail::text_lines(text)) {
     ++line_no;
     if (line.substr(0, 3) != "Tr:") continue;
     const std::vector<double> v = detail::parse_number_line(line.substr(3), name, line_no);

@@ -12,6 +12,18 @@ namespace bipednav::io {
 
 namespace detail {
 
+std::vector<std::string_view> text_lines(std::string_view text) {
+  std::vector<std::string_view> lines;
+  std::size_t pos = 0;
+  while (pos < text.size()) {
+    std::size_t end = text.find('\n', pos);
+    if (end == std::string_view::npos) end = text.size();
+    lines.push_back(text.substr(pos, end - pos));
+    pos = end + 1;
+  }
+  return lines;
+}
+
 std::vector<double> parse_number_line(std::string_view line, const std::string& name, std::size_t line_no) {
   std::vector<double> values;
   std::size_t pos = 0;
@@ -73,12 +85,8 @@ std::ofstream open_for_writing(const std::filesystem::path& file) {
 
 Trajectory parse_trajectory(std::string_view text, const std::string& name) {
   Trajectory t;
-  std::size_t columns = 0, line_no = 0, pos = 0;
-  while (pos < text.size()) {
-    std::size_t end = text.find('\n', pos);
-    if (end == std::string_view::npos) end = text.size();
-    const std::string_view line = text.substr(pos, end - pos);
-    pos = end + 1;
+  std::size_t columns = 0, line_no = 0;
+  for (const std::string_view line : detail::text_lines(text)) {
     ++line_no;
     const std::size_t first = line.find_first_not_of(" \t\r");
     if (first == std::string_view::npos || line[first] == '#') continue;

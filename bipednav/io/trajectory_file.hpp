@@ -32,6 +32,8 @@ void write_tum_trajectory(const std::filesystem::path& file, const std::vector<d
 void write_kitti_trajectory(const std::filesystem::path& file, const std::vector<SE3>& poses);
 
 namespace detail {
+// The lines of a text without their '\n' (the i-th is line i + 1 in messages).
+std::vector<std::string_view> text_lines(std::string_view text);
 // The whitespace-separated numbers of one text line (line_no counts from 1 for the messages);
 // throws FileError on a token that is not a finite number.
 std::vector<double> parse_number_line(std::string_view line, const std::string& name, std::size_t line_no);
