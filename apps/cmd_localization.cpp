@@ -10,7 +10,9 @@
 #include <optional>
 #include <sstream>
 
+#include "apps/cmd_odometry.hpp"
 #include "apps/commands.hpp"
+#include "apps/scenario_files.hpp"
 #include "bipednav/common/angles.hpp"
 #include "bipednav/common/error.hpp"
 #include "bipednav/io/pcd.hpp"
@@ -231,7 +233,9 @@ void run_odometry(const OdometryOptions& o) {
 
 struct BenchOptions {
   std::string scenario = "scenarios/three_rooms.yaml";
-  std::string data_dir;  // holding 251370668.pcd, 251371071.pcd, relative.txt
+  std::string data_dir;   // holding 251370668.pcd, 251371071.pcd, relative.txt
+  std::string kitti_dir;  // a KITTI odometry folder (default: tests/data/lidar/kitti00_f0-15)
+  std::string humanoid_scenario = "nao_drift_walk";
   int sweeps = 100;
   bool json_out = false;
 };
@@ -338,14 +342,21 @@ json bench_gicp(const BenchOptions& o) {
 
 void add_localization_bench(CLI::App& bench) {
   auto o = std::make_shared<BenchOptions>();
-  CLI::App* b = bench.add_subcommand("localization", "LOAM per simulated VLP-16 sweep and GICP on the scan pair");
+  CLI::App* b = bench.add_subcommand(
+      "localization",
+      "LOAM per simulated VLP-16 sweep, GICP on the scan pair, LOAM and GICP odometry on KITTI HDL-64E sweeps");
   b->add_option("--scenario", o->scenario, "Scenario for the simulated sweeps")->capture_default_str();
   b->add_option("--data-dir", o->data_dir, "Directory of the fast_gicp scan pair");
+  b->add_option("--kitti-dir", o->kitti_dir, "KITTI odometry folder for the HDL-64E rows (skipped when absent)");
+  b->add_option("--humanoid-scenario", o->humanoid_scenario, "Footstep scenario of the humanoid drift rows")
+      ->capture_default_str();
   b->add_option("--sweeps", o->sweeps, "Simulated sweeps for LOAM")->capture_default_str()->check(CLI::Range(2, 10000));
   b->add_flag("--json", o->json_out, "Print one JSON object");
   b->callback([o] {
     json j = bench_loam(*o);
     j.update(bench_gicp(*o));
+    j.update(bench_kitti_odometry(o->kitti_dir));
+    j.update(bench_humanoid_drift(o->humanoid_scenario));
     if (o->json_out)
       std::printf("%s\n", j.dump(2).c_str());
     else
@@ -367,22 +378,55 @@ void add_localization_commands(CLI::App& app, CLI::App& bench) {
   r->callback([reg] { run_register(*reg); });
 
   auto odo = std::make_shared<OdometryOptions>();
-  CLI::App* d = app.add_subcommand("odometry", "Drive a scenario in the simulator; report LOAM and raw odometry drift");
-  d->add_option("scenario", odo->scenario, "Scenario YAML file")->required()->check(CLI::ExistingFile);
-  d->add_option("--duration", odo->duration_s, "Simulated seconds (default: until the route is done)");
+  auto rec = std::make_shared<RecordedOdometryCli>();
+  CLI::App* d = app.add_subcommand(
+      "odometry",
+      "LOAM (or GICP) odometry on a recording (KITTI, PCD or PLY folder, rosbag) against its reference poses, or "
+      "driving a scenario in the simulator (LOAM and raw odometry drift)");
+  d->add_option("path", odo->scenario,
+                "Recording (a KITTI/PCD/PLY folder or a .bag), or a scenario name or YAML file to simulate")
+      ->required();
+  d->add_option("--duration", odo->duration_s, "Scenario: simulated seconds (default: until the route is done)");
   d->add_option("--waypoints", odo->waypoints,
-                "Route as 'x,y x,y ...' (default: built in for three_rooms, else straight)");
-  d->add_option("--speed", odo->speed_mps, "Forward speed in m/s (default: the robot's maximum)");
-  d->add_option("--config-dir", odo->config_dir, "Directory of robot profiles (default: <scenario>/../config)");
-  d->add_flag("--no-prior", odo->no_prior, "Do not give LOAM the odometry as a motion prior");
-  d->add_flag("--planar", odo->planar, "LOAM keeps the LiDAR's height, roll and pitch (flat floor)");
+                "Scenario: route as 'x,y x,y ...' (default: built in for three_rooms, else straight)");
+  d->add_option("--speed", odo->speed_mps, "Scenario: forward speed in m/s (default: the robot's maximum)");
+  d->add_option("--config-dir", odo->config_dir,
+                "Scenario: directory of robot profiles (default: <scenario>/../config)");
+  d->add_flag("--no-prior", odo->no_prior, "Scenario: do not give LOAM the odometry as a motion prior");
+  d->add_flag("--planar", odo->planar, "Scenario: LOAM keeps the LiDAR's height, roll and pitch (flat floor)");
   d->add_flag("--json", odo->json_out, "Print one JSON object");
   d->add_option(
        "--params", odo->params,
        "Navigation parameters file (the layout of `bipednav params`): LOAM's parameters are its "
-       "localization.loam, over the robot's defaults as `run --params` reads it (default: LoamParams' defaults)")
+       "localization.loam, over the robot's defaults as `run --params` reads it (default: LoamParams' defaults; "
+       "a recording: config/lidar/<lidar>.yaml when it exists)")
       ->check(CLI::ExistingFile);
-  d->callback([odo] { run_odometry(*odo); });
+  add_recorded_odometry_options(*d, *rec);
+  d->callback([d, odo, rec] {
+    const bool recording = is_recording(odo->scenario);
+    // Options of the other kind of input are an error, not silently dropped.
+    const char* const scenario_only[] = {"--duration",   "--waypoints", "--speed",
+                                         "--config-dir", "--no-prior",  "--planar"};
+    const char* const recording_only[] = {"--format",    "--topic",      "--lidar",        "--gt",
+                                          "--method",    "--out",        "--deskew",       "--max-sweeps",
+                                          "--map-voxel", "--gicp-voxel", "--rpe-distance", "--registration-reference"};
+    std::string wrong;
+    for (const char* name : recording ? std::vector<const char*>(std::begin(scenario_only), std::end(scenario_only))
+                                      : std::vector<const char*>(std::begin(recording_only), std::end(recording_only)))
+      if (d->get_option(name)->count() > 0) wrong += (wrong.empty() ? "" : ", ") + std::string(name);
+    if (!wrong.empty())
+      throw Error(wrong + (recording ? ": only for a simulated scenario, not for a recording"
+                                     : ": only for a recording (a folder or a .bag), not for a scenario"));
+    if (recording) {
+      rec->path = odo->scenario;
+      rec->params = odo->params;
+      rec->json_out = odo->json_out;
+      run_recorded_odometry_command(*rec);
+      return;
+    }
+    odo->scenario = resolve_scenario(odo->scenario).string();
+    run_odometry(*odo);
+  });
 
   add_localization_bench(bench);
 }

@@ -83,9 +83,14 @@ struct Loop {
   void record(const sim::StepExecution& e, const footstep::FootstepAction& a, bool replanned) {
     const Pose2 before = out.steps.empty() ? scenario.start : out.steps.back().body;
     const footstep::Footstep est = nav.to_map(walker.odom_stance()), est_other = nav.to_map(walker.odom_swing());
-    ExecutedStep s{
-        walker.time_s(),     e.landed, a.name, walker.body_pose(), sim::body_between(est.pose, est_other.pose),
-        walker.stance().z_m, replanned};
+    ExecutedStep s{walker.time_s(),
+                   e.landed,
+                   a.name,
+                   walker.body_pose(),
+                   sim::body_between(est.pose, est_other.pose),
+                   pose2_from_se3(walker.T_odom_base()),
+                   walker.stance().z_m,
+                   replanned};
     out.summary.path_length_m += distance(before, s.body);
     out.summary.min_clearance_m = std::min(out.summary.min_clearance_m, e.min_clearance_m);
     out.max_body_z_m = std::max(out.max_body_z_m, s.body_z_m);

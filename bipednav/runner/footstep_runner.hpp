@@ -44,6 +44,7 @@ struct ExecutedStep {
   footstep::Footstep foot;  // where the swing foot really landed
   std::string action;
   Pose2 body, estimated_body;
+  Pose2 odometry_body;    // the body from the leg odometry alone (its frame is the world at the start)
   double body_z_m = 0.0;  // the stance sole's height after the step
   bool replanned = false;
 };

@@ -84,3 +84,17 @@ TEST(FootstepRun, NarrowPassageIsWalkedSideways) {
   }
   EXPECT_GE(inside, 2);
 }
+
+// The second reference's drift experiment (section VI, Fig. 7): over a walk of more than 3.5 m
+// among blocks, the GICP-corrected estimate ends closer to the true body than the leg odometry
+// alone, by more than a factor of three (`bench localization` reports both per metre).
+TEST(FootstepRun, DriftWalkCorrectedEstimateDriftsLessThanAThirdOfTheLegOdometry) {
+  const auto r = run("nao_drift_walk");
+  expect_reached(r);
+  EXPECT_GE(r.summary.path_length_m, 3.5);
+  const runner::ExecutedStep& last = r.steps.back();
+  const double corrected = distance(last.estimated_body, last.body), odometry = distance(last.odometry_body, last.body);
+  EXPECT_LT(corrected, odometry / 3.0) << "corrected " << corrected << " m, odometry " << odometry << " m";
+  // The first step's odometry is the true step with one step's noise (2 mm, 5 mrad sigma).
+  EXPECT_LT(distance(r.steps.front().odometry_body, r.steps.front().body), 0.02);
+}

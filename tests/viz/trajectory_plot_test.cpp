@@ -1,0 +1,36 @@
+#include "bipednav/viz/trajectory_plot.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "bipednav/common/error.hpp"
+
+namespace bipednav::viz {
+namespace {
+
+TEST(TrajectoryPlot, ScaleBarIsARoundQuarterOfTheView) {
+  EXPECT_DOUBLE_EQ(scale_bar_length_m(13.0), 2.0);
+  EXPECT_DOUBLE_EQ(scale_bar_length_m(100.0), 20.0);
+  EXPECT_DOUBLE_EQ(scale_bar_length_m(25.0), 5.0);
+  EXPECT_NEAR(scale_bar_length_m(0.3), 0.05, 1e-15);
+}
+
+TEST(TrajectoryPlot, WritesAPngOfTheLines) {
+  const auto file = std::filesystem::temp_directory_path() / "bipednav_trajectory_plot_test.png";
+  std::filesystem::remove(file);
+  write_trajectory_plot(file,
+                        {{"ground truth", colors::kBlack, {{0, 0}, {5, 0.2}, {12, 0.7}}},
+                         {"estimate", colors::kRed, {{0, 0}, {4.9, 0.1}, {11.7, 0.45}}}},
+                        "test", 400.0);
+  std::ifstream in(file, std::ios::binary);
+  char magic[8] = {};
+  in.read(magic, 8);
+  EXPECT_EQ(std::string(magic + 1, 3), "PNG");
+  EXPECT_THROW(write_trajectory_plot(file, {{"empty", colors::kRed, {}}}, "t"), Error);
+  std::filesystem::remove(file);
+}
+
+}  // namespace
+}  // namespace bipednav::viz
