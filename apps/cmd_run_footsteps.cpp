@@ -58,22 +58,21 @@ nlohmann::json footstep_json(const runner::FootstepRunResult& f) {
 
 }  // namespace
 
-void run_footsteps_command(sim::Scenario scenario, const std::string& robot_override, const std::filesystem::path& out,
-                           std::uint64_t seed, double time_limit_s, const std::filesystem::path& params_file,
+bool run_footsteps_command(sim::Scenario scenario, const std::string& robot_override, const std::filesystem::path& out,
+                           const FootstepRunArgs& args, const std::filesystem::path& params_file,
                            const std::filesystem::path& replay) {
   if (!robot_override.empty()) scenario.robot = robot_override;
   runner::FootstepRunOptions o;
   o.navigator = runner::footstep_navigator_params(params_file);
-  if (seed) o.seed = seed;
-  if (time_limit_s > 0) o.time_limit_s = time_limit_s;
-  o.progress = true;
+  if (args.seed) o.seed = *args.seed;
+  if (args.time_limit_s) o.time_limit_s = *args.time_limit_s;
+  o.progress = args.progress;
   std::unique_ptr<runner::FootstepReplayRecorder> recorder;
   if (!replay.empty()) {
     recorder = std::make_unique<runner::FootstepReplayRecorder>(scenario);
     recorder->attach(o);
   }
   const runner::FootstepRunResult f = runner::run_footstep_scenario(scenario, o);
-  std::filesystem::create_directories(out);
   std::ofstream(out / "run.json") << footstep_json(f).dump(2) << "\n";
   runner::write_footstep_figure(out / "run.png", f);
   const runner::RunResult& r = f.summary;
@@ -89,6 +88,7 @@ void run_footsteps_command(sim::Scenario scenario, const std::string& robot_over
     viz::write_replay_html(replay, recorder->finish(f));
     std::printf("  wrote %s (%zu frames)\n", replay.c_str(), recorder->frames().size());
   }
+  return r.success;
 }
 
 }  // namespace bipednav::app

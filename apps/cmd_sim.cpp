@@ -9,8 +9,11 @@
 #include <optional>
 
 #include "apps/bench_sim.hpp"
+#include "apps/cli_checks.hpp"
+#include "apps/cli_output.hpp"
 #include "apps/cmd_route.hpp"
 #include "apps/commands.hpp"
+#include "apps/scenario_files.hpp"
 #include "bipednav/common/clock.hpp"
 #include "bipednav/common/error.hpp"
 #include "bipednav/common/progress.hpp"
@@ -70,14 +73,14 @@ struct RunRecord {
   double wall_s = 0.0;
 };
 
-fs::path find_config_dir(const SimOptions& opt) {
+fs::path find_config_dir(const SimOptions& opt, const fs::path& scenario_file) {
   if (!opt.config_dir.empty()) return opt.config_dir;
-  const fs::path near_scenario = fs::path(opt.scenario).parent_path() / ".." / "config";
+  const fs::path near_scenario = scenario_file.parent_path() / ".." / "config";
   return fs::is_directory(near_scenario) ? near_scenario : fs::path("config");
 }
 
-RobotProfile load_profile(const SimOptions& opt, const std::string& name) {
-  const fs::path file = find_config_dir(opt) / (name + ".yaml");
+RobotProfile load_profile(const SimOptions& opt, const fs::path& scenario_file, const std::string& name) {
+  const fs::path file = find_config_dir(opt, scenario_file) / (name + ".yaml");
   if (!fs::exists(file))
     throw Error("robot profile '" + name + "' not found: " + file.string() + " (use --config-dir or --robot)");
   return io::load_robot_profile(file);
@@ -231,17 +234,18 @@ json summary(const sim::Simulation& sim, const sim::Scenario& scenario, const Ru
 }
 
 void run_sim_command(const SimOptions& opt) {
-  if (!(opt.duration_s > 0 && std::isfinite(opt.duration_s))) throw Error("--duration: expected a time > 0 s");
-  const sim::Scenario scenario = sim::load_scenario(opt.scenario);
-  const RobotProfile robot = load_profile(opt, opt.robot.empty() ? scenario.robot : opt.robot);
+  const fs::path scenario_file = resolve_scenario(opt.scenario);
+  const sim::Scenario scenario = sim::load_scenario(scenario_file);
+  const RobotProfile robot = load_profile(opt, scenario_file, opt.robot.empty() ? scenario.robot : opt.robot);
+  const fs::path out(opt.out_dir);
+  prepare_output_dir(out, "--out");
   sim::SimulationParams params;
   params.step_s = opt.step_s;
   params.seed = scenario.seed;
+  with_flag_names({{"step_s", "--step"}}, [&] { params.validate(); });
   sim::Simulation sim(scenario.world, robot, scenario.start, params);
   const RunRecord rec = run(sim, scenario, robot, opt);
 
-  const fs::path out(opt.out_dir);
-  fs::create_directories(out);
   write_figure(out / "sim.png", sim, scenario, rec);
   const json j = summary(sim, scenario, rec, opt);
   std::ofstream json_file(out / "sim.json");
@@ -260,15 +264,15 @@ void add_sim_commands(CLI::App& app, CLI::App& bench) {
       app.add_subcommand("sim",
                          "Drive a scenario's robot open-loop (scripted commands or a straight line) in the simulator; "
                          "writes OUT/sim.png and OUT/sim.json");
-  cmd->add_option("scenario", opt->scenario, "Scenario YAML file (scenarios/*.yaml)")
-      ->required()
-      ->check(CLI::ExistingFile);
-  cmd->add_option("--duration", opt->duration_s, "Simulated time in seconds")->capture_default_str();
+  cmd->add_option("scenario", opt->scenario, "Scenario name (scenarios/NAME.yaml) or file")->required();
+  cmd->add_option("--duration", opt->duration_s, "Simulated time in seconds")
+      ->capture_default_str()
+      ->check(check::positive());
   cmd->add_option("--out", opt->out_dir, "Output directory")->capture_default_str();
   cmd->add_option("--robot", opt->robot, "Robot profile name (config/<NAME>.yaml), overrides the scenario's");
   cmd->add_option("--config-dir", opt->config_dir, "Directory of robot profiles (default: <scenario>/../config)");
-  cmd->add_option("--step", opt->step_s, "Simulation step in seconds")->capture_default_str();
-  cmd->add_flag("--quiet", opt->quiet, "No progress bar");
+  cmd->add_option("--step", opt->step_s, "Simulation step in seconds")->capture_default_str()->check(check::positive());
+  cmd->add_flag("--quiet", opt->quiet, "No progress bar (it is shown only when stderr is a terminal)");
   cmd->callback([opt] { run_sim_command(*opt); });
   add_sim_bench(bench);
   add_route_command(app);

@@ -12,7 +12,7 @@ std::filesystem::path scenario_dir();
 // "hexagon_static" (scenarios/NAME.yaml) or a path to a scenario file; throws Error when it is neither.
 std::filesystem::path resolve_scenario(const std::string& name);
 // A scenario around any Gazebo world file (`run --world`, `route --world`): the robot (default
-// turtlebot3), start and goal poses as "x,y,yaw" (--start, --goal), bounds around world, start and
+// turtlebot3), start and goal poses as "x,y[,yaw]" (--start, --goal), bounds around world, start and
 // goal, a 180 s time limit.
 sim::Scenario scenario_from_world(const std::string& world_file, const std::string& robot, const std::string& start,
                                   const std::string& goal);
