@@ -21,6 +21,7 @@
 #include "bipednav/planning/global/movingai_runner.hpp"
 #include "bipednav/planning/global/replan_benchmark.hpp"
 #include "bipednav/viz/canvas.hpp"
+#include "bipednav/viz/figure_legend.hpp"
 
 namespace bipednav::app {
 
@@ -40,7 +41,15 @@ struct GridOptions {
 };
 
 void write_plan_png(const std::string& file, const mapping::Costmap2D& map, const planning::PlanResult& r,
-                    const Pose2& start, const Pose2& goal) {
+                    const Pose2& start, const Pose2& goal, const std::string& planner) {
+  using viz::LegendMark;
+  const viz::CostColors palette;
+  const std::vector<viz::LegendEntry> legend = {{"obstacle", palette.lethal, LegendMark::kBox},
+                                                {"inscribed / inflated", palette.inscribed, LegendMark::kBox},
+                                                {"unknown", palette.unknown, LegendMark::kBox},
+                                                {"path (" + planner + ")", viz::colors::kRed, LegendMark::kLine},
+                                                {"start", viz::colors::kGrey, LegendMark::kArrow},
+                                                {"goal", viz::colors::kOrange, LegendMark::kArrow}};
   const auto& g = map.geometry();
   viz::CanvasParams cp;
   cp.min_x_m = g.origin_x_m;
@@ -48,14 +57,15 @@ void write_plan_png(const std::string& file, const mapping::Costmap2D& map, cons
   cp.max_x_m = g.origin_x_m + g.size_x_m();
   cp.max_y_m = g.origin_y_m + g.size_y_m();
   cp.pixels_per_m = std::clamp(1200.0 / std::max(g.size_x_m(), g.size_y_m()), 2.0, 200.0);
-  viz::Canvas canvas(cp);
-  canvas.grid(map);
+  viz::Canvas canvas(viz::with_legend_bands(cp, legend));
+  canvas.grid(map, palette);
   std::vector<Eigen::Vector2d> pts;
   for (const auto& p : r.path.poses) pts.push_back(p.position());
   if (pts.size() >= 2) canvas.polyline(pts, viz::colors::kRed, 2.0);
-  canvas.arrow(start, 0.05 * std::max(g.size_x_m(), g.size_y_m()), viz::colors::kGreen, 3.0);
-  canvas.arrow(goal, 0.05 * std::max(g.size_x_m(), g.size_y_m()), viz::colors::kOrange, 3.0);
-  canvas.text_px(10, 14, std::string(outcome_name(r.result.outcome)) + ": " + r.result.message, viz::colors::kBlack);
+  const double arrow_m = 0.05 * std::max(g.size_x_m(), g.size_y_m());
+  canvas.arrow(start, arrow_m, viz::colors::kGrey, 3.0);
+  canvas.arrow(goal, arrow_m, viz::colors::kOrange, 3.0);
+  viz::draw_title_and_legend(canvas, std::string(outcome_name(r.result.outcome)) + ": " + r.result.message, legend);
   canvas.write_png(file);
 }
 
@@ -71,7 +81,7 @@ bool run_grid(const GridOptions& o) {
   pp.cost.unknown_is_obstacle = o.unknown_is_obstacle;
   auto planner = planning::make_global_planner(o.planner, pp);
   const planning::PlanResult r = planner->plan(costmap.costmap(), start, goal, {});
-  if (!o.out.empty()) write_plan_png(o.out, costmap.costmap(), r, start, goal);
+  if (!o.out.empty()) write_plan_png(o.out, costmap.costmap(), r, start, goal, o.planner);
   if (o.json_out) {
     json poses = json::array();
     for (const auto& p : r.path.poses) poses.push_back(pose_json(p));

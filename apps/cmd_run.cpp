@@ -229,15 +229,38 @@ struct ParamsArgs {
   std::string params;
 };
 
+// The navigation parameters of a wheeled robot or walker; a file in the footstep layout is reported as such.
+navigation::NavigatorParams wheeled_params_for_cli(const RobotProfile& robot, const runner::RunOptions& o) {
+  try {
+    return runner::navigator_params(robot, o);
+  } catch (const FileError& e) {
+    throw Error(std::string(e.what()) + " (robot " + robot.name + ", kind " + robot.kind +
+                ", reads the wheeled navigator's layout, not a humanoid's: `bipednav params --robot " + robot.name +
+                "` prints it)");
+  }
+}
+
+// The compiled-in behavior tree is an absolute path of this machine: a dump leaves it out (the
+// default), so the file is the same on every machine and reads back to the same parameters.
+std::string without_default_tree(std::string yaml, const std::string& default_tree) {
+  const std::string line = "behavior_tree: " + default_tree + "\n";
+  const auto at = yaml.find(line);
+  if (at != std::string::npos)
+    yaml.replace(at, line.size(),
+                 "# behavior_tree: the built-in config/behavior_trees/navigate.xml (give a file to use another)\n");
+  return yaml;
+}
+
 // A humanoid's (kind humanoid) are the footstep navigator's, in its own layout.
 void print_params(const ParamsArgs& a) {
   runner::RunOptions o;
   o.params_file = a.params;
   const RobotProfile robot = runner::load_robot(a.robot);
   const bool footsteps = runner::is_footstep_robot(robot);
-  const std::string yaml = footsteps
-                               ? navigation::navigator_params_yaml(runner::footstep_navigator_params(o.params_file))
-                               : navigation::navigator_params_yaml(runner::navigator_params(robot, o));
+  const std::string yaml =
+      footsteps ? navigation::navigator_params_yaml(footstep_params_for_cli(o.params_file))
+                : without_default_tree(navigation::navigator_params_yaml(wheeled_params_for_cli(robot, o)),
+                                       navigation::NavigatorParams::for_robot(robot).behavior_tree);
   std::printf("# bipednav %snavigation parameters for robot %s%s: every key is optional; read with --params FILE\n%s",
               footsteps ? "footstep " : "", a.robot.c_str(), a.params.empty() ? "" : (" with " + a.params).c_str(),
               yaml.c_str());
@@ -296,7 +319,8 @@ void add_run_commands(CLI::App& app, CLI::App& bench) {
   params
       ->add_option("--robot", pa->robot, "Robot profile name or file (a humanoid: the footstep navigator's parameters)")
       ->capture_default_str();
-  params->add_option("--params", pa->params, "A parameters file to overlay first (prints the result)");
+  params->add_option("--params", pa->params, "A parameters file to overlay first (prints the result)")
+      ->check(CLI::ExistingFile);
   params->callback([pa] { print_params(*pa); });
 }
 

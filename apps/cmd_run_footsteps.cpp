@@ -16,6 +16,16 @@ bool runs_by_footsteps(const sim::Scenario& scenario, const std::string& robot_o
   return runner::is_footstep_robot(runner::load_robot(robot_override.empty() ? scenario.robot : robot_override));
 }
 
+navigation::FootstepNavigatorParams footstep_params_for_cli(const std::filesystem::path& params_file) {
+  try {
+    return runner::footstep_navigator_params(params_file);
+  } catch (const FileError& e) {
+    throw Error(std::string(e.what()) +
+                " (a humanoid, kind humanoid, reads the footstep navigator's layout, not a wheeled robot's: "
+                "`bipednav params --robot nao` prints it)");
+  }
+}
+
 namespace {
 
 nlohmann::json footstep_json(const runner::FootstepRunResult& f) {
@@ -63,7 +73,7 @@ bool run_footsteps_command(sim::Scenario scenario, const std::string& robot_over
                            const std::filesystem::path& replay) {
   if (!robot_override.empty()) scenario.robot = robot_override;
   runner::FootstepRunOptions o;
-  o.navigator = runner::footstep_navigator_params(params_file);
+  o.navigator = footstep_params_for_cli(params_file);
   if (args.seed) o.seed = *args.seed;
   if (args.time_limit_s) o.time_limit_s = *args.time_limit_s;
   o.progress = args.progress;

@@ -22,6 +22,7 @@
 #include "bipednav/sim/simulation.hpp"
 #include "bipednav/sim/world_drawing.hpp"
 #include "bipednav/viz/canvas.hpp"
+#include "bipednav/viz/figure_legend.hpp"
 
 namespace bipednav::app {
 namespace {
@@ -159,25 +160,58 @@ viz::CanvasParams canvas_for(const sim::Bounds& b) {
   return cp;
 }
 
+constexpr viz::Color kLidarColor{0.1, 0.3, 0.95, 0.8}, kDepthColor{0.05, 0.6, 0.2, 0.5};
+constexpr viz::Color kDrivenColor{0.0, 0.55, 0.6, 1.0};
+constexpr double kRampPx = 60.0;
+
+// The layers the figure shows (a robot without LiDAR has no sweep to show).
+std::vector<viz::LegendEntry> sim_legend(const sim::World& world, const RunRecord& rec) {
+  using viz::LegendMark;
+  std::vector<viz::LegendEntry> e;
+  if (!world.actors.empty()) e.push_back({"moving obstacle", sim::WorldStyle{}.actor_fill, LegendMark::kBox});
+  if (rec.last_sweep) e.push_back({"LiDAR points (last sweep)", kLidarColor, LegendMark::kDot});
+  if (rec.last_depth) e.push_back({"depth points (last image)", kDepthColor, LegendMark::kDot});
+  e.insert(e.end(), {{"driven path", kDrivenColor, LegendMark::kLine},
+                     {"start", viz::colors::kGrey, LegendMark::kArrow},
+                     {"goal (tolerance)", viz::colors::kRed, LegendMark::kRing},
+                     {"robot at the end", viz::colors::kBlack, LegendMark::kArrow}});
+  if (!rec.collisions.empty()) e.push_back({"collision", viz::colors::kRed, LegendMark::kCross});
+  return e;
+}
+
+void draw_collisions(viz::Canvas& canvas, const RunRecord& rec) {
+  for (const CollisionRecord& c : rec.collisions) {
+    const Eigen::Vector2d q = canvas.to_pixel(c.point);
+    canvas.line_px(q - Eigen::Vector2d(6, 6), q + Eigen::Vector2d(6, 6), viz::colors::kRed, 2.5);
+    canvas.line_px(q - Eigen::Vector2d(6, -6), q + Eigen::Vector2d(6, -6), viz::colors::kRed, 2.5);
+  }
+}
+
+// The statics shaded by height (stairs read as steps), the last sweep and depth image, the
+// driven path, start, goals, the robot at the end and each collision, with a legend, a scale bar
+// and the height ramp.
 void write_figure(const fs::path& file, const sim::Simulation& sim, const sim::Scenario& scenario,
                   const RunRecord& rec) {
-  viz::Canvas canvas(canvas_for(scenario.bounds));
-  sim::draw_world(canvas, sim.world(), sim.now_s());
+  const std::vector<viz::LegendEntry> legend = sim_legend(sim.world(), rec);
+  viz::Canvas canvas(viz::with_legend_bands(canvas_for(scenario.bounds), legend, kRampPx));
+  sim::WorldStyle style;
+  style.shade_by_height = true;
+  sim::draw_world(canvas, sim.world(), sim.now_s(), style);
   const RobotProfile& robot = sim.robot();
   if (rec.last_sweep) {
     const SensorMount* m = robot.sensor(rec.last_sweep->frame_id);
     const SE3 T = m ? m->T_base_sensor() : SE3::Identity();
-    draw_cloud(canvas, to_world(*rec.last_sweep, rec.track, T), {0.1, 0.3, 0.95, 0.8}, {0.55, 0.7, 1.0, 0.5});
+    draw_cloud(canvas, to_world(*rec.last_sweep, rec.track, T), kLidarColor, {0.55, 0.7, 1.0, 0.4});
   }
   if (rec.last_depth) {
     const SensorMount* m = robot.sensor(rec.last_depth->camera);
     const SE3 T = m ? m->T_base_sensor() : SE3::Identity();
-    draw_cloud(canvas, to_world(rec.last_depth->cloud, rec.track, T), {0.05, 0.6, 0.2, 0.8}, {0.5, 0.85, 0.5, 0.5});
+    draw_cloud(canvas, to_world(rec.last_depth->cloud, rec.track, T), kDepthColor, {0.5, 0.85, 0.5, 0.25});
   }
   std::vector<Eigen::Vector2d> path;
   for (const Pose2& p : rec.track.pose) path.push_back(p.position());
-  canvas.polyline(path, viz::colors::kPurple, 2.0);
-  canvas.arrow(scenario.start, 0.4, viz::colors::kGrey, 2.0);
+  canvas.polyline(path, kDrivenColor, 2.0);
+  canvas.arrow(scenario.start, 0.4, viz::colors::kGrey, 2.5);
   const viz::Color goal_colors[] = {viz::colors::kRed, viz::colors::kBlue, viz::colors::kOrange};
   for (std::size_t i = 0; i < scenario.goals.size(); ++i) {
     const viz::Color c = goal_colors[std::min<std::size_t>(i, 2)];
@@ -185,13 +219,17 @@ void write_figure(const fs::path& file, const sim::Simulation& sim, const sim::S
     canvas.arrow(scenario.goals[i].pose, 0.4, c, 2.0);
   }
   const Pose2 end = sim.true_pose();
-  canvas.circle(end.position(), robot.footprint_radius_m, {0.85, 0.1, 0.1, 0.25}, viz::colors::kRed, 1.5);
-  canvas.arrow(end, 0.5, viz::colors::kRed, 2.5);
-  for (const CollisionRecord& c : rec.collisions) canvas.circle(c.point, 0.08, viz::colors::kRed, viz::colors::kBlack);
+  canvas.circle(end.position(), robot.footprint_radius_m, {0.2, 0.2, 0.2, 0.15}, viz::colors::kBlack, 1.5);
+  canvas.arrow(end, 0.5, viz::colors::kBlack, 2.5);
+  draw_collisions(canvas, rec);
   char title[256];
   std::snprintf(title, sizeof(title), "%s  (%s, t = %.1f s, %zu collision%s)", scenario.name.c_str(),
                 robot.name.c_str(), sim.now_s(), rec.collisions.size(), rec.collisions.size() == 1 ? "" : "s");
-  canvas.text_px(10, 20, title, viz::colors::kBlack, 16);
+  const viz::PixelRect rest = viz::draw_title_and_legend(canvas, title, legend);
+  char full[32];
+  std::snprintf(full, sizeof full, ">= %.1f m", style.full_height_m);
+  viz::draw_color_ramp(canvas, {rest.x, rest.y, std::min(rest.w - 8, 140.0), 12}, style.low_fill, style.static_fill,
+                       "0 m", full, "obstacle height (top)");
   canvas.write_png(file);
 }
 

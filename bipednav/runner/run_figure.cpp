@@ -87,25 +87,28 @@ std::string local_planner_label(const std::string& local_planner) {
   return local_planner == "tracker" ? "path tracker" : local_planner == "teb" ? "TEB" : local_planner;
 }
 
-std::vector<viz::LegendEntry> run_figure_legend(const std::string& local_planner) {
+std::vector<viz::LegendEntry> run_figure_legend(const sim::Scenario& s, const RunResult& run,
+                                                const std::string& local_planner) {
   using viz::LegendMark;
-  return {{"world (ground truth)", kWorldFill, LegendMark::kBox},
-          {"moving obstacle", sim::WorldStyle{}.actor_fill, LegendMark::kBox},
-          {"global-map obstacle", viz::colors::kBlack, LegendMark::kBox},
-          {"local-map obstacle", kLocalObstacle, LegendMark::kBox},
-          {"local-map inflation", kInflation, LegendMark::kBox},
-          {"global path", viz::colors::kRed, LegendMark::kLine},
-          {"local trajectory (" + local_planner_label(local_planner) + ")", viz::colors::kGreen, LegendMark::kLine},
-          {"travelled path (true)", kTravelled, LegendMark::kLine},
-          {"start", kStart, LegendMark::kArrow},
-          {"goal (tolerance)", viz::colors::kRed, LegendMark::kRing},
-          {"robot", viz::colors::kBlack, LegendMark::kArrow},
-          {"first contact", viz::colors::kRed, LegendMark::kCross}};
+  std::vector<viz::LegendEntry> e = {{"world (ground truth)", kWorldFill, LegendMark::kBox}};
+  if (!s.world.actors.empty()) e.push_back({"moving obstacle", sim::WorldStyle{}.actor_fill, LegendMark::kBox});
+  e.insert(e.end(),
+           {{"global-map obstacle", viz::colors::kBlack, LegendMark::kBox},
+            {"local-map obstacle", kLocalObstacle, LegendMark::kBox},
+            {"local-map inflation", kInflation, LegendMark::kBox},
+            {"global path", viz::colors::kRed, LegendMark::kLine},
+            {"local trajectory (" + local_planner_label(local_planner) + ")", viz::colors::kGreen, LegendMark::kLine},
+            {"travelled path (true)", kTravelled, LegendMark::kLine},
+            {"start", kStart, LegendMark::kArrow},
+            {"goal (tolerance)", viz::colors::kRed, LegendMark::kRing},
+            {"robot", viz::colors::kBlack, LegendMark::kArrow}});
+  if (run.first_collision) e.push_back({"first contact", viz::colors::kRed, LegendMark::kCross});
+  return e;
 }
 
 void write_run_figure(const std::filesystem::path& file, const sim::Scenario& s, const RunResult& run,
                       const std::string& local_planner) {
-  const std::vector<viz::LegendEntry> legend = run_figure_legend(local_planner);
+  const std::vector<viz::LegendEntry> legend = run_figure_legend(s, run, local_planner);
   viz::FigureLayoutParams lp;
   {
     const viz::Canvas scratch(viz::CanvasParams{0, 0, 1, 1, 1});  // measures the legend's text

@@ -19,8 +19,10 @@ namespace bipednav::runner {
 void write_run_figure(const std::filesystem::path& file, const sim::Scenario& scenario, const RunResult& run,
                       const std::string& local_planner = "teb");
 
-// The legend entries of that figure (also the HTML replay's layer names use the planner's name).
-std::vector<viz::LegendEntry> run_figure_legend(const std::string& local_planner);
+// The legend entries of that figure: the layers it shows (moving obstacles and the first contact
+// only when the run has them).
+std::vector<viz::LegendEntry> run_figure_legend(const sim::Scenario& scenario, const RunResult& run,
+                                                const std::string& local_planner);
 // "TEB" or "path tracker" for a local planner's name.
 std::string local_planner_label(const std::string& local_planner);
 

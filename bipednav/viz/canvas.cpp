@@ -15,7 +15,8 @@ void CanvasParams::validate() const {
   require(std::isfinite(min_y_m) && std::isfinite(max_y_m) && max_y_m > min_y_m, "max_y_m", "> min_y_m, finite");
   require(pixels_per_m > 0.0, "pixels_per_m", "> 0");
   require(margin_px >= 0, "margin_px", ">= 0");
-  require(top_px >= 0 && top_px <= 20000 && right_px >= 0 && right_px <= 20000, "top_px", "bands of 0..20000 pixels");
+  const auto band = [](int px) { return px >= 0 && px <= 20000; };
+  require(band(top_px) && band(right_px) && band(bottom_px), "top_px", "bands of 0..20000 pixels (and right_px, bottom_px)");
   const double w = (max_x_m - min_x_m) * pixels_per_m, h = (max_y_m - min_y_m) * pixels_per_m;
   require(w <= 20000 && h <= 20000, "pixels_per_m", "a picture of at most 20000 x 20000 pixels");
 }
@@ -25,7 +26,7 @@ Canvas::Canvas(const CanvasParams& params) : params_(params) {
   width_px_ = static_cast<int>(std::ceil((params_.max_x_m - params_.min_x_m) * params_.pixels_per_m)) +
               2 * params_.margin_px + params_.right_px;
   height_px_ = static_cast<int>(std::ceil((params_.max_y_m - params_.min_y_m) * params_.pixels_per_m)) +
-               2 * params_.margin_px + params_.top_px;
+               2 * params_.margin_px + params_.top_px + params_.bottom_px;
   end_view();
   const cairo_rectangle_t extents{0, 0, static_cast<double>(width_px_), static_cast<double>(height_px_)};
   recording_ = cairo_recording_surface_create(CAIRO_CONTENT_COLOR_ALPHA, &extents);

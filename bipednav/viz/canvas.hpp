@@ -48,8 +48,8 @@ struct CanvasParams {
   double pixels_per_m = 50.0;
   int margin_px = 20;
   Color background = colors::kWhite;
-  // Bands outside the world's window: a title above it, a legend right of it.
-  int top_px = 0, right_px = 0;
+  // Bands outside the world's window: a title above it, a legend right of it, room below it.
+  int top_px = 0, right_px = 0, bottom_px = 0;
 
   void validate() const;
 };

@@ -54,8 +54,9 @@ FigureLayout figure_layout(double width_m, double height_m, std::size_t panels, 
   best.legend = {p.margin_px + panels_w + (p.legend_w_px > 0 ? p.gap_px : 0.0), top, p.legend_w_px,
                  std::max(panels_h, p.legend_h_px)};
   best.header = {p.margin_px, p.margin_px, panels_w + legend_band, p.header_px};
-  best.width_px = static_cast<int>(std::ceil(best.legend.right() + p.margin_px));
-  best.height_px = static_cast<int>(std::ceil(top + std::max(panels_h, p.legend_h_px) + p.margin_px));
+  // Whole pixels, not rounded up past the limit by the last bit of the scale.
+  best.width_px = static_cast<int>(std::ceil(best.legend.right() + p.margin_px - 1e-6));
+  best.height_px = static_cast<int>(std::ceil(top + std::max(panels_h, p.legend_h_px) + p.margin_px - 1e-6));
   return best;
 }
 

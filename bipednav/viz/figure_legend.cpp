@@ -98,4 +98,29 @@ PixelRect draw_color_ramp(Canvas& canvas, const PixelRect& box, Color lo, Color 
   return {box.x, box.y, box.w, ramp.bottom() + 16 - box.y};
 }
 
+namespace {
+constexpr int kTitleBandPx = 26;
+constexpr double kScaleBarPx = 50.0;  // the scale bar and its label under the legend
+}  // namespace
+
+CanvasParams with_legend_bands(CanvasParams params, const std::vector<LegendEntry>& entries, double extra_h_px) {
+  const Canvas scratch(CanvasParams{0, 0, 1, 1, 1});  // measures the legend's text
+  const PixelRect box = legend_extent(scratch, entries);
+  params.top_px = kTitleBandPx;
+  params.right_px = static_cast<int>(std::ceil(std::max(box.w, 120.0))) + 12;
+  const double world_h = (params.max_y_m - params.min_y_m) * params.pixels_per_m;
+  params.bottom_px = static_cast<int>(std::ceil(std::max(0.0, box.h + kScaleBarPx + extra_h_px - world_h)));
+  return params;
+}
+
+PixelRect draw_title_and_legend(Canvas& canvas, const std::string& title, const std::vector<LegendEntry>& entries) {
+  const PixelRect world = canvas.world_rect();
+  canvas.text_px(world.x, world.y - 8, title, colors::kBlack, 14.0);
+  const double x = world.right() + 12, w = canvas.params().right_px - 12;
+  const PixelRect box = draw_legend(canvas, x, world.y, entries);
+  draw_scale_bar(canvas, x + 6, box.bottom() + 16, w - 12);
+  const double top = box.bottom() + kScaleBarPx;
+  return {x, top, w, std::max(0.0, canvas.height_px() - top)};
+}
+
 }  // namespace bipednav::viz

@@ -48,4 +48,12 @@ PixelRect draw_scale_bar(Canvas& canvas, double x_px, double y_px, double max_px
 PixelRect draw_color_ramp(Canvas& canvas, const PixelRect& box, Color lo, Color hi, const std::string& lo_label,
                           const std::string& hi_label, const std::string& caption);
 
+// A single-panel figure's frame: `params` with a title band above the world's window and a
+// legend column right of it wide enough for `entries`, a scale bar and `extra_h_px` more (e.g. a
+// colour ramp), with room below the window when the column is taller than it.
+CanvasParams with_legend_bands(CanvasParams params, const std::vector<LegendEntry>& entries, double extra_h_px = 0.0);
+// Draws the title in the top band and the legend and a scale bar in the right band of a canvas
+// made from with_legend_bands(); returns the free rest of the legend column (for the extra).
+PixelRect draw_title_and_legend(Canvas& canvas, const std::string& title, const std::vector<LegendEntry>& entries);
+
 }  // namespace bipednav::viz
