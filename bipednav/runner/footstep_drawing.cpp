@@ -70,7 +70,9 @@ std::vector<viz::LegendEntry> footstep_legend(bool with_path) {
       {"goal", viz::colors::kGreen, LegendMark::kArrow},
       {"unobserved", {0.9, 0.7, 0.7, 1.0}, LegendMark::kBox}};
   if (with_path) {
+    e.push_back({"last plan (faint)", {0.15, 0.3, 0.9, 0.5}, LegendMark::kBox, {0.15, 0.3, 0.9, 0.08}});
     e.push_back({"body path", viz::colors::kPurple, LegendMark::kLine});
+    e.push_back({"robot at the end", viz::colors::kBlack, LegendMark::kArrow});
     e.push_back({"contact", viz::colors::kRed, LegendMark::kRing});
   }
   return e;
@@ -85,8 +87,9 @@ viz::CanvasParams footstep_canvas(const mapping::GridGeometry& g, bool with_path
 void draw_footstep_legend(viz::Canvas& c, const std::string& title, const HeightRange& heights, bool with_path) {
   const viz::PixelRect rest = viz::draw_title_and_legend(c, title, footstep_legend(with_path));
   char lo[32], hi[32];
-  std::snprintf(lo, sizeof lo, "%.2f m", heights.lo_m);
-  std::snprintf(hi, sizeof hi, "%.2f m", heights.hi_m);
+  const auto no_negative_zero = [](double v) { return std::abs(v) < 0.005 ? 0.0 : v; };
+  std::snprintf(lo, sizeof lo, "%.2f m", no_negative_zero(heights.lo_m));
+  std::snprintf(hi, sizeof hi, "%.2f m", no_negative_zero(heights.hi_m));
   viz::draw_color_ramp(c, {rest.x, rest.y, std::min(rest.w - 8, 140.0), 12}, {0, 0, 0, 0.27}, {0, 0, 0, 0.9}, lo, hi,
                        "height");
 }

@@ -178,7 +178,7 @@ void write_footstep_figure(const std::filesystem::path& file, const FootstepRunR
   for (const auto& k : run.contacts) c.circle(k.point, 0.03, viz::colors::kNone, viz::colors::kRed, 3.0);
   draw_start(c, run.start);
   draw_goal(c, run.goal);
-  if (!run.steps.empty()) c.arrow(run.steps.back().body, 0.2, viz::colors::kRed, 3.0);
+  if (!run.steps.empty()) c.arrow(run.steps.back().body, 0.2, viz::colors::kBlack, 3.0);
   const auto& r = run.summary;
   char title[256];
   std::snprintf(title, sizeof title, "%s: %s, %zu steps, %.1f s, %zu replans, %d collisions", r.scenario.c_str(),
