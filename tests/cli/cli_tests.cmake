@@ -122,3 +122,8 @@ bipednav_numeric(bench_footsteps_optimal_limit --optimal-limit    2 2  bench foo
 bipednav_numeric(bench_footsteps_short_limit --short-limit      2 2  bench footsteps)
 bipednav_numeric(bench_footsteps_long_limit --long-limit       2 2  bench footsteps)
 bipednav_numeric(bench_footsteps_jobs     --jobs             2 2  bench footsteps)
+
+# The README's command-line examples run as written (readme_examples.sh).
+add_test(NAME cli_readme_examples COMMAND sh ${_cli_dir}/readme_examples.sh ${PROJECT_SOURCE_DIR} $<TARGET_FILE:bipednav>
+                                          ${CMAKE_CURRENT_BINARY_DIR}/cli_readme)
+set_tests_properties(cli_readme_examples PROPERTIES TIMEOUT 600 LABELS cli)
