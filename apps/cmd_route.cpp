@@ -11,7 +11,9 @@
 #include "apps/cli_exit.hpp"
 #include "apps/scenario_files.hpp"
 #include "bipednav/common/error.hpp"
+#include "bipednav/runner/footstep_runner.hpp"
 #include "bipednav/runner/scenario_runner.hpp"
+#include "bipednav/sim/placement_check.hpp"
 #include "bipednav/sim/route_clearance.hpp"
 
 namespace bipednav::app {
@@ -66,6 +68,13 @@ bool run_route(const RouteArgs& a) {
     std::printf("%s\n", r.dump(2).c_str());
   else
     print_report(r);
+  if (!a.json) {  // why a route is missing: a start or goal in an obstacle or off the map
+    try {
+      sim::check_placements(s, robot, !runner::is_footstep_robot(robot));
+    } catch (const Error& e) {
+      std::printf("  %s\n", e.what());
+    }
+  }
   return every_route_has_room(r);
 }
 
@@ -101,13 +110,7 @@ void add_route_command(CLI::App& app) {
       "The widest route of a scenario's static world from the start to each goal (ground truth, before any "
       "sensing), against the room the robot needs: can it get there at all, and with what margin");
   CLI::Option* scenario = cmd->add_option("scenario", a->scenario, "Scenario name (scenarios/NAME.yaml) or file");
-  CLI::Option* world =
-      cmd->add_option("--world", a->world, "A Gazebo .world file instead of a scenario")->check(CLI::ExistingFile);
-  CLI::Option* start = cmd->add_option("--start", a->start, "With --world (required): start pose x,y[,yaw]");
-  CLI::Option* goal = cmd->add_option("--goal", a->goal, "With --world (required): goal pose x,y[,yaw]");
-  world->needs(start, goal)->excludes(scenario);
-  start->needs(world);
-  goal->needs(world);
+  add_world_options(cmd, scenario, a->world, a->start, a->goal);
   cmd->add_option("--robot", a->robot, "Robot profile (name in config/ or a file); default: the scenario's");
   cmd->add_option("--resolution", a->resolution_m, "Grid of route centre positions, m")
       ->capture_default_str()

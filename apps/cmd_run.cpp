@@ -187,7 +187,13 @@ bool run_command(const RunArgs& a) {
   if (a.seed) o.seed = a.seed;
   if (a.time_limit_s) o.time_limit_s = a.time_limit_s;
   o.progress = !a.quiet;
-  for (const auto& f : a.faults) o.faults.push_back(sim::parse_fault(f));
+  for (const auto& f : a.faults) {
+    try {
+      o.faults.push_back(sim::parse_fault(f));
+    } catch (const Error& e) {
+      throw Error("--fault " + f + ": " + e.what());
+    }
+  }
 #ifdef BIPEDNAV_WITH_ROSBAG
   std::shared_ptr<ros1::BagRecorder> bag;
   if (!a.bag.empty()) {
@@ -292,13 +298,7 @@ void add_run_commands(CLI::App& app, CLI::App& bench) {
                   "a humanoid's is the footstep navigator's); "
                   "--localization/--local-planner/--global-planner and the scenario's goal tolerances win")
       ->check(CLI::ExistingFile);
-  CLI::Option* world =
-      run->add_option("--world", args->world, "A Gazebo .world file instead of a scenario")->check(CLI::ExistingFile);
-  CLI::Option* start = run->add_option("--start", args->start, "With --world (required): start pose x,y[,yaw]");
-  CLI::Option* goal = run->add_option("--goal", args->goal, "With --world (required): goal pose x,y[,yaw]");
-  world->needs(start, goal)->excludes(scenario);
-  start->needs(world);
-  goal->needs(world);
+  add_world_options(run, scenario, args->world, args->start, args->goal);
   run->add_option(
       "--fault", args->faults,
       "Inject a fault: type:start_s:duration_s[:value] (lidar_dropout, depth_nan_burst, localization_jump "

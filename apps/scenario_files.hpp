@@ -1,5 +1,6 @@
 #pragma once
 
+#include <CLI/CLI.hpp>
 #include <filesystem>
 #include <string>
 
@@ -16,5 +17,9 @@ std::filesystem::path resolve_scenario(const std::string& name);
 // goal, a 180 s time limit.
 sim::Scenario scenario_from_world(const std::string& world_file, const std::string& robot, const std::string& start,
                                   const std::string& goal);
+// --world FILE, --start x,y[,yaw] and --goal x,y[,yaw] on `command`: --world needs both poses and
+// excludes the positional `scenario`; the poses need --world.
+void add_world_options(CLI::App* command, CLI::Option* scenario, std::string& world, std::string& start,
+                       std::string& goal);
 
 }  // namespace bipednav::app

@@ -74,10 +74,13 @@ PixelRect draw_scale_bar(Canvas& canvas, double x_px, double y_px, double max_px
     std::snprintf(label, sizeof label, "%g m", len_m);
   else
     std::snprintf(label, sizeof label, "%g cm", len_m * 100.0);
+  // Two halves (black, white) with the ends labelled "0" and the length.
   canvas.rect_px({x_px, y_px, len_px, 5}, colors::kBlack);
   canvas.rect_px({x_px + 0.5 * len_px, y_px, 0.5 * len_px, 5}, colors::kWhite, colors::kBlack, 1.0);
-  canvas.text_px(x_px, y_px + 19, label, colors::kBlack, 12.0);
-  return {x_px, y_px, std::max(len_px, canvas.text_width_px(label)), 22};
+  canvas.text_px(x_px - 3, y_px + 19, "0", colors::kBlack, 12.0);
+  const double w = canvas.text_width_px(label);
+  canvas.text_px(x_px + len_px - 0.5 * w, y_px + 19, label, colors::kBlack, 12.0);
+  return {x_px - 3, y_px, len_px + 0.5 * w + 3, 22};
 }
 
 PixelRect draw_color_ramp(Canvas& canvas, const PixelRect& box, Color lo, Color hi, const std::string& lo_label,

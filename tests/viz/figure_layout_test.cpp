@@ -47,25 +47,21 @@ void expect_sound(const FigureLayout& l, double w_m, double h_m, std::size_t pan
 
 }  // namespace
 
-TEST(FigureLayout, TallBarnWorldPanelsSideBySide) {
+// 1 to 4 panels (the end of the run and up to 3 replanning snapshots) of a world window: sound,
+// within the size limits, in one row (tall worlds) or one column (wide worlds).
+void expect_panels_in_line(double w_m, double h_m, bool one_row) {
   for (std::size_t n = 1; n <= 4; ++n) {
-    const FigureLayout l = figure_layout(kBarnW, kBarnH, n, with_legend());
-    expect_sound(l, kBarnW, kBarnH, n);
-    EXPECT_EQ(l.rows, 1) << n << " tall panels fit best in one row";
+    const FigureLayout l = figure_layout(w_m, h_m, n, with_legend());
+    expect_sound(l, w_m, h_m, n);
+    EXPECT_EQ(one_row ? l.rows : l.columns, 1) << n << " panels";
     EXPECT_LE(l.width_px, 1800);
     EXPECT_LE(l.height_px, 1300);
   }
 }
 
-TEST(FigureLayout, WideThreeRoomsPanelsStacked) {
-  for (std::size_t n = 1; n <= 4; ++n) {
-    const FigureLayout l = figure_layout(kThreeRoomsW, kThreeRoomsH, n, with_legend());
-    expect_sound(l, kThreeRoomsW, kThreeRoomsH, n);
-    EXPECT_EQ(l.columns, 1) << n << " wide panels fit best in one column";
-    EXPECT_LE(l.width_px, 1800);
-    EXPECT_LE(l.height_px, 1300);
-  }
-}
+TEST(FigureLayout, TallBarnWorldPanelsSideBySide) { expect_panels_in_line(kBarnW, kBarnH, true); }
+
+TEST(FigureLayout, WideThreeRoomsPanelsStacked) { expect_panels_in_line(kThreeRoomsW, kThreeRoomsH, false); }
 
 TEST(FigureLayout, ScaleIsTheLargestThatFits) {
   FigureLayoutParams p;  // no legend; margins 12, header 28, titles 22, gaps 14
