@@ -10,13 +10,16 @@
 namespace bipednav {
 
 // A one-line progress bar on stderr for long command-line work. It is drawn only when stderr is a
-// terminal (a log file gets no carriage-return lines) and ends full: work that ends early (a run
-// that reaches its goal before its time limit) is done, not 30 % done.
+// terminal (a log file gets no carriage-return lines); finish() draws it full: work that ends early
+// (a run that reaches its goal before its time limit) is done, not 30 % done.
 class ProgressBar {
  public:
   ProgressBar(std::string label, std::size_t total, bool enabled = true)
       : label_(std::move(label)), total_(total), enabled_(enabled && total > 0 && ::isatty(::fileno(stderr))) {}
-  ~ProgressBar() { finish(); }
+  // Without finish() (work abandoned, e.g. by an exception) the bar stays where it was.
+  ~ProgressBar() {
+    if (enabled_ && last_pct_ >= 0) std::fprintf(stderr, "\n");
+  }
   ProgressBar(const ProgressBar&) = delete;
   ProgressBar& operator=(const ProgressBar&) = delete;
 

@@ -106,15 +106,22 @@ struct Loop {
       if (d.replanned && nav.plan().result.ok())
         (out.first_plan.steps.empty() ? out.first_plan : out.last_plan) = nav.plan();
       if (o.on_decision) o.on_decision(walker, nav, d);
-      if (d.done) return d.result;
+      if (d.done) {
+        bar.finish();
+        return d.result;
+      }
       const footstep::Footstep stance = nav.to_map(walker.odom_stance());
       const sim::StepExecution e =
           walker.step({stance.pose.inverse() * d.target.pose, d.action->duration_s, d.action->peak_m, d.action->name});
       record(e, *d.action, d.replanned);
       for (const sim::BodyContact& c : e.contacts)  // a sole on an edge: the robot falls
-        if (c.part == "landing_foot") return {Outcome::COLLISION, "the foot came down on an edge (fall)"};
+        if (c.part == "landing_foot") {
+          bar.finish();
+          return {Outcome::COLLISION, "the foot came down on an edge (fall)"};
+        }
       bar.update(static_cast<std::size_t>(walker.time_s()));
     }
+    bar.finish();
     return {Outcome::CTRL_PAT_EXCEEDED, "time limit reached before the goal"};
   }
 };
