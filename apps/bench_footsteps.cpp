@@ -13,6 +13,8 @@
 #include <numeric>
 #include <thread>
 
+#include "apps/cli_checks.hpp"
+#include "apps/cli_exit.hpp"
 #include "bipednav/common/clock.hpp"
 #include "bipednav/common/error.hpp"
 #include "bipednav/common/progress.hpp"
@@ -373,7 +375,8 @@ nlohmann::json bench_json(const BenchArgs& a, const TerrainGeneratorParams& tg, 
           {"per_problem", t.detail}};
 }
 
-void bench_footsteps(const BenchArgs& a) {
+// Returns whether the benchmark met its goals (the exit status).
+bool bench_footsteps(const BenchArgs& a) {
   check_bench_args(a);
   const SearchClockKind clock = a.clock == "wall" ? SearchClockKind::kWall : SearchClockKind::kThreadCpu;
   TerrainGeneratorParams tg;
@@ -398,7 +401,9 @@ void bench_footsteps(const BenchArgs& a) {
   const LogFile log = open_problem_log(a.log);
   const Stopwatch wall;
   search_problems(a, maps, {probe, optimal_planner, planners, planar_planner}, log.get(), work);
-  std::printf("%s\n", bench_json(a, tg, clock, wall, reused, tally_problems(a, work)).dump(2).c_str());
+  const nlohmann::json j = bench_json(a, tg, clock, wall, reused, tally_problems(a, work));
+  std::printf("%s\n", j.dump(2).c_str());
+  return bench_goals_met(j);
 }
 
 }  // namespace
@@ -407,18 +412,32 @@ void add_footstep_bench(CLI::App& bench) {
   auto b = std::make_shared<BenchArgs>();
   auto json = std::make_shared<bool>(true);
   CLI::App* bf = bench.add_subcommand("footsteps", "Table I of the footstep reference on random heightmaps");
-  bf->add_option("--maps", b->maps, "Random 2.5 x 2.5 m heightmaps")->capture_default_str();
-  bf->add_option("--problems", b->problems, "Start/goal pairs in all (the reference: 100)")->capture_default_str();
+  bf->add_option("--maps", b->maps, "Random 2.5 x 2.5 m heightmaps")
+      ->capture_default_str()
+      ->check(check::integer_at_least(1));
+  bf->add_option("--problems", b->problems, "Start/goal pairs in all (the reference: 100)")
+      ->capture_default_str()
+      ->check(check::integer_at_least(1));
   bf->add_option("--optimal-limit", b->optimal_limit_s, "Time cap of the optimal reference search, s")
-      ->capture_default_str();
-  bf->add_option("--short-limit", b->short_limit_s, "The shorter ARA* time limit, s")->capture_default_str();
-  bf->add_option("--long-limit", b->long_limit_s, "The longer ARA* time limit, s")->capture_default_str();
-  bf->add_option("--jobs", b->jobs, "Problems searched in parallel (each on one thread)")->capture_default_str();
+      ->capture_default_str()
+      ->check(check::positive());
+  bf->add_option("--short-limit", b->short_limit_s, "The shorter ARA* time limit, s")
+      ->capture_default_str()
+      ->check(check::positive());
+  bf->add_option("--long-limit", b->long_limit_s, "The longer ARA* time limit, s")
+      ->capture_default_str()
+      ->check(check::positive());
+  bf->add_option("--jobs", b->jobs, "Problems searched in parallel (each on one thread)")
+      ->capture_default_str()
+      ->check(check::integer_in(1, 64));
   bf->add_option("--clock", b->clock, "Clock of the time limits and times: thread_cpu (load-independent) or wall")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::IsMember({"thread_cpu", "wall"}));
   bf->add_option("--log", b->log, "Also write each finished problem as a JSON line to this file");
-  bf->add_option("--only-map", b->only_map, "Run only this map's problems (0-based; diagnosis)");
-  bf->add_option("--only-problem", b->only_problem, "Run only this problem index within each map (0-based)");
+  bf->add_option("--only-map", b->only_map, "Run only this map's problems (0-based; diagnosis)")
+      ->check(check::integer_at_least(0));
+  bf->add_option("--only-problem", b->only_problem, "Run only this problem index within each map (0-based)")
+      ->check(check::integer_at_least(0));
   bf->add_option("--optimal-from", b->optimal_from,
                  "Take the optimal reference costs from a previous results JSON (per_problem) or --log .jsonl "
                  "file instead of searching them (rows must have the same start/goal)");
@@ -427,7 +446,7 @@ void add_footstep_bench(CLI::App& bench) {
   bf->add_flag("--stance-levels", b->stance_levels,
                "Dijkstra heuristic with the (cell, stance-height level) graph (off by default)");
   bf->add_flag("--json", *json, "Print one JSON object (the default)");
-  bf->callback([b] { bench_footsteps(*b); });
+  bf->callback([b] { report_task(bench_footsteps(*b)); });
 }
 
 }  // namespace bipednav::app

@@ -8,6 +8,8 @@
 #include <string>
 #include <utility>
 
+#include "apps/cli_checks.hpp"
+#include "apps/cli_exit.hpp"
 #include "bipednav/common/clock.hpp"
 #include "bipednav/common/error.hpp"
 #include "bipednav/common/progress.hpp"
@@ -78,7 +80,8 @@ struct BenchOptions {
   bool json = false;
 };
 
-void run_sim_bench(const BenchOptions& o) {
+// Returns whether the benchmark met its goal (the exit status).
+bool run_sim_bench(const BenchOptions& o) {
   require(o.duration_s > 0 && o.duration_s <= 3600, "--duration", "in (0, 3600] s");
   const RobotProfile robot = o.robot_file.empty() ? digit_profile() : io::load_robot_profile(o.robot_file);
   sim::SimulationParams params;
@@ -153,6 +156,7 @@ void run_sim_bench(const BenchOptions& o) {
   j["goal_rtf"] = 20;
   j["meets_goal"] = cpu_rtf >= 20.0;
   std::printf("%s\n", j.dump(2).c_str());
+  return bench_goals_met(j);
 }
 
 }  // namespace
@@ -160,7 +164,9 @@ void run_sim_bench(const BenchOptions& o) {
 void add_sim_bench(CLI::App& bench) {
   auto opts = std::make_shared<BenchOptions>();
   CLI::App* cmd = bench.add_subcommand("sim", "Simulator speed: Digit's LiDAR + two depth cameras, one core");
-  cmd->add_option("--duration", opts->duration_s, "simulated seconds")->capture_default_str();
+  cmd->add_option("--duration", opts->duration_s, "simulated seconds")
+      ->capture_default_str()
+      ->check(check::positive());
   cmd->add_option("--robot", opts->robot_file, "robot profile YAML (default: built-in Digit)");
   cmd->add_option("--sensors", opts->sensors, "which sensors run")
       ->check(CLI::IsMember({"all", "lidar", "depth"}))
@@ -169,7 +175,7 @@ void add_sim_bench(CLI::App& bench) {
       ->check(CLI::IsMember({"raster", "raycast"}))
       ->capture_default_str();
   cmd->add_flag("--json", opts->json, "print only the JSON result (no progress)");
-  cmd->callback([opts] { run_sim_bench(*opts); });
+  cmd->callback([opts] { report_task(run_sim_bench(*opts)); });
 }
 
 }  // namespace bipednav::app

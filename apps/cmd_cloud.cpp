@@ -11,6 +11,9 @@
 #include <string>
 #include <vector>
 
+#include "apps/cli_checks.hpp"
+#include "apps/cli_exit.hpp"
+#include "apps/cli_output.hpp"
 #include "apps/commands.hpp"
 #include "bipednav/common/clock.hpp"
 #include "bipednav/common/cpu_time.hpp"
@@ -46,15 +49,18 @@ struct BandOptions {
   double zmax = std::numeric_limits<double>::infinity();
 
   void add_to(CLI::App* c) {
-    c->add_option("--range", range_m, "keep points within this distance of the origin [m]");
-    c->add_option("--zmin", zmin, "keep points with z >= this [m]");
-    c->add_option("--zmax", zmax, "keep points with z <= this [m]");
+    c->add_option("--range", range_m, "keep points within this distance of the origin [m]")->check(check::positive());
+    c->add_option("--zmin", zmin, "keep points with z >= this [m]")->check(check::finite());
+    c->add_option("--zmax", zmax, "keep points with z <= this [m]")->check(check::finite());
   }
+  // The pass-through's parameters; throws Error naming the option at fault (--zmin above --zmax).
   PassThroughParams params() const {
     PassThroughParams p;
     p.max_range_m = range_m;
     p.min_height_m = zmin;
     p.max_height_m = zmax;
+    with_flag_names({{"max_range_m", "--range"}, {"min_height_m", "--zmin"}, {"max_height_m", "--zmax"}},
+                    [&] { p.validate(); });
     return p;
   }
 };
@@ -67,9 +73,11 @@ struct FilterOptions {
 
 void run_filter(const FilterOptions& o) {
   const io::PcdEncoding encoding = io::pcd_encoding_from_string(o.encoding);
+  const PassThroughParams band = o.band.params();
+  prepare_output_file(o.out, "OUT");
   const PointCloud in = read_cloud(o.in);
   const Stopwatch sw;
-  PointCloud out = perception::pass_through(in, o.band.params());
+  PointCloud out = perception::pass_through(in, band);
   const std::size_t after_band = out.size();
   if (o.voxel_m > 0.0) {
     perception::VoxelGridParams v;
@@ -78,8 +86,12 @@ void run_filter(const FilterOptions& o) {
   }
   const double ms = sw.elapsed_ms();
   io::write_pcd(o.out, out, encoding);
-  std::printf("%s: %zu points, %zu after the pass-through, %zu after the voxel grid (%.2f ms) -> %s\n", o.in.c_str(),
-              in.size(), after_band, out.size(), ms, o.out.c_str());
+  if (o.voxel_m > 0.0)
+    std::printf("%s: %zu points, %zu after the pass-through, %zu after the voxel grid (%.2f ms) -> %s\n",
+                o.in.c_str(), in.size(), after_band, out.size(), ms, o.out.c_str());
+  else
+    std::printf("%s: %zu points, %zu after the pass-through, no voxel grid (%.2f ms) -> %s\n", o.in.c_str(),
+                in.size(), after_band, ms, o.out.c_str());
 }
 
 struct SegmentOptions {
@@ -90,21 +102,28 @@ struct SegmentOptions {
   BandOptions band;
 };
 
-void run_segment(SegmentOptions o) {
-  o.ransac.validate();
+// Returns whether a plane was found (the exit status).
+bool run_segment(SegmentOptions o) {
+  with_flag_names({{"distance_threshold_m", "--threshold"},
+                   {"success_probability", "--probability"},
+                   {"max_iterations", "--max-iterations"}},
+                  [&] { o.ransac.validate(); });
   const PointCloud in = perception::pass_through(read_cloud(o.in), o.band.params());
   Rng rng(o.seed);
   const Stopwatch sw;
   const perception::PlaneFit fit = perception::fit_plane_ransac(in.points, o.ransac, rng);
   const double ms = sw.elapsed_ms();
-  if (!fit.found) throw Error(o.in + ": no plane found (" + std::to_string(in.size()) + " points after the filter)");
   if (!o.json) {
-    std::printf("plane %.6f %.6f %.6f %.6f, %zu of %zu points within %.3f m, %.2f ms\n", fit.plane[0], fit.plane[1],
-                fit.plane[2], fit.plane[3], fit.inliers, in.size(), o.ransac.distance_threshold_m, ms);
-    return;
+    if (!fit.found)
+      std::printf("no plane found in %s (%zu points after the filter)\n", o.in.c_str(), in.size());
+    else
+      std::printf("plane %.6f %.6f %.6f %.6f, %zu of %zu points within %.3f m, %.2f ms\n", fit.plane[0], fit.plane[1],
+                  fit.plane[2], fit.plane[3], fit.inliers, in.size(), o.ransac.distance_threshold_m, ms);
+    return fit.found;
   }
   nlohmann::json j;
   j["file"] = o.in;
+  j["found"] = fit.found;
   j["plane"] = {fit.plane[0], fit.plane[1], fit.plane[2], fit.plane[3]};
   j["inliers"] = fit.inliers;
   j["points"] = in.size();
@@ -113,31 +132,44 @@ void run_segment(SegmentOptions o) {
   j["iterations"] = fit.iterations;
   j["time_ms"] = ms;
   std::printf("%s\n", j.dump(2).c_str());
+  return fit.found;
 }
 
 void add_filter(CLI::App& cloud) {
   auto o = std::make_shared<FilterOptions>();
   CLI::App* c = cloud.add_subcommand("filter", "Pass-through / range filter and voxel grid; writes a PCD");
-  c->add_option("IN", o->in, "input cloud (.pcd or .ply)")->required();
+  c->add_option("IN", o->in, "input cloud (.pcd or .ply)")->required()->check(CLI::ExistingFile);
   c->add_option("OUT", o->out, "output .pcd")->required();
-  c->add_option("--voxel", o->voxel_m, "voxel leaf size [m] (0: no voxel grid)");
+  c->add_option("--voxel", o->voxel_m, "voxel leaf size [m] (0: no voxel grid)")
+      ->capture_default_str()
+      ->check(check::non_negative());
   o->band.add_to(c);
-  c->add_option("--encoding", o->encoding, "ascii, binary or binary_compressed");
+  c->add_option("--encoding", o->encoding, "ascii, binary or binary_compressed")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"ascii", "binary", "binary_compressed"}));
   c->callback([o] { run_filter(*o); });
 }
 
 void add_segment(CLI::App& cloud) {
   auto o = std::make_shared<SegmentOptions>();
   CLI::App* c = cloud.add_subcommand("segment", "RANSAC plane fit (eq. 4.1-4.4)");
-  c->add_option("IN", o->in, "input cloud (.pcd or .ply)")->required();
-  c->add_option("--threshold", o->ransac.distance_threshold_m, "inlier distance [m]");
-  c->add_option("--probability", o->ransac.success_probability, "desired success probability (eq. 4.4)");
-  c->add_option("--max-iterations", o->ransac.max_iterations, "cap on the iteration count");
+  c->add_option("IN", o->in, "input cloud (.pcd or .ply)")->required()->check(CLI::ExistingFile);
+  c->add_option("--threshold", o->ransac.distance_threshold_m, "inlier distance [m]")
+      ->capture_default_str()
+      ->check(check::positive());
+  c->add_option("--probability", o->ransac.success_probability, "desired success probability (eq. 4.4)")
+      ->capture_default_str()
+      ->check(check::open_range(0.0, 1.0));
+  c->add_option("--max-iterations", o->ransac.max_iterations, "cap on the iteration count")
+      ->capture_default_str()
+      ->check(check::integer_at_least(1));
   c->add_flag("--normal-prior", o->ransac.use_normal_prior, "only accept planes within 15 deg of horizontal");
-  c->add_option("--seed", o->seed, "RANSAC seed");
+  c->add_option("--seed", o->seed, "RANSAC seed, a whole number >= 0")
+      ->capture_default_str()
+      ->check(check::integer_at_least(0));
   o->band.add_to(c);
   c->add_flag("--json", o->json, "print one JSON object");
-  c->callback([o] { run_segment(*o); });
+  c->callback([o] { report_task(run_segment(*o)); });
 }
 
 // ---- bench perception -------------------------------------------------------------------------
@@ -350,7 +382,8 @@ nlohmann::json reduction_at_resolution(int width, int height) {
   return j;
 }
 
-void run_perception_bench(int reps) {
+// Returns whether the benchmark met its goals (the exit status).
+bool run_perception_bench(int reps) {
   nlohmann::json j;
   j["reps"] = reps;
   j["timing"] = "median thread CPU time (median_ms) and wall-clock time (median_wall_ms)";
@@ -370,15 +403,18 @@ void run_perception_bench(int reps) {
       "needs libpcl-dev) for the ratios against pcl::VoxelGrid and pcl::SACSegmentation "
       "(bipednav_bench_pcl_gicp for GICP)";
   std::printf("%s\n", j.dump(2).c_str());
+  return bench_goals_met(j);
 }
 
 void add_perception_bench(CLI::App& bench) {
   auto reps = std::make_shared<int>(15);
   auto json = std::make_shared<bool>(false);
   CLI::App* c = bench.add_subcommand("perception", "Voxel grid, RANSAC and the Digit frame pipeline timings");
-  c->add_option("--reps", *reps, "repetitions per figure (median reported)")->check(CLI::Range(1, 1000));
+  c->add_option("--reps", *reps, "repetitions per figure (median reported)")
+      ->capture_default_str()
+      ->check(check::integer_in(1, 1000));
   c->add_flag("--json", *json, "print one JSON object (the only output format)");
-  c->callback([reps] { run_perception_bench(*reps); });
+  c->callback([reps] { report_task(run_perception_bench(*reps)); });
 }
 
 }  // namespace

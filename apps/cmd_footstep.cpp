@@ -5,6 +5,9 @@
 #include <string>
 
 #include "apps/bench_footsteps.hpp"
+#include "apps/cli_checks.hpp"
+#include "apps/cli_exit.hpp"
+#include "apps/cli_output.hpp"
 #include "apps/cli_pose.hpp"
 #include "apps/commands.hpp"
 #include "bipednav/mapping/map_io.hpp"
@@ -20,11 +23,15 @@ using namespace footstep;
 
 // The heightmap with the planned feet on top (runner/footstep_drawing.hpp).
 void draw_plan(const std::filesystem::path& file, const mapping::Heightmap& map, const FootstepPlanner& planner,
-               const FootstepPlan& plan, const Pose2& goal) {
-  viz::Canvas c(runner::canvas_for(map.geometry()));
-  runner::draw_heightmap(c, map);
+               const FootstepPlan& plan, const Pose2& start, const Pose2& goal) {
+  viz::Canvas c(runner::footstep_canvas(map.geometry(), false));
+  const runner::HeightRange heights = runner::draw_heightmap(c, map);
   runner::draw_footsteps(c, planner.lattice().actions().body, plan.steps, plan.actions);
+  runner::draw_start(c, start);
   runner::draw_goal(c, goal);
+  const std::string title = std::string(outcome_name(plan.result.outcome)) + ": " +
+                            (plan.result.ok() ? std::to_string(plan.actions.size()) + " steps" : plan.result.message);
+  runner::draw_footstep_legend(c, title, heights, false);
   c.write_png(file);
 }
 
@@ -33,24 +40,30 @@ struct FootstepArgs {
   double resolution_m = 0.02, min_height_m = -0.5, max_height_m = 1.0, time_limit_s = 5.0;
 };
 
-void footsteps_command(const FootstepArgs& a) {
-  const mapping::Heightmap map =
-      mapping::read_heightmap_image(a.heightmap, {a.resolution_m, a.min_height_m, a.max_height_m, 0.0, 0.0});
+// Returns whether a plan was found (the exit status).
+bool footsteps_command(const FootstepArgs& a) {
+  const Pose2 start = parse_pose(a.start, "--start"), goal = parse_pose(a.goal, "--goal");
+  prepare_output_file(a.out, "--out");
+  mapping::Heightmap map;
+  with_flag_names({{"resolution_m", "--resolution"}, {"min_height_m", "--min-height"}, {"max_height_m", "--max-height"}},
+                  [&] {
+                    map = mapping::read_heightmap_image(a.heightmap,
+                                                        {a.resolution_m, a.min_height_m, a.max_height_m, 0.0, 0.0});
+                  });
   FootstepPlannerParams p;
   p.robot = a.robot;
   p.heuristic = a.heuristic;
   p.search.time_limit_s = a.time_limit_s;
   const FootstepPlanner planner(p);
-  const Pose2 start = parse_pose(a.start, "--start"), goal = parse_pose(a.goal, "--goal");
   const FootstepPlan plan = planner.plan(map, planner.stance_for_body(start, Foot::kLeft), goal);
   std::printf("%s: %s\n", std::string(outcome_name(plan.result.outcome)).c_str(), plan.result.message.c_str());
   if (plan.result.ok()) {
     std::printf("  %zu steps, %.2f s of walking, bound eps %.2f, first solution after %.3f s, %zu expansions\n",
                 plan.actions.size(), plan.cost_s, plan.final_epsilon, plan.first_solution_s, plan.expansions);
   }
-  draw_plan(a.out, map, planner, plan, goal);
+  draw_plan(a.out, map, planner, plan, start, goal);
   std::printf("  wrote %s\n", a.out.c_str());
-  if (!plan.result.ok()) throw Error("no footstep plan: " + plan.result.message);
+  return plan.result.ok();
 }
 
 }  // namespace
@@ -59,17 +72,28 @@ void add_footstep_commands(CLI::App& app, CLI::App& bench) {
   auto a = std::make_shared<FootstepArgs>();
   CLI::App* fs = app.add_subcommand("footsteps", "Plan footsteps on a heightmap image and draw them");
   fs->add_option("heightmap", a->heightmap, "Heightmap PNG, or a YAML with image/resolution_m/min/max_height_m")
-      ->required();
+      ->required()
+      ->check(CLI::ExistingFile);
   fs->add_option("--start", a->start, "Start body pose x,y[,yaw]")->required();
   fs->add_option("--goal", a->goal, "Goal body pose x,y[,yaw]")->required();
   fs->add_option("--out", a->out, "Output PNG")->capture_default_str();
-  fs->add_option("--robot", a->robot, "nao or digit")->capture_default_str();
-  fs->add_option("--heuristic", a->heuristic, "dijkstra or euclidean")->capture_default_str();
-  fs->add_option("--resolution", a->resolution_m, "PNG: metres per pixel")->capture_default_str();
-  fs->add_option("--min-height", a->min_height_m, "PNG: height of grey 0")->capture_default_str();
-  fs->add_option("--max-height", a->max_height_m, "PNG: height of grey 255")->capture_default_str();
-  fs->add_option("--time-limit", a->time_limit_s, "ARA* time limit, s")->capture_default_str();
-  fs->callback([a] { footsteps_command(*a); });
+  fs->add_option("--robot", a->robot, "nao or digit")->capture_default_str()->check(CLI::IsMember({"nao", "digit"}));
+  fs->add_option("--heuristic", a->heuristic, "dijkstra or euclidean")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"dijkstra", "euclidean"}));
+  fs->add_option("--resolution", a->resolution_m, "PNG: metres per pixel")
+      ->capture_default_str()
+      ->check(check::positive());
+  fs->add_option("--min-height", a->min_height_m, "PNG: height of grey 0, m")
+      ->capture_default_str()
+      ->check(check::finite());
+  fs->add_option("--max-height", a->max_height_m, "PNG: height of grey 255, m")
+      ->capture_default_str()
+      ->check(check::finite());
+  fs->add_option("--time-limit", a->time_limit_s, "ARA* time limit, s")
+      ->capture_default_str()
+      ->check(check::positive());
+  fs->callback([a] { report_task(footsteps_command(*a)); });
 
   add_footstep_bench(bench);
 }

@@ -1,18 +1,27 @@
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 
+#include "apps/cli_checks.hpp"
+#include "apps/cli_exit.hpp"
+#include "apps/cli_output.hpp"
 #include "apps/cli_pose.hpp"
 #include "apps/commands.hpp"
 #include "bipednav/common/error.hpp"
+#include "bipednav/mapping/global_costmap.hpp"
 #include "bipednav/mapping/map_io.hpp"
+#include "bipednav/planning/global/global_planner.hpp"
 #include "bipednav/planning/local/bench_scene.hpp"
 #include "bipednav/planning/local/local_planner.hpp"
+#include "bipednav/runner/run_figure.hpp"
 #include "bipednav/runner/scenario_runner.hpp"
 #include "bipednav/viz/canvas.hpp"
+#include "bipednav/viz/figure_legend.hpp"
 
 namespace bipednav::app {
 
@@ -47,72 +56,100 @@ struct PlanOptions {
   int threads = 1;
 };
 
-// The map, the straight global plan (red), the driven path (purple) and the last local trajectory (green).
-void draw_run(const std::string& out, const mapping::Costmap2D& map, const Pose2& start, const Pose2& goal,
-              const std::vector<Eigen::Vector2d>& driven, const Path& last_traj, const Pose2& robot) {
+constexpr viz::Color kDrivenColor{0.0, 0.55, 0.6, 1.0};
+
+// The map, the global plan (red), the driven path (teal), the last local trajectory (green), the
+// start, the goal and the robot at the end, with a legend and a scale bar.
+void draw_run(const std::string& out, const mapping::Costmap2D& map, const Path& plan, const Pose2& start,
+              const Pose2& goal, const std::vector<Eigen::Vector2d>& driven, const Path& last_traj, const Pose2& robot,
+              const std::string& planner, const std::string& title) {
+  using viz::LegendMark;
+  const std::vector<viz::LegendEntry> legend = {
+      {"obstacle (map)", viz::colors::kBlack, LegendMark::kBox},
+      {"global plan (D* Lite)", viz::colors::kRed, LegendMark::kLine},
+      {"driven path", kDrivenColor, LegendMark::kLine},
+      {"last local trajectory (" + runner::local_planner_label(planner) + ")", viz::colors::kGreen, LegendMark::kLine},
+      {"start", viz::colors::kGrey, LegendMark::kArrow},
+      {"goal", viz::colors::kRed, LegendMark::kRing},
+      {"robot at the end", viz::colors::kBlack, LegendMark::kArrow}};
   viz::CanvasParams cp;
   const auto& g = map.geometry();
   cp.min_x_m = g.origin_x_m, cp.min_y_m = g.origin_y_m;
   cp.max_x_m = g.origin_x_m + g.size_x_m(), cp.max_y_m = g.origin_y_m + g.size_y_m();
   cp.pixels_per_m = std::clamp(800.0 / std::max(g.size_x_m(), g.size_y_m()), 5.0, 100.0);
-  viz::Canvas canvas(cp);
+  viz::Canvas canvas(viz::with_legend_bands(cp, legend));
   canvas.grid(map);
-  std::vector<Eigen::Vector2d> local;
+  std::vector<Eigen::Vector2d> local, global;
   for (const auto& q : last_traj.poses) local.push_back(q.position());
-  canvas.polyline({start.position(), goal.position()}, viz::colors::kRed, 1.5);
-  canvas.polyline(driven, viz::colors::kPurple, 2.0);
+  for (const auto& q : plan.poses) global.push_back(q.position());
+  canvas.polyline(global, viz::colors::kRed, 1.5);
+  canvas.polyline(driven, kDrivenColor, 2.0);
   canvas.polyline(local, viz::colors::kGreen, 2.0);
-  canvas.circle(goal.position(), 0.1, viz::colors::kRed);
-  canvas.arrow(robot, 0.4, viz::colors::kBlack);
+  canvas.arrow(start, 0.4, viz::colors::kGrey, 2.5);
+  canvas.circle(goal.position(), 0.15, viz::colors::kNone, viz::colors::kRed, 2.5);
+  canvas.arrow(robot, 0.4, viz::colors::kBlack, 2.5);
+  viz::draw_title_and_legend(canvas, title, legend);
   canvas.write_png(out);
 }
 
-void local_plan(const PlanOptions& o) {
+// The global plan the local planner follows: D* Lite on the map inflated with the global
+// costmap's defaults, as the navigation server would hand it over.
+planning::PlanResult global_plan(const mapping::Costmap2D& map, const Pose2& start, const Pose2& goal) {
+  mapping::GlobalCostmapParams cp;
+  cp.resolution_m = map.resolution_m();
+  mapping::GlobalCostmap costmap(map.geometry(), cp);
+  costmap.set_occupancy(map);
+  planning::PlanResult r = planning::make_global_planner("dstar_lite", {})->plan(costmap.costmap(), start, goal, {});
+  if (!r.path.empty()) r.path.poses.back().theta = goal.theta;
+  return r;
+}
+
+// Drives the robot with the local planner along the global plan; returns whether it reached the goal.
+bool local_plan(const PlanOptions& o) {
+  const Pose2 start = parse_pose(o.start, "--start"), goal = parse_pose(o.goal, "--goal");
+  if (!o.out.empty()) prepare_output_file(o.out, "--out");
   const mapping::Costmap2D map = mapping::read_map_server(o.map);
-  const Pose2 start = parse_pose(o.start, "--start", true), goal = parse_pose(o.goal, "--goal", true);
   planning::local::LocalPlannerParams params;
   params.teb.homotopy.num_threads = o.threads;
   params.validate();
   std::unique_ptr<LocalPlanner> planner = planning::local::make_local_planner(o.planner, params, nullptr);
-  // The global plan is the straight line; the local planner finds its way around obstacles.
-  Path plan;
-  const double len = distance(start, goal);
-  const int n = std::max(1, static_cast<int>(std::ceil(len / 0.1)));
-  const double heading = std::atan2(goal.y - start.y, goal.x - start.x);
-  for (int i = 0; i <= n; ++i) {
-    const double f = static_cast<double>(i) / n;
-    plan.poses.push_back({start.x + f * (goal.x - start.x), start.y + f * (goal.y - start.y), heading});
-  }
-  plan.poses.back().theta = goal.theta;
+  const planning::PlanResult global = global_plan(map, start, goal);
+  nlohmann::json j;
+  j["planner"] = o.planner;
+  j["global_plan"] = {{"outcome", std::string(outcome_name(global.result.outcome))},
+                      {"message", global.result.message},
+                      {"length_m", global.path.length_m()}};
   const double dt = params.teb.control_period_s;
   Pose2 p = start;
   Twist v;
   std::vector<Eigen::Vector2d> driven{p.position()};
   Path last_traj;
-  nlohmann::json j;
-  j["reached"] = false;
+  bool reached = false;
   int step = 0;
-  for (; step < o.steps; ++step) {
-    const auto r = planner->compute(p, v, plan, local_window(map, p, 8.0), step * dt);
+  std::string outcome = std::string(outcome_name(global.result.outcome));
+  for (; global.result.ok() && step < o.steps; ++step) {
+    const auto r = planner->compute(p, v, global.path, local_window(map, p, 8.0), step * dt);
     last_traj = r.trajectory;
-    j["last_outcome"] = std::string(outcome_name(r.result.outcome));
-    if (r.goal_reached) {
-      j["reached"] = true;
-      break;
-    }
+    outcome = std::string(outcome_name(r.result.outcome));
+    if ((reached = r.goal_reached)) break;
     v = r.cmd;
     p = p * Pose2{v.linear_x * dt, 0.0, v.angular_z * dt};
     driven.push_back(p.position());
   }
-  j["planner"] = o.planner;
+  j["reached"] = reached;
+  j["last_outcome"] = outcome;
   j["cycles"] = step;
   j["time_s"] = step * dt;
   j["final_pose"] = {p.x, p.y, p.theta};
   if (!o.out.empty()) {
-    draw_run(o.out, map, start, goal, driven, last_traj, p);
+    char title[200];
+    std::snprintf(title, sizeof title, "local plan (%s): %s after %.1f s", runner::local_planner_label(o.planner).c_str(),
+                  reached ? "goal reached" : outcome.c_str(), step * dt);
+    draw_run(o.out, map, global.path, start, goal, driven, last_traj, p, o.planner, title);
     j["out"] = o.out;
   }
   std::cout << j.dump(2) << std::endl;
+  return reached;
 }
 
 struct BenchLocalArgs {
@@ -123,7 +160,8 @@ struct BenchLocalArgs {
   std::string robot = "turtlebot3";  // the robot whose defaults the file overlays
 };
 
-void bench_local(const BenchLocalArgs& a) {
+// Returns whether the benchmark met its goals (the exit status).
+bool bench_local(const BenchLocalArgs& a) {
   using namespace planning::local;
   // Without a file: TebParams' own defaults (the figures in the README). With one: the robot's TEB
   // settings with the file overlaid, as `run --params` would use them.
@@ -169,6 +207,7 @@ void bench_local(const BenchLocalArgs& a) {
     }
   }
   std::cout << j.dump(2) << std::endl;
+  return bench_goals_met(j);
 }
 
 }  // namespace
@@ -178,25 +217,35 @@ void add_local_commands(CLI::App& app, CLI::App& bench) {
   local->require_subcommand(1);
   auto o = std::make_shared<PlanOptions>();
   CLI::App* plan = local->add_subcommand("plan", "Drive a simulated robot from start to goal on a map_server map");
-  plan->add_option("map", o->map, "map_server YAML")->required();
-  plan->add_option("--start", o->start, "start pose x,y,yaw")->required();
-  plan->add_option("--goal", o->goal, "goal pose x,y,yaw")->required();
-  plan->add_option("--out", o->out, "PNG of the map, the driven path and the last local trajectory");
-  plan->add_option("--planner", o->planner, "teb | tracker");
-  plan->add_option("--steps", o->steps, "maximum control cycles")->check(CLI::PositiveNumber);
-  plan->add_option("--threads", o->threads, "threads for the homotopy candidates")->check(CLI::PositiveNumber);
-  plan->callback([o] { local_plan(*o); });
+  plan->add_option("map", o->map, "map_server YAML")->required()->check(CLI::ExistingFile);
+  plan->add_option("--start", o->start, "start pose x,y[,yaw]")->required();
+  plan->add_option("--goal", o->goal, "goal pose x,y[,yaw]")->required();
+  plan->add_option("--out", o->out, "PNG of the map, the global plan, the driven path and the last local trajectory");
+  plan->add_option("--planner", o->planner, "teb | tracker")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"teb", "tracker"}));
+  plan->add_option("--steps", o->steps, "maximum control cycles")
+      ->capture_default_str()
+      ->check(check::integer_at_least(1));
+  plan->add_option("--threads", o->threads, "threads for the homotopy candidates")
+      ->capture_default_str()
+      ->check(check::integer_in(1, 256));
+  plan->callback([o] { report_task(local_plan(*o)); });
 
   auto* b = bench.add_subcommand("local", "TEB local planner cycle time with 0, 20 and 100 obstacles");
   auto ba = std::make_shared<BenchLocalArgs>();
-  b->add_option("--cycles", ba->cycles, "control cycles per obstacle count")->check(CLI::PositiveNumber);
-  b->add_option("--threads", ba->threads, "threads for the homotopy candidates")->check(CLI::PositiveNumber);
+  b->add_option("--cycles", ba->cycles, "control cycles per obstacle count")
+      ->capture_default_str()
+      ->check(check::integer_at_least(1));
+  b->add_option("--threads", ba->threads, "threads for the homotopy candidates")
+      ->capture_default_str()
+      ->check(check::integer_in(1, 256));
   b->add_flag("--json", ba->json, "print JSON (the only output format)");
   b->add_option("--params", ba->params,
                 "Navigation parameters YAML: its TEB settings (server.local.teb) over --robot's defaults, as `run "
                 "--params` (without it: TebParams' defaults)");
   b->add_option("--robot", ba->robot, "Robot profile whose defaults --params overlays");
-  b->callback([ba] { bench_local(*ba); });
+  b->callback([ba] { report_task(bench_local(*ba)); });
 }
 
 }  // namespace bipednav::app

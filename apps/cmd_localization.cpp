@@ -11,6 +11,8 @@
 #include <sstream>
 
 #include "apps/cmd_odometry.hpp"
+#include "apps/cli_checks.hpp"
+#include "apps/cli_exit.hpp"
 #include "apps/commands.hpp"
 #include "apps/scenario_files.hpp"
 #include "bipednav/common/angles.hpp"
@@ -69,8 +71,8 @@ struct RegisterOptions {
   bool json_out = false;
 };
 
-void run_register(const RegisterOptions& o) {
-  if (!(o.voxel_m >= 0.0 && std::isfinite(o.voxel_m))) throw Error("--voxel: expected a size >= 0 m");
+// Returns whether GICP converged (the exit status).
+bool run_register(const RegisterOptions& o) {
   const PointCloud source = load_cloud(o.source, o.voxel_m), target = load_cloud(o.target, o.voxel_m);
   localization::GicpParams p;
   p.threads = o.threads;
@@ -85,7 +87,7 @@ void run_register(const RegisterOptions& o) {
                   {"time_ms", r.time_ms}};
   if (o.json_out) {
     std::printf("%s\n", j.dump(2).c_str());
-    return;
+    return r.converged;
   }
   const Eigen::Vector3d t = r.T_target_source.translation();
   const Eigen::Vector3d rpy = matrix_to_rpy(r.T_target_source.rotation());
@@ -94,6 +96,7 @@ void run_register(const RegisterOptions& o) {
       "iterations, %.1f ms\n",
       t.x(), t.y(), t.z(), rad2deg(rpy.x()), rad2deg(rpy.y()), rad2deg(rpy.z()), r.fitness,
       r.converged ? "converged" : "NOT converged", r.iterations, r.time_ms);
+  return r.converged;
 }
 
 struct OdometryOptions {
@@ -372,10 +375,12 @@ void add_localization_commands(CLI::App& app, CLI::App& bench) {
   CLI::App* r = app.add_subcommand("register", "Align SOURCE to TARGET with Generalized-ICP (from identity)");
   r->add_option("source", reg->source, "Source cloud (.pcd or .ply)")->required()->check(CLI::ExistingFile);
   r->add_option("target", reg->target, "Target cloud (.pcd or .ply)")->required()->check(CLI::ExistingFile);
-  r->add_option("--voxel", reg->voxel_m, "Voxel down-sampling leaf in m (0: none)")->capture_default_str();
-  r->add_option("--threads", reg->threads, "Worker threads")->capture_default_str()->check(CLI::Range(1, 256));
+  r->add_option("--voxel", reg->voxel_m, "Voxel down-sampling leaf in m (0: none)")
+      ->capture_default_str()
+      ->check(check::non_negative());
+  r->add_option("--threads", reg->threads, "Worker threads")->capture_default_str()->check(check::integer_in(1, 256));
   r->add_flag("--json", reg->json_out, "Print one JSON object");
-  r->callback([reg] { run_register(*reg); });
+  r->callback([reg] { report_task(run_register(*reg)); });
 
   auto odo = std::make_shared<OdometryOptions>();
   auto rec = std::make_shared<RecordedOdometryCli>();

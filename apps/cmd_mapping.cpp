@@ -6,6 +6,10 @@
 #include <string>
 #include <vector>
 
+#include "apps/cli_checks.hpp"
+#include "apps/cli_exit.hpp"
+#include "apps/cli_inflation.hpp"
+#include "apps/cli_output.hpp"
 #include "apps/commands.hpp"
 #include "bipednav/common/clock.hpp"
 #include "bipednav/common/cpu_time.hpp"
@@ -25,8 +29,7 @@ using namespace bipednav::mapping;
 
 struct InflateOptions {
   std::string map;
-  double inscribed_m = 0.2, inflation_m = 0.55, scaling = 3.0;
-  std::string unknown = "unknown";
+  InflationFlags inflation;  // the global costmap's defaults
   std::string out_png, out_yaml;
   int scale = 1;
 };
@@ -49,13 +52,10 @@ nlohmann::json geometry_json(const GridGeometry& g) {
 }
 
 void run_inflate(const InflateOptions& o) {
+  if (!o.out_png.empty()) prepare_output_file(o.out_png, "--out");
+  if (!o.out_yaml.empty()) prepare_output_file(o.out_yaml, "--yaml");
   const Costmap2D map = mapping::read_map_server(o.map);
-  GlobalCostmapParams p;
-  p.inscribed_radius_m = o.inscribed_m;
-  p.inflation_radius_m = o.inflation_m;
-  p.cost_scaling_factor = o.scaling;
-  p.unknown_cost_mode = o.unknown;
-  p.resolution_m = map.resolution_m();
+  const GlobalCostmapParams p = o.inflation.params(map.resolution_m());
   Stopwatch sw;
   GlobalCostmap global(map.geometry(), p);
   global.set_occupancy(map);
@@ -78,8 +78,8 @@ double median(std::vector<double> v) {
 }
 double maximum(const std::vector<double>& v) { return v.empty() ? 0.0 : *std::max_element(v.begin(), v.end()); }
 
-void run_bench(int iterations) {
-  if (iterations < 1 || iterations > 10000) throw Error("bench mapping: --iterations must be 1..10000");
+// Returns whether the benchmark met its goals (the exit status).
+bool run_bench(int iterations) {
   // Local costmap: the robot walks 5 cm per update through the room, one full frame each time.
   std::vector<SyntheticFrame> frames;
   for (int i = 0; i < std::min(iterations, 40); ++i)
@@ -142,6 +142,7 @@ void run_bench(int iterations) {
                             {"global_update_400x400_median_ms", median(global_ms)},
                             {"global_update_400x400_max_ms", maximum(global_ms)}};
   std::printf("%s\n", j.dump(2).c_str());
+  return bench_goals_met(j);
 }
 
 }  // namespace
@@ -152,7 +153,7 @@ void add_mapping_commands(CLI::App& app, CLI::App& bench) {
 
   auto info_map = std::make_shared<std::string>();
   CLI::App* info = costmap->add_subcommand("info", "Print a map_server map's geometry and cost counts as JSON");
-  info->add_option("map", *info_map, "map_server YAML")->required();
+  info->add_option("map", *info_map, "map_server YAML")->required()->check(CLI::ExistingFile);
   info->callback([info_map] {
     const Costmap2D m = mapping::read_map_server(*info_map);
     const nlohmann::json j = {{"map", *info_map}, {"geometry", geometry_json(m.geometry())}, {"costs", cost_counts(m)}};
@@ -161,13 +162,12 @@ void add_mapping_commands(CLI::App& app, CLI::App& bench) {
 
   auto o = std::make_shared<InflateOptions>();
   CLI::App* inflate = costmap->add_subcommand("inflate", "Inflate a map_server map and write PNG / map_server files");
-  inflate->add_option("map", o->map, "map_server YAML")->required();
-  inflate->add_option("--inscribed", o->inscribed_m, "inscribed radius (m)");
-  inflate->add_option("--inflation", o->inflation_m, "inflation radius (m)");
-  inflate->add_option("--scaling", o->scaling, "cost scaling factor (1/m)");
-  inflate->add_option("--unknown", o->unknown, "cost of unknown cells: free | unknown | lethal");
+  inflate->add_option("map", o->map, "map_server YAML")->required()->check(CLI::ExistingFile);
+  o->inflation.add_to(inflate);
   inflate->add_option("--out", o->out_png, "PNG to write");
-  inflate->add_option("--scale", o->scale, "PNG pixels per cell");
+  inflate->add_option("--scale", o->scale, "PNG pixels per cell")
+      ->capture_default_str()
+      ->check(check::integer_at_least(1));
   inflate->add_option("--yaml", o->out_yaml, "map_server YAML (+ PGM) to write");
   inflate->callback([o] { run_inflate(*o); });
 
@@ -175,8 +175,10 @@ void add_mapping_commands(CLI::App& app, CLI::App& bench) {
   auto json = std::make_shared<bool>(true);
   CLI::App* b = bench.add_subcommand("mapping", "Local costmap update, inflation and heightmap timings");
   b->add_flag("--json", *json, "print JSON (the only output format)");
-  b->add_option("--iterations", *iterations, "updates to time");
-  b->callback([iterations] { run_bench(*iterations); });
+  b->add_option("--iterations", *iterations, "updates to time (1..10000)")
+      ->capture_default_str()
+      ->check(check::integer_in(1, 10000));
+  b->callback([iterations] { report_task(run_bench(*iterations)); });
 }
 
 }  // namespace bipednav::app

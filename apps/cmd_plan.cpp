@@ -7,6 +7,10 @@
 #include <string>
 #include <vector>
 
+#include "apps/cli_checks.hpp"
+#include "apps/cli_exit.hpp"
+#include "apps/cli_inflation.hpp"
+#include "apps/cli_output.hpp"
 #include "apps/cli_pose.hpp"
 #include "apps/commands.hpp"
 #include "bipednav/common/error.hpp"
@@ -17,6 +21,7 @@
 #include "bipednav/planning/global/movingai_runner.hpp"
 #include "bipednav/planning/global/replan_benchmark.hpp"
 #include "bipednav/viz/canvas.hpp"
+#include "bipednav/viz/figure_legend.hpp"
 
 namespace bipednav::app {
 
@@ -29,13 +34,22 @@ using nlohmann::json;
 json pose_json(const Pose2& p) { return {p.x, p.y, p.theta}; }
 
 struct GridOptions {
-  std::string map, start, goal, planner = "dstar_lite", out, unknown = "unknown";
-  double inscribed_m = 0.25, inflation_m = 0.8, scaling = 3.0, cost_weight = 3.0;
+  std::string map, start, goal, planner = "dstar_lite", out;
+  InflationFlags inflation{0.25, 0.8, 3.0, "unknown"};
+  double cost_weight = 3.0;
   bool unknown_is_obstacle = false, json_out = false;
 };
 
 void write_plan_png(const std::string& file, const mapping::Costmap2D& map, const planning::PlanResult& r,
-                    const Pose2& start, const Pose2& goal) {
+                    const Pose2& start, const Pose2& goal, const std::string& planner) {
+  using viz::LegendMark;
+  const viz::CostColors palette;
+  const std::vector<viz::LegendEntry> legend = {{"obstacle", palette.lethal, LegendMark::kBox},
+                                                {"inscribed / inflated", palette.inscribed, LegendMark::kBox},
+                                                {"unknown", palette.unknown, LegendMark::kBox},
+                                                {"path (" + planner + ")", viz::colors::kRed, LegendMark::kLine},
+                                                {"start", viz::colors::kGrey, LegendMark::kArrow},
+                                                {"goal", viz::colors::kOrange, LegendMark::kArrow}};
   const auto& g = map.geometry();
   viz::CanvasParams cp;
   cp.min_x_m = g.origin_x_m;
@@ -43,35 +57,31 @@ void write_plan_png(const std::string& file, const mapping::Costmap2D& map, cons
   cp.max_x_m = g.origin_x_m + g.size_x_m();
   cp.max_y_m = g.origin_y_m + g.size_y_m();
   cp.pixels_per_m = std::clamp(1200.0 / std::max(g.size_x_m(), g.size_y_m()), 2.0, 200.0);
-  viz::Canvas canvas(cp);
-  canvas.grid(map);
+  viz::Canvas canvas(viz::with_legend_bands(cp, legend));
+  canvas.grid(map, palette);
   std::vector<Eigen::Vector2d> pts;
   for (const auto& p : r.path.poses) pts.push_back(p.position());
   if (pts.size() >= 2) canvas.polyline(pts, viz::colors::kRed, 2.0);
-  canvas.arrow(start, 0.05 * std::max(g.size_x_m(), g.size_y_m()), viz::colors::kGreen, 3.0);
-  canvas.arrow(goal, 0.05 * std::max(g.size_x_m(), g.size_y_m()), viz::colors::kOrange, 3.0);
-  canvas.text_px(10, 14, std::string(outcome_name(r.result.outcome)) + ": " + r.result.message, viz::colors::kBlack);
+  const double arrow_m = 0.05 * std::max(g.size_x_m(), g.size_y_m());
+  canvas.arrow(start, arrow_m, viz::colors::kGrey, 3.0);
+  canvas.arrow(goal, arrow_m, viz::colors::kOrange, 3.0);
+  viz::draw_title_and_legend(canvas, std::string(outcome_name(r.result.outcome)) + ": " + r.result.message, legend);
   canvas.write_png(file);
 }
 
-void run_grid(const GridOptions& o) {
+// Returns whether a path was found (the exit status).
+bool run_grid(const GridOptions& o) {
   const Pose2 start = parse_pose(o.start, "--start"), goal = parse_pose(o.goal, "--goal");
+  if (!o.out.empty()) prepare_output_file(o.out, "--out");
   const mapping::Costmap2D prior = mapping::read_map_server(o.map);
-  mapping::GlobalCostmapParams cp;
-  cp.inscribed_radius_m = o.inscribed_m;
-  cp.inflation_radius_m = o.inflation_m;
-  cp.cost_scaling_factor = o.scaling;
-  cp.unknown_cost_mode = o.unknown;
-  cp.resolution_m = prior.resolution_m();
-  cp.validate();
-  mapping::GlobalCostmap costmap(prior.geometry(), cp);
+  mapping::GlobalCostmap costmap(prior.geometry(), o.inflation.params(prior.resolution_m()));
   costmap.set_occupancy(prior);
   planning::GlobalPlannerParams pp;
   pp.cost.cost_weight = o.cost_weight;
   pp.cost.unknown_is_obstacle = o.unknown_is_obstacle;
   auto planner = planning::make_global_planner(o.planner, pp);
   const planning::PlanResult r = planner->plan(costmap.costmap(), start, goal, {});
-  if (!o.out.empty()) write_plan_png(o.out, costmap.costmap(), r, start, goal);
+  if (!o.out.empty()) write_plan_png(o.out, costmap.costmap(), r, start, goal, o.planner);
   if (o.json_out) {
     json poses = json::array();
     for (const auto& p : r.path.poses) poses.push_back(pose_json(p));
@@ -91,6 +101,7 @@ void run_grid(const GridOptions& o) {
                 std::string(outcome_name(r.result.outcome)).c_str(), o.planner.c_str(), r.result.message.c_str(),
                 r.cost, r.path.length_m(), r.path.size(), r.expansions, r.time_ms);
   }
+  return r.result.ok();
 }
 
 json movingai_json(const std::vector<planning::MovingAiRowResult>& rows, const std::string& planner) {
@@ -118,21 +129,24 @@ json movingai_json(const std::vector<planning::MovingAiRowResult>& rows, const s
            {{"rows", rows.size()}, {"solved", solved}, {"max_abs_error", max_err}, {"total_time_ms", total_ms}}}};
 }
 
-void run_movingai(const std::string& map_file, const std::string& scen_file, const std::string& planner_name,
+// Returns whether every row was solved (the exit status).
+bool run_movingai(const std::string& map_file, const std::string& scen_file, const std::string& planner_name,
                   bool json_out) {
   const auto map = io::read_movingai_map(map_file);
   const auto problems = io::read_movingai_scen(scen_file);
   auto planner = planning::make_global_planner(planner_name, {});
   const auto rows = planning::run_movingai(map, problems, *planner);
   json j = movingai_json(rows, planner_name);
+  const auto& s = j["summary"];
+  const bool all_solved = s["solved"].get<std::size_t>() == s["rows"].get<std::size_t>();
   if (json_out) {
     std::printf("%s\n", j.dump(2).c_str());
-    return;
+    return all_solved;
   }
-  const auto& s = j["summary"];
   std::printf("%s on %s: %d/%d rows solved, max |length - optimal| = %.6f, total %.1f ms\n", planner_name.c_str(),
               map_file.c_str(), s["solved"].get<int>(), s["rows"].get<int>(), s["max_abs_error"].get<double>(),
               s["total_time_ms"].get<double>());
+  return all_solved;
 }
 
 // tests/data/movingai next to the sources: searched upwards from the working directory and from
@@ -177,7 +191,8 @@ json movingai_first_plans(const fs::path& dir) {
   return out;
 }
 
-void run_bench(const std::string& movingai_dir, int max_replans) {
+// Returns whether the benchmark met its goals (the exit status).
+bool run_bench(const std::string& movingai_dir, int max_replans) {
   planning::ReplanBenchParams p;
   p.max_replans = max_replans;
   const planning::ReplanStats s = planning::run_replan_benchmark(p);
@@ -217,6 +232,7 @@ void run_bench(const std::string& movingai_dir, int max_replans) {
     j["movingai"] = movingai_first_plans(dir);
   }
   std::printf("%s\n", j.dump(2).c_str());
+  return bench_goals_met(j);
 }
 
 }  // namespace
@@ -227,27 +243,26 @@ void add_plan_commands(CLI::App& app, CLI::App& bench) {
 
   auto g = std::make_shared<GridOptions>();
   CLI::App* grid = plan->add_subcommand("grid", "Plan on a map_server map (inflated like the global costmap)");
-  grid->add_option("map", g->map, "map_server YAML")->required();
+  grid->add_option("map", g->map, "map_server YAML")->required()->check(CLI::ExistingFile);
   grid->add_option("--start", g->start, "x,y[,yaw] in metres/radians")->required();
   grid->add_option("--goal", g->goal, "x,y[,yaw] in metres/radians")->required();
   grid->add_option("--planner", g->planner, "dstar_lite | astar")->check(CLI::IsMember({"dstar_lite", "astar"}));
   grid->add_option("--out", g->out, "PNG of the costmap and the path");
-  grid->add_option("--inscribed-radius", g->inscribed_m, "m");
-  grid->add_option("--inflation-radius", g->inflation_m, "m");
-  grid->add_option("--cost-scaling", g->scaling, "1/m");
-  grid->add_option("--cost-weight", g->cost_weight, "w in 1 + w * cost / 252");
-  grid->add_option("--unknown", g->unknown, "cost of unknown cells: free | unknown | lethal");
+  g->inflation.add_to(grid);
+  grid->add_option("--cost-weight", g->cost_weight, "w in 1 + w * cost / 252")
+      ->capture_default_str()
+      ->check(check::non_negative());
   grid->add_flag("--unknown-is-obstacle", g->unknown_is_obstacle, "unknown cells are impassable");
   grid->add_flag("--json", g->json_out, "print one JSON object");
-  grid->callback([g] { run_grid(*g); });
+  grid->callback([g] { report_task(run_grid(*g)); });
 
   auto m = std::make_shared<GridOptions>();
   CLI::App* mai = plan->add_subcommand("movingai", "Plan every row of a Moving AI scenario (unit cell costs)");
-  mai->add_option("map", m->map, "Moving AI .map")->required();
-  mai->add_option("scen", m->start, "Moving AI .scen")->required();
+  mai->add_option("map", m->map, "Moving AI .map")->required()->check(CLI::ExistingFile);
+  mai->add_option("scen", m->start, "Moving AI .scen")->required()->check(CLI::ExistingFile);
   mai->add_option("--planner", m->planner, "dstar_lite | astar")->check(CLI::IsMember({"dstar_lite", "astar"}));
   mai->add_flag("--json", m->json_out, "print one JSON object with rows and summary");
-  mai->callback([m] { run_movingai(m->map, m->start, m->planner, m->json_out); });
+  mai->callback([m] { report_task(run_movingai(m->map, m->start, m->planner, m->json_out)); });
 
   auto dir = std::make_shared<std::string>();
   auto replans = std::make_shared<int>(2000);
@@ -255,8 +270,8 @@ void add_plan_commands(CLI::App& app, CLI::App& bench) {
   auto json_flag = std::make_shared<bool>(false);
   b->add_flag("--json", *json_flag, "print one JSON object (the only output format)");
   b->add_option("--movingai-dir", *dir, "directory with maps/ and scen/ (default: tests/data/movingai)");
-  b->add_option("--max-replans", *replans, "replan limit");
-  b->callback([dir, replans] { run_bench(*dir, *replans); });
+  b->add_option("--max-replans", *replans, "replan limit")->capture_default_str()->check(check::integer_at_least(1));
+  b->callback([dir, replans] { report_task(run_bench(*dir, *replans)); });
 }
 
 }  // namespace bipednav::app

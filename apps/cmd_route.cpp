@@ -7,9 +7,13 @@
 #include <memory>
 #include <string>
 
+#include "apps/cli_checks.hpp"
+#include "apps/cli_exit.hpp"
 #include "apps/scenario_files.hpp"
 #include "bipednav/common/error.hpp"
+#include "bipednav/runner/footstep_runner.hpp"
 #include "bipednav/runner/scenario_runner.hpp"
+#include "bipednav/sim/placement_check.hpp"
 #include "bipednav/sim/route_clearance.hpp"
 
 namespace bipednav::app {
@@ -18,8 +22,8 @@ namespace {
 
 struct RouteArgs {
   std::string scenario;
-  std::string world, start = "0,0,0", goal;  // instead of a scenario
-  std::string robot;                         // empty: the scenario's
+  std::string world, start, goal;  // instead of a scenario
+  std::string robot;               // empty: the scenario's
   double resolution_m = 0.01;
   bool json = false;
 };
@@ -47,9 +51,15 @@ void print_report(const nlohmann::json& r) {
   }
 }
 
-void run_route(const RouteArgs& a) {
-  if (a.world.empty() == a.scenario.empty()) throw Error("route needs a SCENARIO or --world FILE (not both)");
-  if (!a.world.empty() && a.goal.empty()) throw Error("--world needs --goal x,y,yaw");
+// Whether every goal has a route with room for the robot (the exit status: 0, else 1).
+bool every_route_has_room(const nlohmann::json& r) {
+  for (const auto& g : r["routes"])
+    if (!g["connected"].get<bool>() || (!g["margin_m"].is_null() && g["margin_m"].get<double>() < 0.0)) return false;
+  return true;
+}
+
+bool run_route(const RouteArgs& a) {
+  if (a.world.empty() && a.scenario.empty()) throw Error("route needs a SCENARIO or --world FILE");
   const sim::Scenario s = a.world.empty() ? sim::load_scenario(resolve_scenario(a.scenario))
                                           : scenario_from_world(a.world, a.robot, a.start, a.goal);
   const RobotProfile robot = runner::load_robot(a.robot.empty() ? s.robot : a.robot);
@@ -58,6 +68,14 @@ void run_route(const RouteArgs& a) {
     std::printf("%s\n", r.dump(2).c_str());
   else
     print_report(r);
+  if (!a.json) {  // why a route is missing: a start or goal in an obstacle or off the map
+    try {
+      sim::check_placements(s, robot, !runner::is_footstep_robot(robot));
+    } catch (const Error& e) {
+      std::printf("  %s\n", e.what());
+    }
+  }
+  return every_route_has_room(r);
 }
 
 }  // namespace
@@ -91,16 +109,14 @@ void add_route_command(CLI::App& app) {
       "route",
       "The widest route of a scenario's static world from the start to each goal (ground truth, before any "
       "sensing), against the room the robot needs: can it get there at all, and with what margin");
-  cmd->add_option("scenario", a->scenario, "Scenario name (scenarios/NAME.yaml) or file");
-  cmd->add_option("--world", a->world, "A Gazebo .world file instead of a scenario");
-  cmd->add_option("--start", a->start, "With --world: start pose x,y[,yaw]")->capture_default_str();
-  cmd->add_option("--goal", a->goal, "With --world: goal pose x,y[,yaw]");
+  CLI::Option* scenario = cmd->add_option("scenario", a->scenario, "Scenario name (scenarios/NAME.yaml) or file");
+  add_world_options(cmd, scenario, a->world, a->start, a->goal);
   cmd->add_option("--robot", a->robot, "Robot profile (name in config/ or a file); default: the scenario's");
   cmd->add_option("--resolution", a->resolution_m, "Grid of route centre positions, m")
       ->capture_default_str()
-      ->check(CLI::Range(0.001, 1.0));
+      ->check(check::in_range(0.001, 1.0));
   cmd->add_flag("--json", a->json, "Print one JSON object");
-  cmd->callback([a] { run_route(*a); });
+  cmd->callback([a] { report_task(run_route(*a)); });
 }
 
 }  // namespace bipednav::app

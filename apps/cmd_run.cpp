@@ -8,6 +8,9 @@
 
 #include "apps/bench_closed_loop.hpp"
 #include "apps/bench_worlds.hpp"
+#include "apps/cli_checks.hpp"
+#include "apps/cli_exit.hpp"
+#include "apps/cli_output.hpp"
 #include "apps/cmd_run_footsteps.hpp"
 #include "apps/commands.hpp"
 #include "apps/scenario_files.hpp"
@@ -16,6 +19,7 @@
 #include "bipednav/runner/replay_recorder.hpp"
 #include "bipednav/runner/run_figure.hpp"
 #include "bipednav/runner/scenario_runner.hpp"
+#include "bipednav/sim/placement_check.hpp"
 #include "bipednav/viz/replay_html.hpp"
 
 #ifdef BIPEDNAV_WITH_ROSBAG
@@ -139,12 +143,26 @@ void write_trace_csv(const std::filesystem::path& file, const std::vector<runner
 struct RunArgs {
   std::string scenario = "hexagon_static";
   std::string out = "out";
-  std::string world, start = "0,0,0", goal, bag, replay, trace;
+  std::string world, start, goal, bag, replay, trace;
+  std::string goal_tolerance;  // "M,RAD" (empty: the scenario's)
   runner::RunOptions options;
   std::vector<std::string> faults;  // type:start_s:duration_s[:value]
-  std::uint64_t seed = 0;
-  double time_limit_s = 0.0;
+  std::optional<std::uint64_t> seed;
+  std::optional<double> time_limit_s;
+  bool quiet = false;
 };
+
+// Every output is checked before the run (a run takes minutes), and every start and goal: one
+// inside an obstacle or off the map is reported now, in metres, not after a minute of recoveries.
+RobotProfile check_before_run(const RunArgs& a, const sim::Scenario& s, bool footsteps) {
+  prepare_output_dir(a.out, "--out");
+  if (!a.trace.empty()) prepare_output_file(a.trace, "--trace");
+  if (!a.replay.empty()) prepare_output_file(a.replay, "--replay");
+  if (!a.bag.empty()) prepare_output_file(a.bag, "--bag");
+  const RobotProfile robot = runner::load_robot(a.options.robot.empty() ? s.robot : a.options.robot);
+  sim::check_placements(s, robot, !footsteps);
+  return robot;
+}
 
 // The footstep loop has its own localization (GICP-corrected odometry) and planner (ARA* footsteps),
 // no LiDAR stack to fault and no 10 Hz command trace or rosbag: these options would be ignored.
@@ -164,18 +182,52 @@ void reject_wheeled_only_options(const RunArgs& a) {
                 " (it has its own localization and footstep planner; --params sets them)");
 }
 
-void run_command(const RunArgs& a) {
-  const sim::Scenario s = a.world.empty() ? sim::load_scenario(resolve_scenario(a.scenario))
-                                          : scenario_from_world(a.world, a.options.robot, a.start, a.goal);
-  if (runs_by_footsteps(s, a.options.robot)) {  // humanoids walk by footsteps (apps/cmd_run_footsteps.cpp)
-    reject_wheeled_only_options(a);
-    return run_footsteps_command(s, a.options.robot, a.out, a.seed, a.time_limit_s, a.options.params_file, a.replay);
+// The run's verdict for the exit status (0 / 1): the runner's success (goal reached by the navigator
+// and by the true pose, no collision).
+bool run_succeeded(const runner::RunResult& r) { return r.success; }
+
+// --goal-tolerance M,RAD: two positive numbers.
+void apply_goal_tolerance(const std::string& text, sim::Scenario& s) {
+  if (text.empty()) return;
+  const auto comma = text.find(',');
+  double m = 0.0, rad = 0.0;
+  try {
+    if (comma == std::string::npos) throw std::invalid_argument(text);
+    std::size_t used_m = 0, used_rad = 0;
+    const std::string a = text.substr(0, comma), b = text.substr(comma + 1);
+    m = std::stod(a, &used_m);
+    rad = std::stod(b, &used_rad);
+    if (used_m != a.size() || used_rad != b.size()) throw std::invalid_argument(text);
+  } catch (const std::exception&) {
+    m = rad = -1.0;
   }
+  if (!(m > 0.0 && rad > 0.0 && std::isfinite(m) && std::isfinite(rad)))
+    throw Error("--goal-tolerance: expected M,RAD (two positive numbers: metres, radians), got '" + text + "'");
+  s.goal_tolerance_m = m;
+  s.goal_tolerance_rad = rad;
+}
+
+bool run_command(const RunArgs& a) {
+  sim::Scenario s = a.world.empty() ? sim::load_scenario(resolve_scenario(a.scenario))
+                                    : scenario_from_world(a.world, a.options.robot, a.start, a.goal);
+  apply_goal_tolerance(a.goal_tolerance, s);
+  const bool footsteps = runs_by_footsteps(s, a.options.robot);
+  if (footsteps) reject_wheeled_only_options(a);
+  const RobotProfile robot = check_before_run(a, s, footsteps);
+  if (footsteps)  // humanoids walk by footsteps (apps/cmd_run_footsteps.cpp)
+    return run_footsteps_command(s, a.options.robot, a.out, {a.seed, a.time_limit_s, !a.quiet}, a.options.params_file,
+                                 a.replay);
   runner::RunOptions o = a.options;
   if (a.seed) o.seed = a.seed;
-  if (a.time_limit_s > 0) o.time_limit_s = a.time_limit_s;
-  o.progress = true;
-  for (const auto& f : a.faults) o.faults.push_back(sim::parse_fault(f));
+  if (a.time_limit_s) o.time_limit_s = a.time_limit_s;
+  o.progress = !a.quiet;
+  for (const auto& f : a.faults) {
+    try {
+      o.faults.push_back(sim::parse_fault(f));
+    } catch (const Error& e) {
+      throw Error("--fault " + f + ": " + e.what());
+    }
+  }
 #ifdef BIPEDNAV_WITH_ROSBAG
   std::shared_ptr<ros1::BagRecorder> bag;
   if (!a.bag.empty()) {
@@ -199,10 +251,9 @@ void run_command(const RunArgs& a) {
     std::printf("  recorded %zu messages to %s\n", bag->messages(), a.bag.c_str());
   }
 #endif
-  std::filesystem::create_directories(a.out);
   const auto dir = std::filesystem::path(a.out);
   std::ofstream(dir / "run.json") << to_json(r).dump(2) << "\n";
-  runner::write_run_figure(dir / "run.png", s, r);
+  runner::write_run_figure(dir / "run.png", s, r, runner::navigator_params(robot, o).server.local_planner);
   if (!a.trace.empty()) write_trace_csv(a.trace, r.trace);
   print_summary(r);
   std::printf("  wrote %s and %s\n", (dir / "run.json").c_str(), (dir / "run.png").c_str());
@@ -210,6 +261,7 @@ void run_command(const RunArgs& a) {
     viz::write_replay_html(a.replay, replay->finish(r));
     std::printf("  wrote %s (%zu frames)\n", a.replay.c_str(), replay->frames().size());
   }
+  return run_succeeded(r);
 }
 
 struct ParamsArgs {
@@ -217,15 +269,38 @@ struct ParamsArgs {
   std::string params;
 };
 
+// The navigation parameters of a wheeled robot or walker; a file in the footstep layout is reported as such.
+navigation::NavigatorParams wheeled_params_for_cli(const RobotProfile& robot, const runner::RunOptions& o) {
+  try {
+    return runner::navigator_params(robot, o);
+  } catch (const FileError& e) {
+    throw Error(std::string(e.what()) + " (robot " + robot.name + ", kind " + robot.kind +
+                ", reads the wheeled navigator's layout, not a humanoid's: `bipednav params --robot " + robot.name +
+                "` prints it)");
+  }
+}
+
+// The compiled-in behavior tree is an absolute path of this machine: a dump leaves it out (the
+// default), so the file is the same on every machine and reads back to the same parameters.
+std::string without_default_tree(std::string yaml, const std::string& default_tree) {
+  const std::string line = "behavior_tree: " + default_tree + "\n";
+  const auto at = yaml.find(line);
+  if (at != std::string::npos)
+    yaml.replace(at, line.size(),
+                 "# behavior_tree: the built-in config/behavior_trees/navigate.xml (give a file to use another)\n");
+  return yaml;
+}
+
 // A humanoid's (kind humanoid) are the footstep navigator's, in its own layout.
 void print_params(const ParamsArgs& a) {
   runner::RunOptions o;
   o.params_file = a.params;
   const RobotProfile robot = runner::load_robot(a.robot);
   const bool footsteps = runner::is_footstep_robot(robot);
-  const std::string yaml = footsteps
-                               ? navigation::navigator_params_yaml(runner::footstep_navigator_params(o.params_file))
-                               : navigation::navigator_params_yaml(runner::navigator_params(robot, o));
+  const std::string yaml =
+      footsteps ? navigation::navigator_params_yaml(footstep_params_for_cli(o.params_file))
+                : without_default_tree(navigation::navigator_params_yaml(wheeled_params_for_cli(robot, o)),
+                                       navigation::NavigatorParams::for_robot(robot).behavior_tree);
   std::printf("# bipednav %snavigation parameters for robot %s%s: every key is optional; read with --params FILE\n%s",
               footsteps ? "footstep " : "", a.robot.c_str(), a.params.empty() ? "" : (" with " + a.params).c_str(),
               yaml.c_str());
@@ -236,23 +311,31 @@ void print_params(const ParamsArgs& a) {
 void add_run_commands(CLI::App& app, CLI::App& bench) {
   auto args = std::make_shared<RunArgs>();
   CLI::App* run = app.add_subcommand("run", "Navigate a scenario closed-loop in the built-in simulator");
-  run->add_option("scenario", args->scenario, "Scenario name (scenarios/NAME.yaml) or file")->capture_default_str();
+  CLI::Option* scenario =
+      run->add_option("scenario", args->scenario, "Scenario name (scenarios/NAME.yaml) or file")->capture_default_str();
   run->add_option("--out", args->out, "Output directory for run.json and run.png")->capture_default_str();
   run->add_option("--robot", args->options.robot,
                   "Robot profile: a name in config/ (turtlebot3, digit, nao) or your own profile FILE.yaml "
                   "(config/README.md); overrides the scenario's");
-  run->add_option("--seed", args->seed, "Seed (overrides the scenario's)");
-  run->add_option("--time-limit", args->time_limit_s, "Time limit in simulated seconds");
-  run->add_option("--localization", args->options.localization, "loam or odometry");
-  run->add_option("--local-planner", args->options.local_planner, "teb or tracker");
-  run->add_option("--global-planner", args->options.global_planner, "dstar_lite or astar");
+  run->add_option("--seed", args->seed, "Seed, a whole number >= 0 (overrides the scenario's)")
+      ->check(check::integer_at_least(0));
+  run->add_option("--time-limit", args->time_limit_s, "Time limit in simulated seconds (overrides the scenario's)")
+      ->check(check::positive());
+  run->add_option("--localization", args->options.localization, "loam or odometry")
+      ->check(CLI::IsMember({"loam", "odometry"}));
+  run->add_option("--local-planner", args->options.local_planner, "teb or tracker")
+      ->check(CLI::IsMember({"teb", "tracker"}));
+  run->add_option("--global-planner", args->options.global_planner, "dstar_lite or astar")
+      ->check(CLI::IsMember({"dstar_lite", "astar"}));
   run->add_option("--params", args->options.params_file,
                   "Navigation parameters YAML overlaid on the robot's defaults (`bipednav params` prints the layout; "
                   "a humanoid's is the footstep navigator's); "
-                  "--localization/--local-planner/--global-planner and the scenario's goal tolerances win");
-  run->add_option("--world", args->world, "A Gazebo .world file instead of a scenario");
-  run->add_option("--start", args->start, "With --world: start pose x,y,yaw")->capture_default_str();
-  run->add_option("--goal", args->goal, "With --world: goal pose x,y,yaw");
+                  "--localization/--local-planner/--global-planner and the scenario's goal tolerances win")
+      ->check(CLI::ExistingFile);
+  add_world_options(run, scenario, args->world, args->start, args->goal);
+  run->add_option("--goal-tolerance", args->goal_tolerance,
+                  "Goal tolerances M,RAD: the true pose must end within them (overrides the scenario's; "
+                  "default with --world 0.2,0.2)");
   run->add_option(
       "--fault", args->faults,
       "Inject a fault: type:start_s:duration_s[:value] (lidar_dropout, depth_nan_burst, localization_jump "
@@ -262,10 +345,8 @@ void add_run_commands(CLI::App& app, CLI::App& bench) {
   run->add_option("--replay", args->replay, "Write a self-contained HTML replay of the run to this file");
   run->add_option("--trace", args->trace,
                   "Write the 10 Hz trace (true and estimated pose, command, active tree leaf) to this CSV file");
-  run->callback([args] {
-    if (!args->world.empty() && args->goal.empty()) throw Error("--world needs --goal x,y,yaw");
-    run_command(*args);
-  });
+  run->add_flag("--quiet", args->quiet, "No progress bar (it is shown only when stderr is a terminal)");
+  run->callback([args] { report_task(run_command(*args)); });
 
   add_closed_loop_benches(bench);
   add_world_benches(bench);
@@ -276,7 +357,8 @@ void add_run_commands(CLI::App& app, CLI::App& bench) {
   params
       ->add_option("--robot", pa->robot, "Robot profile name or file (a humanoid: the footstep navigator's parameters)")
       ->capture_default_str();
-  params->add_option("--params", pa->params, "A parameters file to overlay first (prints the result)");
+  params->add_option("--params", pa->params, "A parameters file to overlay first (prints the result)")
+      ->check(CLI::ExistingFile);
   params->callback([pa] { print_params(*pa); });
 }
 

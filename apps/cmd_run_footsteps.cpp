@@ -16,6 +16,16 @@ bool runs_by_footsteps(const sim::Scenario& scenario, const std::string& robot_o
   return runner::is_footstep_robot(runner::load_robot(robot_override.empty() ? scenario.robot : robot_override));
 }
 
+navigation::FootstepNavigatorParams footstep_params_for_cli(const std::filesystem::path& params_file) {
+  try {
+    return runner::footstep_navigator_params(params_file);
+  } catch (const FileError& e) {
+    throw Error(std::string(e.what()) +
+                " (a humanoid, kind humanoid, reads the footstep navigator's layout, not a wheeled robot's: "
+                "`bipednav params --robot nao` prints it)");
+  }
+}
+
 namespace {
 
 nlohmann::json footstep_json(const runner::FootstepRunResult& f) {
@@ -58,22 +68,21 @@ nlohmann::json footstep_json(const runner::FootstepRunResult& f) {
 
 }  // namespace
 
-void run_footsteps_command(sim::Scenario scenario, const std::string& robot_override, const std::filesystem::path& out,
-                           std::uint64_t seed, double time_limit_s, const std::filesystem::path& params_file,
+bool run_footsteps_command(sim::Scenario scenario, const std::string& robot_override, const std::filesystem::path& out,
+                           const FootstepRunArgs& args, const std::filesystem::path& params_file,
                            const std::filesystem::path& replay) {
   if (!robot_override.empty()) scenario.robot = robot_override;
   runner::FootstepRunOptions o;
-  o.navigator = runner::footstep_navigator_params(params_file);
-  if (seed) o.seed = seed;
-  if (time_limit_s > 0) o.time_limit_s = time_limit_s;
-  o.progress = true;
+  o.navigator = footstep_params_for_cli(params_file);
+  if (args.seed) o.seed = *args.seed;
+  if (args.time_limit_s) o.time_limit_s = *args.time_limit_s;
+  o.progress = args.progress;
   std::unique_ptr<runner::FootstepReplayRecorder> recorder;
   if (!replay.empty()) {
     recorder = std::make_unique<runner::FootstepReplayRecorder>(scenario);
     recorder->attach(o);
   }
   const runner::FootstepRunResult f = runner::run_footstep_scenario(scenario, o);
-  std::filesystem::create_directories(out);
   std::ofstream(out / "run.json") << footstep_json(f).dump(2) << "\n";
   runner::write_footstep_figure(out / "run.png", f);
   const runner::RunResult& r = f.summary;
@@ -89,6 +98,7 @@ void run_footsteps_command(sim::Scenario scenario, const std::string& robot_over
     viz::write_replay_html(replay, recorder->finish(f));
     std::printf("  wrote %s (%zu frames)\n", replay.c_str(), recorder->frames().size());
   }
+  return r.success;
 }
 
 }  // namespace bipednav::app

@@ -9,8 +9,11 @@
 #include <optional>
 
 #include "apps/bench_sim.hpp"
+#include "apps/cli_checks.hpp"
+#include "apps/cli_output.hpp"
 #include "apps/cmd_route.hpp"
 #include "apps/commands.hpp"
+#include "apps/scenario_files.hpp"
 #include "bipednav/common/clock.hpp"
 #include "bipednav/common/error.hpp"
 #include "bipednav/common/progress.hpp"
@@ -19,6 +22,7 @@
 #include "bipednav/sim/simulation.hpp"
 #include "bipednav/sim/world_drawing.hpp"
 #include "bipednav/viz/canvas.hpp"
+#include "bipednav/viz/figure_legend.hpp"
 
 namespace bipednav::app {
 namespace {
@@ -70,14 +74,14 @@ struct RunRecord {
   double wall_s = 0.0;
 };
 
-fs::path find_config_dir(const SimOptions& opt) {
+fs::path find_config_dir(const SimOptions& opt, const fs::path& scenario_file) {
   if (!opt.config_dir.empty()) return opt.config_dir;
-  const fs::path near_scenario = fs::path(opt.scenario).parent_path() / ".." / "config";
+  const fs::path near_scenario = scenario_file.parent_path() / ".." / "config";
   return fs::is_directory(near_scenario) ? near_scenario : fs::path("config");
 }
 
-RobotProfile load_profile(const SimOptions& opt, const std::string& name) {
-  const fs::path file = find_config_dir(opt) / (name + ".yaml");
+RobotProfile load_profile(const SimOptions& opt, const fs::path& scenario_file, const std::string& name) {
+  const fs::path file = find_config_dir(opt, scenario_file) / (name + ".yaml");
   if (!fs::exists(file))
     throw Error("robot profile '" + name + "' not found: " + file.string() + " (use --config-dir or --robot)");
   return io::load_robot_profile(file);
@@ -156,25 +160,58 @@ viz::CanvasParams canvas_for(const sim::Bounds& b) {
   return cp;
 }
 
+constexpr viz::Color kLidarColor{0.1, 0.3, 0.95, 0.8}, kDepthColor{0.05, 0.6, 0.2, 0.5};
+constexpr viz::Color kDrivenColor{0.0, 0.55, 0.6, 1.0};
+constexpr double kRampPx = 60.0;
+
+// The layers the figure shows (a robot without LiDAR has no sweep to show).
+std::vector<viz::LegendEntry> sim_legend(const sim::World& world, const RunRecord& rec) {
+  using viz::LegendMark;
+  std::vector<viz::LegendEntry> e;
+  if (!world.actors.empty()) e.push_back({"moving obstacle", sim::WorldStyle{}.actor_fill, LegendMark::kBox});
+  if (rec.last_sweep) e.push_back({"LiDAR points (last sweep)", kLidarColor, LegendMark::kDot});
+  if (rec.last_depth) e.push_back({"depth points (last image)", kDepthColor, LegendMark::kDot});
+  e.insert(e.end(), {{"driven path", kDrivenColor, LegendMark::kLine},
+                     {"start", viz::colors::kGrey, LegendMark::kArrow},
+                     {"goal (tolerance)", viz::colors::kRed, LegendMark::kRing},
+                     {"robot at the end", viz::colors::kBlack, LegendMark::kArrow}});
+  if (!rec.collisions.empty()) e.push_back({"collision", viz::colors::kRed, LegendMark::kCross});
+  return e;
+}
+
+void draw_collisions(viz::Canvas& canvas, const RunRecord& rec) {
+  for (const CollisionRecord& c : rec.collisions) {
+    const Eigen::Vector2d q = canvas.to_pixel(c.point);
+    canvas.line_px(q - Eigen::Vector2d(6, 6), q + Eigen::Vector2d(6, 6), viz::colors::kRed, 2.5);
+    canvas.line_px(q - Eigen::Vector2d(6, -6), q + Eigen::Vector2d(6, -6), viz::colors::kRed, 2.5);
+  }
+}
+
+// The statics shaded by height (stairs read as steps), the last sweep and depth image, the
+// driven path, start, goals, the robot at the end and each collision, with a legend, a scale bar
+// and the height ramp.
 void write_figure(const fs::path& file, const sim::Simulation& sim, const sim::Scenario& scenario,
                   const RunRecord& rec) {
-  viz::Canvas canvas(canvas_for(scenario.bounds));
-  sim::draw_world(canvas, sim.world(), sim.now_s());
+  const std::vector<viz::LegendEntry> legend = sim_legend(sim.world(), rec);
+  viz::Canvas canvas(viz::with_legend_bands(canvas_for(scenario.bounds), legend, kRampPx));
+  sim::WorldStyle style;
+  style.shade_by_height = true;
+  sim::draw_world(canvas, sim.world(), sim.now_s(), style);
   const RobotProfile& robot = sim.robot();
   if (rec.last_sweep) {
     const SensorMount* m = robot.sensor(rec.last_sweep->frame_id);
     const SE3 T = m ? m->T_base_sensor() : SE3::Identity();
-    draw_cloud(canvas, to_world(*rec.last_sweep, rec.track, T), {0.1, 0.3, 0.95, 0.8}, {0.55, 0.7, 1.0, 0.5});
+    draw_cloud(canvas, to_world(*rec.last_sweep, rec.track, T), kLidarColor, {0.55, 0.7, 1.0, 0.4});
   }
   if (rec.last_depth) {
     const SensorMount* m = robot.sensor(rec.last_depth->camera);
     const SE3 T = m ? m->T_base_sensor() : SE3::Identity();
-    draw_cloud(canvas, to_world(rec.last_depth->cloud, rec.track, T), {0.05, 0.6, 0.2, 0.8}, {0.5, 0.85, 0.5, 0.5});
+    draw_cloud(canvas, to_world(rec.last_depth->cloud, rec.track, T), kDepthColor, {0.5, 0.85, 0.5, 0.25});
   }
   std::vector<Eigen::Vector2d> path;
   for (const Pose2& p : rec.track.pose) path.push_back(p.position());
-  canvas.polyline(path, viz::colors::kPurple, 2.0);
-  canvas.arrow(scenario.start, 0.4, viz::colors::kGrey, 2.0);
+  canvas.polyline(path, kDrivenColor, 2.0);
+  canvas.arrow(scenario.start, 0.4, viz::colors::kGrey, 2.5);
   const viz::Color goal_colors[] = {viz::colors::kRed, viz::colors::kBlue, viz::colors::kOrange};
   for (std::size_t i = 0; i < scenario.goals.size(); ++i) {
     const viz::Color c = goal_colors[std::min<std::size_t>(i, 2)];
@@ -182,13 +219,17 @@ void write_figure(const fs::path& file, const sim::Simulation& sim, const sim::S
     canvas.arrow(scenario.goals[i].pose, 0.4, c, 2.0);
   }
   const Pose2 end = sim.true_pose();
-  canvas.circle(end.position(), robot.footprint_radius_m, {0.85, 0.1, 0.1, 0.25}, viz::colors::kRed, 1.5);
-  canvas.arrow(end, 0.5, viz::colors::kRed, 2.5);
-  for (const CollisionRecord& c : rec.collisions) canvas.circle(c.point, 0.08, viz::colors::kRed, viz::colors::kBlack);
+  canvas.circle(end.position(), robot.footprint_radius_m, {0.2, 0.2, 0.2, 0.15}, viz::colors::kBlack, 1.5);
+  canvas.arrow(end, 0.5, viz::colors::kBlack, 2.5);
+  draw_collisions(canvas, rec);
   char title[256];
   std::snprintf(title, sizeof(title), "%s  (%s, t = %.1f s, %zu collision%s)", scenario.name.c_str(),
                 robot.name.c_str(), sim.now_s(), rec.collisions.size(), rec.collisions.size() == 1 ? "" : "s");
-  canvas.text_px(10, 20, title, viz::colors::kBlack, 16);
+  const viz::PixelRect rest = viz::draw_title_and_legend(canvas, title, legend);
+  char full[32];
+  std::snprintf(full, sizeof full, ">= %.1f m", style.full_height_m);
+  viz::draw_color_ramp(canvas, {rest.x, rest.y, std::min(rest.w - 8, 140.0), 12}, style.low_fill, style.static_fill,
+                       "0 m", full, "obstacle height (top)");
   canvas.write_png(file);
 }
 
@@ -231,17 +272,18 @@ json summary(const sim::Simulation& sim, const sim::Scenario& scenario, const Ru
 }
 
 void run_sim_command(const SimOptions& opt) {
-  if (!(opt.duration_s > 0 && std::isfinite(opt.duration_s))) throw Error("--duration: expected a time > 0 s");
-  const sim::Scenario scenario = sim::load_scenario(opt.scenario);
-  const RobotProfile robot = load_profile(opt, opt.robot.empty() ? scenario.robot : opt.robot);
+  const fs::path scenario_file = resolve_scenario(opt.scenario);
+  const sim::Scenario scenario = sim::load_scenario(scenario_file);
+  const RobotProfile robot = load_profile(opt, scenario_file, opt.robot.empty() ? scenario.robot : opt.robot);
+  const fs::path out(opt.out_dir);
+  prepare_output_dir(out, "--out");
   sim::SimulationParams params;
   params.step_s = opt.step_s;
   params.seed = scenario.seed;
+  with_flag_names({{"step_s", "--step"}}, [&] { params.validate(); });
   sim::Simulation sim(scenario.world, robot, scenario.start, params);
   const RunRecord rec = run(sim, scenario, robot, opt);
 
-  const fs::path out(opt.out_dir);
-  fs::create_directories(out);
   write_figure(out / "sim.png", sim, scenario, rec);
   const json j = summary(sim, scenario, rec, opt);
   std::ofstream json_file(out / "sim.json");
@@ -260,15 +302,15 @@ void add_sim_commands(CLI::App& app, CLI::App& bench) {
       app.add_subcommand("sim",
                          "Drive a scenario's robot open-loop (scripted commands or a straight line) in the simulator; "
                          "writes OUT/sim.png and OUT/sim.json");
-  cmd->add_option("scenario", opt->scenario, "Scenario YAML file (scenarios/*.yaml)")
-      ->required()
-      ->check(CLI::ExistingFile);
-  cmd->add_option("--duration", opt->duration_s, "Simulated time in seconds")->capture_default_str();
+  cmd->add_option("scenario", opt->scenario, "Scenario name (scenarios/NAME.yaml) or file")->required();
+  cmd->add_option("--duration", opt->duration_s, "Simulated time in seconds")
+      ->capture_default_str()
+      ->check(check::positive());
   cmd->add_option("--out", opt->out_dir, "Output directory")->capture_default_str();
   cmd->add_option("--robot", opt->robot, "Robot profile name (config/<NAME>.yaml), overrides the scenario's");
   cmd->add_option("--config-dir", opt->config_dir, "Directory of robot profiles (default: <scenario>/../config)");
-  cmd->add_option("--step", opt->step_s, "Simulation step in seconds")->capture_default_str();
-  cmd->add_flag("--quiet", opt->quiet, "No progress bar");
+  cmd->add_option("--step", opt->step_s, "Simulation step in seconds")->capture_default_str()->check(check::positive());
+  cmd->add_flag("--quiet", opt->quiet, "No progress bar (it is shown only when stderr is a terminal)");
   cmd->callback([opt] { run_sim_command(*opt); });
   add_sim_bench(bench);
   add_route_command(app);

@@ -59,4 +59,15 @@ sim::Scenario scenario_from_world(const std::filesystem::path& file, const std::
   return s;
 }
 
+void add_world_options(CLI::App* command, CLI::Option* scenario, std::string& world, std::string& start,
+                       std::string& goal) {
+  CLI::Option* w =
+      command->add_option("--world", world, "A Gazebo .world file instead of a scenario")->check(CLI::ExistingFile);
+  CLI::Option* s = command->add_option("--start", start, "With --world (required): start pose x,y[,yaw]");
+  CLI::Option* g = command->add_option("--goal", goal, "With --world (required): goal pose x,y[,yaw]");
+  w->needs(s, g)->excludes(scenario);
+  s->needs(w);
+  g->needs(w);
+}
+
 }  // namespace bipednav::app

@@ -67,6 +67,10 @@ HeightmapGrid read_heightmap_grid(const std::filesystem::path& file, const Heigh
     return read_png(file, params);
   }
   ParamReader r = ParamReader::from_file(file);
+  if (r.has("resolution") && !r.has("resolution_m"))
+    throw FileError(file.string(), "resolution",
+                    "this is a map_server occupancy map; a heightmap YAML has image, resolution_m, min_height_m, "
+                    "max_height_m (and origin_x_m, origin_y_m): the image's grey levels are heights");
   HeightmapImageParams p = params;
   std::string image;
   r.require("image", image);

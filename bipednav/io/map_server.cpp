@@ -157,10 +157,27 @@ double yaml_number(const YAML::Node& root, const std::string& key, const std::st
   throw FileError(file, key, "expected a finite number");
 }
 
+// An image given where its YAML is expected (`costmap info maze.png`): named as such rather than
+// reported as a YAML syntax error.
+void reject_image_file(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  char magic[8] = {};
+  in.read(magic, sizeof magic);
+  const std::string head(magic, static_cast<std::size_t>(in.gcount()));
+  const bool png = head.rfind("\x89PNG", 0) == 0;
+  const bool pgm = head.size() >= 2 && head[0] == 'P' && (head[1] == '2' || head[1] == '5');
+  if (png || pgm)
+    throw FileError(file.string(), "",
+                    std::string("a ") + (png ? "PNG" : "PGM") +
+                        " image, not a map_server YAML: give the YAML file that names the image (image:, "
+                        "resolution:, origin:)");
+}
+
 MapServerMetadata parse_metadata(const std::filesystem::path& yaml_path) {
   const std::string f = yaml_path.string();
   if (std::error_code ec; !std::filesystem::exists(yaml_path, ec))
     throw FileError(f, "", "cannot open the file for reading (does it exist?)");
+  reject_image_file(yaml_path);
   YAML::Node root;
   try {
     root = YAML::LoadFile(f);

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "bipednav/mapping/costmap2d.hpp"
+#include "bipednav/viz/figure_legend.hpp"
 
 namespace bipednav::runner {
 
@@ -12,7 +14,7 @@ viz::CanvasParams canvas_for(const mapping::GridGeometry& g) {
           std::clamp(800.0 / std::max(g.size_x_m(), g.size_y_m()), 20.0, 400.0)};
 }
 
-void draw_heightmap(viz::Canvas& c, const mapping::Heightmap& map) {
+HeightRange draw_heightmap(viz::Canvas& c, const mapping::Heightmap& map) {
   const auto& g = map.geometry();
   float lo = 1e9f, hi = -1e9f;
   for (float h : map.heights())
@@ -26,6 +28,7 @@ void draw_heightmap(viz::Canvas& c, const mapping::Heightmap& map) {
   grey.inflated = {0.0, 0.0, 0.0, 0.9};
   grey.unknown = {0.9, 0.7, 0.7, 1.0};
   c.grid(shade, grey);
+  return hi >= lo ? HeightRange{lo, hi} : HeightRange{};
 }
 
 void draw_footsteps(viz::Canvas& c, const footstep::BodyModel& body, const std::vector<footstep::Footstep>& steps,
@@ -46,6 +49,49 @@ void draw_footsteps(viz::Canvas& c, const footstep::BodyModel& body, const std::
 void draw_goal(viz::Canvas& c, const Pose2& goal) {
   c.circle(goal.position(), 0.05, viz::colors::kNone, viz::colors::kGreen, 3.0);
   c.arrow(goal, 0.15, viz::colors::kGreen, 2.0);
+}
+
+void draw_start(viz::Canvas& c, const Pose2& start) {
+  c.circle(start.position(), 0.05, viz::colors::kNone, viz::colors::kGrey, 3.0);
+  c.arrow(start, 0.15, viz::colors::kGrey, 2.0);
+}
+
+namespace {
+
+constexpr double kRampPx = 60.0;  // the height ramp under the legend
+
+std::vector<viz::LegendEntry> footstep_legend(bool with_path) {
+  using viz::LegendMark;
+  std::vector<viz::LegendEntry> e = {
+      {"left foot", viz::colors::kBlue, LegendMark::kBox, {0.15, 0.3, 0.9, 0.35}},
+      {"right foot", viz::colors::kRed, LegendMark::kBox, {0.85, 0.1, 0.1, 0.35}},
+      {"3D step (over / onto / down)", viz::colors::kOrange, LegendMark::kBox, viz::colors::kWhite},
+      {"start", viz::colors::kGrey, LegendMark::kArrow},
+      {"goal", viz::colors::kGreen, LegendMark::kArrow},
+      {"unobserved", {0.9, 0.7, 0.7, 1.0}, LegendMark::kBox}};
+  if (with_path) {
+    e.push_back({"last plan (faint)", {0.15, 0.3, 0.9, 0.5}, LegendMark::kBox, {0.15, 0.3, 0.9, 0.08}});
+    e.push_back({"body path", viz::colors::kPurple, LegendMark::kLine});
+    e.push_back({"robot at the end", viz::colors::kBlack, LegendMark::kArrow});
+    e.push_back({"contact", viz::colors::kRed, LegendMark::kRing});
+  }
+  return e;
+}
+
+}  // namespace
+
+viz::CanvasParams footstep_canvas(const mapping::GridGeometry& g, bool with_path) {
+  return viz::with_legend_bands(canvas_for(g), footstep_legend(with_path), kRampPx);
+}
+
+void draw_footstep_legend(viz::Canvas& c, const std::string& title, const HeightRange& heights, bool with_path) {
+  const viz::PixelRect rest = viz::draw_title_and_legend(c, title, footstep_legend(with_path));
+  char lo[32], hi[32];
+  const auto no_negative_zero = [](double v) { return std::abs(v) < 0.005 ? 0.0 : v; };
+  std::snprintf(lo, sizeof lo, "%.2f m", no_negative_zero(heights.lo_m));
+  std::snprintf(hi, sizeof hi, "%.2f m", no_negative_zero(heights.hi_m));
+  viz::draw_color_ramp(c, {rest.x, rest.y, std::min(rest.w - 8, 140.0), 12}, {0, 0, 0, 0.27}, {0, 0, 0, 0.9}, lo, hi,
+                       "height");
 }
 
 }  // namespace bipednav::runner

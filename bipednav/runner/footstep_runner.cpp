@@ -118,15 +118,22 @@ struct Loop {
       if (d.replanned && nav.plan().result.ok())
         (out.first_plan.steps.empty() ? out.first_plan : out.last_plan) = nav.plan();
       if (o.on_decision) o.on_decision(walker, nav, d);
-      if (d.done) return d.result;
+      if (d.done) {
+        bar.finish();
+        return d.result;
+      }
       const footstep::Footstep stance = nav.to_map(walker.odom_stance());
       const sim::StepExecution e =
           walker.step({stance.pose.inverse() * d.target.pose, d.action->duration_s, d.action->peak_m, d.action->name});
       record(e, *d.action, d.replanned);
       for (const sim::BodyContact& c : e.contacts)  // a sole on an edge: the robot falls
-        if (c.part == "landing_foot") return {Outcome::COLLISION, "the foot came down on an edge (fall)"};
+        if (c.part == "landing_foot") {
+          bar.finish();
+          return {Outcome::COLLISION, "the foot came down on an edge (fall)"};
+        }
       bar.update(static_cast<std::size_t>(walker.time_s()));
     }
+    bar.finish();
     return {Outcome::CTRL_PAT_EXCEEDED, "time limit reached before the goal"};
   }
 };
@@ -150,6 +157,7 @@ FootstepRunResult run_footstep_scenario(const sim::Scenario& scenario, const Foo
   out.start_feet = {loop.walker.stance(), loop.walker.swing()};
   out.body = loop.nav.planner().lattice().actions().body;
   out.goal = scenario.goals.back().pose;
+  out.start = scenario.start;
   out.summary.outcome = loop.run(options.time_limit_s.value_or(scenario.time_limit_s));
   if (out.last_plan.steps.empty()) out.last_plan = out.first_plan;
   out.map = loop.nav.map();
@@ -179,8 +187,8 @@ FootstepRunResult run_footstep_scenario(const sim::Scenario& scenario, const Foo
 }
 
 void write_footstep_figure(const std::filesystem::path& file, const FootstepRunResult& run) {
-  viz::Canvas c(canvas_for(run.map.geometry()));
-  draw_heightmap(c, run.map);
+  viz::Canvas c(footstep_canvas(run.map.geometry(), true));
+  const HeightRange heights = draw_heightmap(c, run.map);
   draw_footsteps(c, run.body, run.last_plan.steps, run.last_plan.actions, 0.08, 0.7);
   std::vector<footstep::Footstep> feet = run.start_feet;
   std::vector<std::string> actions = {""};
@@ -190,14 +198,15 @@ void write_footstep_figure(const std::filesystem::path& file, const FootstepRunR
   for (const auto& s : run.steps) path.push_back(s.body.position());
   if (path.size() > 1) c.polyline(path, viz::colors::kPurple, 1.5);
   for (const auto& k : run.contacts) c.circle(k.point, 0.03, viz::colors::kNone, viz::colors::kRed, 3.0);
+  draw_start(c, run.start);
   draw_goal(c, run.goal);
-  if (!run.steps.empty()) c.arrow(run.steps.back().body, 0.2, viz::colors::kRed, 3.0);
+  if (!run.steps.empty()) c.arrow(run.steps.back().body, 0.2, viz::colors::kBlack, 3.0);
   const auto& r = run.summary;
   char title[256];
   std::snprintf(title, sizeof title, "%s: %s, %zu steps, %.1f s, %zu replans, %d collisions", r.scenario.c_str(),
                 std::string(outcome_name(r.outcome.outcome)).c_str(), run.steps.size(), r.time_s, r.replans,
                 r.collisions);
-  c.text_px(10, 14, title, viz::colors::kBlack, 13.0);
+  draw_footstep_legend(c, title, heights, true);
   c.write_png(file);
 }
 

@@ -58,7 +58,7 @@ struct FootstepRunResult {
   Twist first_contact_velocity;            // the body's mean velocity over the step of the first contact
   mapping::Heightmap map;                  // the navigator's heightmap at the end
   footstep::BodyModel body;
-  Pose2 goal;
+  Pose2 start, goal;
   double max_body_z_m = 0.0;
   std::size_t views = 0, corrections = 0;
   std::size_t recoveries = 0;      // corrective steps after a failed plan (footstep_navigator.hpp)
@@ -79,7 +79,8 @@ navigation::FootstepNavigatorParams footstep_navigator_params(const std::filesys
 // tolerances and no body part collided.
 FootstepRunResult run_footstep_scenario(const sim::Scenario& scenario, const FootstepRunOptions& options);
 
-// The navigator's heightmap with the last plan (faint), the executed feet, the robot and the goal.
+// The navigator's heightmap with the last plan (faint), the executed feet, the robot, the start and
+// the goal, with a legend, a scale bar and the heights' grey ramp.
 void write_footstep_figure(const std::filesystem::path& file, const FootstepRunResult& run);
 
 }  // namespace bipednav::runner

@@ -158,6 +158,7 @@ void ReplayRecorder::record(const sim::Simulation& sim, const SensorFrame& frame
   f.goal = nav.goal();
   f.global_path = nav.global_path();
   f.local_trajectory = nav.local_trajectory();
+  if (data_.local_planner.empty()) data_.local_planner = std::string(nav.server().local_planner().name());
   for (const SE3& T : sim.actor_poses()) f.actors.push_back(pose2_from_se3(T));
   f.lidar = lidar_;
   for (const auto& [camera, points] : depth_) f.depth.insert(f.depth.end(), points.begin(), points.end());

@@ -9,84 +9,134 @@ namespace bipednav::runner {
 
 namespace {
 
-struct Panel {
-  Eigen::Vector2d offset;  // added to world coordinates
-};
+constexpr viz::Color kWorldFill{0.82, 0.82, 0.82, 1.0};
+constexpr viz::Color kTravelled{0.0, 0.55, 0.6, 1.0};
+constexpr viz::Color kStart{0.45, 0.45, 0.45, 1.0};
+constexpr viz::Color kLocalObstacle = viz::colors::kPurple;
+constexpr viz::Color kInflation{0.2, 0.35, 0.95, 0.6};
+constexpr double kWindowPadM = 0.5;  // world shown around the scenario's bounds
 
-std::vector<Eigen::Vector2d> shifted(const Path& p, const Eigen::Vector2d& off) {
+std::vector<Eigen::Vector2d> positions(const Path& p) {
   std::vector<Eigen::Vector2d> pts;
-  for (const auto& q : p.poses) pts.push_back(q.position() + off);
+  for (const auto& q : p.poses) pts.push_back(q.position());
   return pts;
 }
 
-// Draws a costmap shifted by `off` (the canvas draws grids at their own geometry).
-void draw_grid(viz::Canvas& c, mapping::Costmap2D map, const Eigen::Vector2d& off, const viz::CostColors& palette) {
-  mapping::GridGeometry g = map.geometry();
-  g.origin_x_m += off.x();
-  g.origin_y_m += off.y();
-  mapping::Costmap2D moved(g);
-  moved.data() = map.data();
-  c.grid(moved, palette);
-}
-
-void draw_panel(viz::Canvas& c, const sim::Scenario& s, const Snapshot& snap, const std::vector<TraceSample>& trace,
-                const Eigen::Vector2d& off, const std::string& title) {
-  sim::World world = s.world;
-  for (auto& geom : world.statics) geom.T_parent_shape.pretranslate(Eigen::Vector3d(off.x(), off.y(), 0.0));
-  for (auto& a : world.actors)
-    for (auto& w : a.trajectory) w.pose.pretranslate(Eigen::Vector3d(off.x(), off.y(), 0.0));
-  sim::WorldStyle style;
-  style.static_fill = {0.8, 0.8, 0.8, 1.0};
-  sim::draw_world(c, world, snap.t_s, style);
+void draw_maps(viz::Canvas& c, const Snapshot& snap) {
   viz::CostColors global_palette;
   global_palette.inflated = viz::colors::kNone;
   global_palette.inscribed = viz::colors::kNone;
-  draw_grid(c, snap.global_costmap, off, global_palette);
+  global_palette.unknown = viz::colors::kNone;
+  c.grid(snap.global_costmap, global_palette);
   viz::CostColors local_palette;
-  local_palette.lethal = viz::colors::kPurple;
+  local_palette.lethal = kLocalObstacle;
   local_palette.unknown = viz::colors::kNone;
-  draw_grid(c, snap.local_costmap, off, local_palette);
-  std::vector<Eigen::Vector2d> travelled;
-  for (const auto& t : trace)
-    if (t.t_s <= snap.t_s + 1e-9) travelled.push_back(t.true_pose.position() + off);
-  c.polyline(travelled, viz::colors::kPurple, 2.0);
-  c.polyline(shifted(snap.global_path, off), viz::colors::kRed, 2.0);
-  c.polyline(shifted(snap.local_trajectory, off), viz::colors::kGreen, 3.0);
+  c.grid(snap.local_costmap, local_palette);
+}
+
+void draw_markers(viz::Canvas& c, const sim::Scenario& s, double t_s) {
+  c.circle(s.start.position(), 0.12, viz::colors::kNone, kStart, 2.0);
+  c.arrow(s.start, 0.45, kStart, 2.5);
   const viz::Color goal_colors[2] = {viz::colors::kRed, viz::colors::kBlue};
   for (std::size_t i = 0; i < s.goals.size(); ++i) {
-    if (s.goals[i].time_s > snap.t_s) continue;
-    c.circle(s.goals[i].pose.position() + off, 0.2, viz::colors::kNone, goal_colors[std::min<std::size_t>(i, 1)], 3.0);
+    if (s.goals[i].time_s > t_s) continue;
+    const viz::Color col = goal_colors[std::min<std::size_t>(i, 1)];
+    c.circle(s.goals[i].pose.position(), std::max(s.goal_tolerance_m, 0.1), viz::colors::kNone, col, 3.0);
+    if (s.goals.size() > 1)
+      c.text(s.goals[i].pose.position() + Eigen::Vector2d(0.25, 0.25), "goal " + std::to_string(i + 1), col, 13.0);
   }
-  Pose2 robot = snap.pose;
-  robot.x += off.x();
-  robot.y += off.y();
-  c.arrow(robot, 0.5, viz::colors::kRed, 3.0);
-  const double top = s.bounds.max_y_m + off.y() + 0.6;
-  c.text({s.bounds.min_x_m + off.x(), top}, title, viz::colors::kBlack, 16.0);
+}
+
+void draw_contact(viz::Canvas& c, const RunResult& run, double t_s) {
+  if (!run.first_collision || run.first_collision->time_s > t_s + 1e-9) return;
+  const Eigen::Vector2d q = c.to_pixel(run.first_collision->point);
+  c.line_px(q - Eigen::Vector2d(7, 7), q + Eigen::Vector2d(7, 7), viz::colors::kRed, 3.0);
+  c.line_px(q - Eigen::Vector2d(7, -7), q + Eigen::Vector2d(7, -7), viz::colors::kRed, 3.0);
+}
+
+// One panel: the world and the navigator's state at snap.t_s, drawn into `rect` (clipped to it).
+void draw_panel(viz::Canvas& c, const sim::Scenario& s, const RunResult& run, const Snapshot& snap,
+                const viz::PixelRect& rect) {
+  c.begin_view(rect, s.bounds.min_x_m - kWindowPadM, s.bounds.max_y_m + kWindowPadM);
+  c.rect_px(rect, viz::colors::kWhite, viz::colors::kGrey, 1.0);
+  sim::WorldStyle style;
+  style.static_fill = kWorldFill;
+  sim::draw_world(c, s.world, snap.t_s, style);
+  draw_maps(c, snap);
+  std::vector<Eigen::Vector2d> travelled;
+  for (const auto& t : run.trace)
+    if (t.t_s <= snap.t_s + 1e-9) travelled.push_back(t.true_pose.position());
+  c.polyline(travelled, kTravelled, 2.0);
+  c.polyline(positions(snap.global_path), viz::colors::kRed, 2.0);
+  c.polyline(positions(snap.local_trajectory), viz::colors::kGreen, 3.0);
+  draw_markers(c, s, snap.t_s);
+  draw_contact(c, run, snap.t_s);
+  c.arrow(snap.pose, 0.5, viz::colors::kBlack, 3.0);
+  c.end_view();
+}
+
+void draw_title(viz::Canvas& c, const viz::PixelRect& rect, const std::string& text, double size_px) {
+  c.begin_view(rect, 0.0, 0.0);  // clips a long title to its own band
+  c.text_px(rect.x + 2, rect.bottom() - 6, text, viz::colors::kBlack, size_px);
+  c.end_view();
 }
 
 }  // namespace
 
-void write_run_figure(const std::filesystem::path& file, const sim::Scenario& s, const RunResult& run) {
-  const double w = s.bounds.size_x_m() + 1.5, h = s.bounds.size_y_m() + 2.0;
-  const bool in_row = w <= h * 1.5;  // wide worlds stack their panels vertically
-  const std::size_t panels = 1 + run.snapshots.size();
-  viz::CanvasParams cp;
-  cp.min_x_m = s.bounds.min_x_m - 0.5;
-  cp.min_y_m = s.bounds.min_y_m - 0.5 - (in_row ? 0.0 : h * (panels - 1));
-  cp.max_x_m = s.bounds.max_x_m + 0.5 + (in_row ? w * (panels - 1) : 0.0);
-  cp.max_y_m = s.bounds.max_y_m + 1.2;
-  cp.pixels_per_m = std::clamp(900.0 / std::max(w, h), 20.0, 120.0);
-  viz::Canvas canvas(cp);
-  char title[160];
-  std::snprintf(title, sizeof(title), "%s / %s: %s (%s) t=%.1f s", s.name.c_str(), run.robot.c_str(),
-                run.success ? "SUCCESS" : "FAILED", std::string(outcome_name(run.outcome.outcome)).c_str(), run.time_s);
-  draw_panel(canvas, s, run.final_state, run.trace, {0, 0}, title);
-  for (std::size_t i = 0; i < run.snapshots.size(); ++i) {
-    const Eigen::Vector2d off = in_row ? Eigen::Vector2d(w * (i + 1), 0) : Eigen::Vector2d(0, -h * (i + 1));
-    std::snprintf(title, sizeof(title), "replanning at t=%.1f s", run.snapshots[i].t_s);
-    draw_panel(canvas, s, run.snapshots[i], run.trace, off, title);
+std::string local_planner_label(const std::string& local_planner) {
+  return local_planner == "tracker" ? "path tracker" : local_planner == "teb" ? "TEB" : local_planner;
+}
+
+std::vector<viz::LegendEntry> run_figure_legend(const sim::Scenario& s, const RunResult& run,
+                                                const std::string& local_planner) {
+  using viz::LegendMark;
+  std::vector<viz::LegendEntry> e = {{"world (ground truth)", kWorldFill, LegendMark::kBox}};
+  if (!s.world.actors.empty()) e.push_back({"moving obstacle", sim::WorldStyle{}.actor_fill, LegendMark::kBox});
+  e.insert(e.end(),
+           {{"global-map obstacle", viz::colors::kBlack, LegendMark::kBox},
+            {"local-map obstacle", kLocalObstacle, LegendMark::kBox},
+            {"local-map inflation", kInflation, LegendMark::kBox},
+            {"global path", viz::colors::kRed, LegendMark::kLine},
+            {"local trajectory (" + local_planner_label(local_planner) + ")", viz::colors::kGreen, LegendMark::kLine},
+            {"travelled path (true)", kTravelled, LegendMark::kLine},
+            {"start", kStart, LegendMark::kArrow},
+            {"goal (tolerance)", viz::colors::kRed, LegendMark::kRing},
+            {"robot", viz::colors::kBlack, LegendMark::kArrow}});
+  if (run.first_collision) e.push_back({"first contact", viz::colors::kRed, LegendMark::kCross});
+  return e;
+}
+
+void write_run_figure(const std::filesystem::path& file, const sim::Scenario& s, const RunResult& run,
+                      const std::string& local_planner) {
+  const std::vector<viz::LegendEntry> legend = run_figure_legend(s, run, local_planner);
+  viz::FigureLayoutParams lp;
+  {
+    const viz::Canvas scratch(viz::CanvasParams{0, 0, 1, 1, 1});  // measures the legend's text
+    const viz::PixelRect box = viz::legend_extent(scratch, legend);
+    lp.legend_w_px = std::max(box.w, 130.0);
+    lp.legend_h_px = box.h + 60.0;  // and the scale bar under it
   }
+  const std::size_t panels = 1 + run.snapshots.size();
+  const viz::FigureLayout layout =
+      viz::figure_layout(s.bounds.size_x_m() + 2 * kWindowPadM, s.bounds.size_y_m() + 2 * kWindowPadM, panels, lp);
+  viz::CanvasParams cp;
+  cp.min_x_m = 0.0, cp.min_y_m = 0.0, cp.margin_px = 0;
+  cp.pixels_per_m = layout.pixels_per_m;
+  cp.max_x_m = layout.width_px / layout.pixels_per_m, cp.max_y_m = layout.height_px / layout.pixels_per_m;
+  viz::Canvas canvas(cp);
+  char text[200];
+  std::snprintf(text, sizeof text, "%s / %s: %s (%s), t = %.1f s, %d collision%s", s.name.c_str(), run.robot.c_str(),
+                run.success ? "SUCCESS" : "FAILED", std::string(outcome_name(run.outcome.outcome)).c_str(), run.time_s,
+                run.collisions, run.collisions == 1 ? "" : "s");
+  draw_title(canvas, layout.header, text, 16.0);
+  for (std::size_t i = 0; i < panels; ++i) {
+    const Snapshot& snap = i == 0 ? run.final_state : run.snapshots[i - 1];
+    std::snprintf(text, sizeof text, i == 0 ? "end of the run, t = %.1f s" : "replanning at t = %.1f s", snap.t_s);
+    draw_title(canvas, layout.titles[i], text, 13.0);
+    draw_panel(canvas, s, run, snap, layout.panels[i]);
+  }
+  const viz::PixelRect box = viz::draw_legend(canvas, layout.legend.x, layout.legend.y, legend);
+  viz::draw_scale_bar(canvas, layout.legend.x + 6, box.bottom() + 16, layout.legend.w - 12);
   canvas.write_png(file);
 }
 

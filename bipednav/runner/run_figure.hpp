@@ -1,15 +1,29 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
 
 #include "bipednav/runner/scenario_runner.hpp"
+#include "bipednav/viz/figure_layout.hpp"
+#include "bipednav/viz/figure_legend.hpp"
 
 namespace bipednav::runner {
 
-// A figure like the thesis' Fig. 6.1: the world (grey, for reference), global-map obstacles
-// (black), local-map obstacles (purple) and inflation (blue), the global path (red), the local
-// trajectory (green), the travelled path (purple), the goals (red, then blue circles) and the
-// robot (red arrow) at the end of the run, followed by one panel per replanning snapshot.
-void write_run_figure(const std::filesystem::path& file, const sim::Scenario& scenario, const RunResult& run);
+// A figure like the thesis' Fig. 6.1, one panel at the end of the run and one per replanning
+// snapshot, laid out for the world's aspect ratio (viz::figure_layout) with a legend and a scale
+// bar: the world (light grey, for reference) and its moving obstacles (orange), global-map
+// obstacles (black), local-map obstacles (purple) and inflation (blue), the global path (red), the
+// local trajectory (green, named after `local_planner`: "teb" or "tracker"), the travelled path
+// (teal), the start (grey arrow), the goals (rings of the goal tolerance), the robot (black arrow)
+// and the first contact (red cross).
+void write_run_figure(const std::filesystem::path& file, const sim::Scenario& scenario, const RunResult& run,
+                      const std::string& local_planner = "teb");
+
+// The legend entries of that figure: the layers it shows (moving obstacles and the first contact
+// only when the run has them).
+std::vector<viz::LegendEntry> run_figure_legend(const sim::Scenario& scenario, const RunResult& run,
+                                                const std::string& local_planner);
+// "TEB" or "path tracker" for a local planner's name.
+std::string local_planner_label(const std::string& local_planner);
 
 }  // namespace bipednav::runner

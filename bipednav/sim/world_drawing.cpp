@@ -134,10 +134,45 @@ Bounds2 world_bounds(const World& world, double max_z_m) {
   return b;
 }
 
+double top_height_m(const Geometry& g, const SE3& T_world_parent) {
+  const SE3 T = T_world_parent * g.T_parent_shape;
+  double top = 0.0;
+  if (const auto* m = std::get_if<Mesh>(&g.shape)) {
+    for (const Eigen::Vector3f& v : m->vertices) top = std::max(top, (T * v.cast<double>()).z());
+    return top;
+  }
+  for (const Eigen::Vector3d& s : solid_samples(g.shape)) top = std::max(top, (T * s).z());
+  return top;
+}
+
+viz::Color height_fill(const WorldStyle& style, double top_m) {
+  const double f = std::clamp(top_m / style.full_height_m, 0.0, 1.0);
+  const viz::Color &a = style.low_fill, &b = style.static_fill;
+  return {a.r + f * (b.r - a.r), a.g + f * (b.g - a.g), a.b + f * (b.b - a.b), a.a + f * (b.a - a.a)};
+}
+
+namespace {
+
+void draw_statics(viz::Canvas& canvas, const World& world, const WorldStyle& style) {
+  if (!style.shade_by_height) {
+    for (const Geometry& g : world.statics)
+      for (const Polygon2& poly : footprint(g, SE3::Identity(), style.max_z_m))
+        canvas.polygon(poly, style.static_fill, style.static_fill, 0.5);
+    return;
+  }
+  std::vector<std::pair<double, const Geometry*>> by_height;
+  for (const Geometry& g : world.statics) by_height.emplace_back(top_height_m(g, SE3::Identity()), &g);
+  std::stable_sort(by_height.begin(), by_height.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (const auto& [top, g] : by_height)
+    for (const Polygon2& poly : footprint(*g, SE3::Identity(), style.max_z_m))
+      canvas.polygon(poly, height_fill(style, top), viz::colors::kGrey, 0.8);
+}
+
+}  // namespace
+
 void draw_world(viz::Canvas& canvas, const World& world, double t_s, const WorldStyle& style) {
-  for (const Geometry& g : world.statics)
-    for (const Polygon2& poly : footprint(g, SE3::Identity(), style.max_z_m))
-      canvas.polygon(poly, style.static_fill, style.static_fill, 0.5);
+  draw_statics(canvas, world, style);
   for (const Actor& a : world.actors) {
     Polygon2 path;
     for (const Waypoint& w : a.trajectory) path.push_back(w.pose.translation().head<2>());

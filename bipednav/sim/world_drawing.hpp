@@ -34,7 +34,17 @@ struct WorldStyle {
   viz::Color actor_fill{0.9, 0.45, 0.1, 0.9};
   viz::Color actor_path{0.9, 0.45, 0.1, 0.5};
   double max_z_m = 2.0;
+  // Shade each static by the height of its top (low_fill at the ground, static_fill at
+  // full_height_m and above), lowest first, outlined: stairs read as steps, not as one wall.
+  bool shade_by_height = false;
+  viz::Color low_fill{0.88, 0.88, 0.88, 1.0};
+  double full_height_m = 1.0;
 };
+
+// The height of a geometry's top placed at T_world_parent (0 for planes).
+double top_height_m(const Geometry& geometry, const SE3& T_world_parent);
+// The colour of a static whose top is at `top_m` under a height-shaded style.
+viz::Color height_fill(const WorldStyle& style, double top_m);
 
 // Draws the static footprints, and the actors at time `t_s` with their trajectories.
 void draw_world(viz::Canvas& canvas, const World& world, double t_s = 0.0, const WorldStyle& style = {});

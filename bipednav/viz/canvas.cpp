@@ -15,16 +15,19 @@ void CanvasParams::validate() const {
   require(std::isfinite(min_y_m) && std::isfinite(max_y_m) && max_y_m > min_y_m, "max_y_m", "> min_y_m, finite");
   require(pixels_per_m > 0.0, "pixels_per_m", "> 0");
   require(margin_px >= 0, "margin_px", ">= 0");
+  const auto band = [](int px) { return px >= 0 && px <= 20000; };
+  require(band(top_px) && band(right_px) && band(bottom_px), "top_px", "bands of 0..20000 pixels (and right_px, bottom_px)");
   const double w = (max_x_m - min_x_m) * pixels_per_m, h = (max_y_m - min_y_m) * pixels_per_m;
   require(w <= 20000 && h <= 20000, "pixels_per_m", "a picture of at most 20000 x 20000 pixels");
 }
 
 Canvas::Canvas(const CanvasParams& params) : params_(params) {
   params_.validate();
-  width_px_ =
-      static_cast<int>(std::ceil((params_.max_x_m - params_.min_x_m) * params_.pixels_per_m)) + 2 * params_.margin_px;
-  height_px_ =
-      static_cast<int>(std::ceil((params_.max_y_m - params_.min_y_m) * params_.pixels_per_m)) + 2 * params_.margin_px;
+  width_px_ = static_cast<int>(std::ceil((params_.max_x_m - params_.min_x_m) * params_.pixels_per_m)) +
+              2 * params_.margin_px + params_.right_px;
+  height_px_ = static_cast<int>(std::ceil((params_.max_y_m - params_.min_y_m) * params_.pixels_per_m)) +
+               2 * params_.margin_px + params_.top_px + params_.bottom_px;
+  end_view();
   const cairo_rectangle_t extents{0, 0, static_cast<double>(width_px_), static_cast<double>(height_px_)};
   recording_ = cairo_recording_surface_create(CAIRO_CONTENT_COLOR_ALPHA, &extents);
   cr_ = cairo_create(recording_);
@@ -40,8 +43,34 @@ Canvas::~Canvas() {
 }
 
 Eigen::Vector2d Canvas::to_pixel(const Eigen::Vector2d& w) const {
-  return {params_.margin_px + (w.x() - params_.min_x_m) * params_.pixels_per_m,
-          params_.margin_px + (params_.max_y_m - w.y()) * params_.pixels_per_m};
+  return {view_origin_px_.x() + (w.x() - view_min_x_m_) * params_.pixels_per_m,
+          view_origin_px_.y() + (view_max_y_m_ - w.y()) * params_.pixels_per_m};
+}
+
+PixelRect Canvas::world_rect() const {
+  const double m = params_.margin_px;
+  return {m, m + params_.top_px, (params_.max_x_m - params_.min_x_m) * params_.pixels_per_m,
+          (params_.max_y_m - params_.min_y_m) * params_.pixels_per_m};
+}
+
+void Canvas::begin_view(const PixelRect& rect, double min_x_m, double max_y_m) {
+  if (in_view_) end_view();
+  view_origin_px_ = {rect.x, rect.y};
+  view_min_x_m_ = min_x_m;
+  view_max_y_m_ = max_y_m;
+  cairo_save(cr_);
+  cairo_rectangle(cr_, rect.x, rect.y, rect.w, rect.h);
+  cairo_clip(cr_);
+  in_view_ = true;
+}
+
+void Canvas::end_view() {
+  if (in_view_) cairo_restore(cr_);
+  in_view_ = false;
+  const PixelRect r = world_rect();
+  view_origin_px_ = {r.x, r.y};
+  view_min_x_m_ = params_.min_x_m;
+  view_max_y_m_ = params_.max_y_m;
 }
 
 void Canvas::set_color(Color c) { cairo_set_source_rgba(cr_, c.r, c.g, c.b, c.a); }
@@ -83,10 +112,7 @@ void Canvas::line(const Eigen::Vector2d& a, const Eigen::Vector2d& b, Color stro
 }
 
 void Canvas::circle(const Eigen::Vector2d& centre, double radius_m, Color fill, Color stroke, double width_px) {
-  const Eigen::Vector2d q = to_pixel(centre);
-  cairo_new_sub_path(cr_);
-  cairo_arc(cr_, q.x(), q.y(), radius_m * params_.pixels_per_m, 0.0, 2.0 * M_PI);
-  fill_and_stroke(fill, stroke, width_px);
+  circle_px(to_pixel(centre), radius_m * params_.pixels_per_m, fill, stroke, width_px);
 }
 
 void Canvas::points(const std::vector<Eigen::Vector2d>& pts, Color fill, double size_px) {
@@ -121,6 +147,33 @@ void Canvas::text_px(double x_px, double y_px, const std::string& s, Color color
   cairo_move_to(cr_, x_px, y_px);
   cairo_show_text(cr_, s.c_str());
   cairo_new_path(cr_);
+}
+
+double Canvas::text_width_px(const std::string& s, double size_px) const {
+  cairo_save(cr_);
+  cairo_select_font_face(cr_, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+  cairo_set_font_size(cr_, size_px);
+  cairo_text_extents_t e;
+  cairo_text_extents(cr_, s.c_str(), &e);
+  cairo_restore(cr_);
+  return e.x_advance;
+}
+
+void Canvas::rect_px(const PixelRect& r, Color fill, Color stroke, double width_px) {
+  cairo_rectangle(cr_, r.x, r.y, r.w, r.h);
+  fill_and_stroke(fill, stroke, width_px);
+}
+
+void Canvas::line_px(const Eigen::Vector2d& a, const Eigen::Vector2d& b, Color stroke, double width_px) {
+  cairo_move_to(cr_, a.x(), a.y());
+  cairo_line_to(cr_, b.x(), b.y());
+  fill_and_stroke(colors::kNone, stroke, width_px);
+}
+
+void Canvas::circle_px(const Eigen::Vector2d& q, double radius_px, Color fill, Color stroke, double width_px) {
+  cairo_new_sub_path(cr_);
+  cairo_arc(cr_, q.x(), q.y(), radius_px, 0.0, 2.0 * M_PI);
+  fill_and_stroke(fill, stroke, width_px);
 }
 
 Color cost_color(std::uint8_t cost, const CostColors& palette) {

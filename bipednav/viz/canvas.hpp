@@ -48,8 +48,17 @@ struct CanvasParams {
   double pixels_per_m = 50.0;
   int margin_px = 20;
   Color background = colors::kWhite;
+  // Bands outside the world's window: a title above it, a legend right of it, room below it.
+  int top_px = 0, right_px = 0, bottom_px = 0;
 
   void validate() const;
+};
+
+// A rectangle of the picture in pixels, (0, 0) the top-left corner.
+struct PixelRect {
+  double x = 0.0, y = 0.0, w = 0.0, h = 0.0;
+  double right() const { return x + w; }
+  double bottom() const { return y + h; }
 };
 
 // A top-view drawing in world coordinates (metres, y up, x right). Everything is recorded and
@@ -65,6 +74,13 @@ class Canvas {
   int height_px() const { return height_px_; }
   const CanvasParams& params() const { return params_; }
   Eigen::Vector2d to_pixel(const Eigen::Vector2d& world) const;
+  // The world's window in the picture (without the margin and the bands).
+  PixelRect world_rect() const;
+
+  // Draws the world into `rect` (a figure panel) until end_view(): the point (min_x_m, max_y_m) at
+  // the rectangle's top-left corner, at the canvas' scale, everything clipped to the rectangle.
+  void begin_view(const PixelRect& rect, double min_x_m, double max_y_m);
+  void end_view();
 
   void polygon(const std::vector<Eigen::Vector2d>& pts, Color fill, Color stroke = colors::kNone,
                double width_px = 1.0);
@@ -77,8 +93,15 @@ class Canvas {
   // An arrow from the pose's position along its heading.
   void arrow(const Pose2& pose, double length_m, Color stroke, double width_px = 2.0);
   void text(const Eigen::Vector2d& world, const std::string& s, Color color, double size_px = 12.0);
-  // Text at a pixel position (titles, legends); (0, 0) is the top-left corner.
+  // Text at a pixel position (titles, legends); (0, 0) is the top-left corner; y is the baseline.
   void text_px(double x_px, double y_px, const std::string& s, Color color, double size_px = 12.0);
+  // The width of a text in pixels.
+  double text_width_px(const std::string& s, double size_px = 12.0) const;
+  // Pixel-positioned shapes (legends, scale bars).
+  void rect_px(const PixelRect& r, Color fill, Color stroke = colors::kNone, double width_px = 1.0);
+  void line_px(const Eigen::Vector2d& a_px, const Eigen::Vector2d& b_px, Color stroke, double width_px = 1.0);
+  void circle_px(const Eigen::Vector2d& centre_px, double radius_px, Color fill, Color stroke = colors::kNone,
+                 double width_px = 1.0);
   // Every cell of the grid in its cost class colour (one image, nearest-neighbour scaled).
   void grid(const mapping::Costmap2D& costmap, const CostColors& palette = {});
 
@@ -91,6 +114,10 @@ class Canvas {
   void fill_and_stroke(Color fill, Color stroke, double width_px);
 
   CanvasParams params_;
+  // The current view: where (view_min_x_m_, view_max_y_m_) is drawn.
+  Eigen::Vector2d view_origin_px_{0, 0};
+  double view_min_x_m_ = 0.0, view_max_y_m_ = 0.0;
+  bool in_view_ = false;
   int width_px_ = 0;
   int height_px_ = 0;
   cairo_surface_t* recording_ = nullptr;

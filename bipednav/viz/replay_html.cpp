@@ -208,6 +208,7 @@ std::string replay_json(const ReplayData& data, const ReplayHtmlParams& params) 
   j["frames"] = frames_json(data, r);
   j["global_maps"] = grids_json(data.global_maps);
   j["local_maps"] = grids_json(data.local_maps);
+  if (!data.local_planner.empty()) j["local_planner"] = data.local_planner;
   if (data.footsteps) {
     j["footsteps"] = footsteps_json(*data.footsteps, r);
     j["height_maps"] = grids_json(data.footsteps->height_maps);

@@ -91,6 +91,7 @@ struct ReplayData {
   std::vector<ReplayFrame> frames;  // sorted by time
   std::vector<ReplayGrid> global_maps, local_maps;
   std::optional<ReplayFootsteps> footsteps;  // humanoid footstep runs only
+  std::string local_planner;                 // wheeled runs: the local planner that ran ("teb", "tracker")
 };
 
 struct ReplayHtmlParams {

@@ -5,17 +5,9 @@
 #include <cstdio>
 
 #include "bipednav/common/error.hpp"
+#include "bipednav/viz/figure_legend.hpp"
 
 namespace bipednav::viz {
-
-double scale_bar_length_m(double span_m) {
-  if (!(span_m > 0.0 && std::isfinite(span_m))) return 1.0;
-  const double quarter = span_m / 4.0;
-  const double decade = std::pow(10.0, std::floor(std::log10(quarter)));
-  for (const double m : {5.0, 2.0, 1.0})
-    if (m * decade <= quarter) return m * decade;
-  return decade;
-}
 
 void write_trajectory_plot(const std::filesystem::path& file, const std::vector<PlotLine>& lines,
                            const std::string& title, double size_px) {
@@ -45,26 +37,11 @@ void write_trajectory_plot(const std::filesystem::path& file, const std::vector<
     if (!l.xy.empty()) c.circle(l.xy.front(), 4.0 / cp.pixels_per_m, l.color);
   }
   c.text_px(cp.margin_px, 22, title, colors::kBlack, 14.0);
-  // The legend: a swatch (a short line, its pixel ends taken back to world coordinates) and the label.
-  const auto world_of = [&](double px, double py) {
-    return Eigen::Vector2d(cp.min_x_m + (px - cp.margin_px) / cp.pixels_per_m,
-                           cp.max_y_m - (py - cp.margin_px) / cp.pixels_per_m);
-  };
-  const double x0 = cp.margin_px;
-  for (std::size_t i = 0; i < lines.size(); ++i) {
-    const double y = 44.0 + 18.0 * static_cast<double>(i);
-    c.line(world_of(x0, y - 4.0), world_of(x0 + 24.0, y - 4.0), lines[i].color, 3.0);
-    c.text_px(x0 + 32.0, y, lines[i].label, colors::kBlack, 12.0);
-  }
-  // Scale bar, bottom right.
-  const double bar_m = scale_bar_length_m(cp.max_x_m - cp.min_x_m);
-  const Eigen::Vector2d end{cp.max_x_m - 0.05 * span, cp.min_y_m + 0.04 * span};
-  const Eigen::Vector2d start{end.x() - bar_m, end.y()};
-  c.line(start, end, colors::kBlack, 3.0);
-  char label[32];
-  std::snprintf(label, sizeof(label), "%g m", bar_m);
-  const Eigen::Vector2d at = c.to_pixel(start);
-  c.text_px(at.x(), at.y() - 8.0, label, colors::kBlack, 12.0);
+  std::vector<LegendEntry> entries;
+  for (const PlotLine& l : lines) entries.push_back({l.label, l.color, LegendMark::kLine});
+  draw_legend(c, cp.margin_px, 32.0, entries);
+  // Scale bar, bottom left, at most a quarter of the view wide.
+  draw_scale_bar(c, cp.margin_px, c.height_px() - cp.margin_px + 8.0, 0.25 * (span + 2.0 * pad) * cp.pixels_per_m);
   c.write_png(file);
 }
 

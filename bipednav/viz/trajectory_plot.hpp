@@ -23,8 +23,4 @@ struct PlotLine {
 void write_trajectory_plot(const std::filesystem::path& file, const std::vector<PlotLine>& lines,
                            const std::string& title, double size_px = 800.0);
 
-// The round scale-bar length for a view `span_m` wide: the largest 1, 2 or 5 x 10^k m that is at
-// most a quarter of it.
-double scale_bar_length_m(double span_m);
-
 }  // namespace bipednav::viz

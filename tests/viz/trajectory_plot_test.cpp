@@ -10,13 +10,6 @@
 namespace bipednav::viz {
 namespace {
 
-TEST(TrajectoryPlot, ScaleBarIsARoundQuarterOfTheView) {
-  EXPECT_DOUBLE_EQ(scale_bar_length_m(13.0), 2.0);
-  EXPECT_DOUBLE_EQ(scale_bar_length_m(100.0), 20.0);
-  EXPECT_DOUBLE_EQ(scale_bar_length_m(25.0), 5.0);
-  EXPECT_NEAR(scale_bar_length_m(0.3), 0.05, 1e-15);
-}
-
 TEST(TrajectoryPlot, WritesAPngOfTheLines) {
   const auto file = std::filesystem::temp_directory_path() / "bipednav_trajectory_plot_test.png";
   std::filesystem::remove(file);

@@ -1,0 +1,129 @@
+# The command line's exit statuses (README "Command line"): 0 success, 1 the task failed, 2 bad
+# usage or input, naming the option or file. Included from tests/CMakeLists.txt when the CLI is built.
+set(_cli_dir ${CMAKE_CURRENT_SOURCE_DIR}/cli)
+set(_cli_out ${CMAKE_CURRENT_BINARY_DIR}/cli_out)
+set(_data ${CMAKE_CURRENT_SOURCE_DIR}/data)
+set(_maze ${_data}/teb_tutorials/maps/maze.yaml)
+set(_cloud ${_data}/pcl/sac_plane_test.pcd)
+set(_pair ${_data}/lidar/fast_gicp)
+set(_gradient ${_data}/heightmaps/grid_map/linearGradient_horizontal.png)
+set(_t3_world ${PROJECT_SOURCE_DIR}/scenarios/worlds/turtlebot3/worlds/turtlebot3_world.world)
+
+# bipednav_cli(NAME STATUS REGEX ARG...): `bipednav ARG...` exits with STATUS, its output matching REGEX.
+function(bipednav_cli name status regex)
+  add_test(NAME cli_${name} COMMAND sh ${_cli_dir}/expect_exit.sh ${status} "${regex}" $<TARGET_FILE:bipednav> ${ARGN})
+  set_tests_properties(cli_${name} PROPERTIES TIMEOUT 300 LABELS cli)
+endfunction()
+
+# Per command: a success (0), a task failure (1) where the command has a task that can fail, and a
+# usage or input error (2).
+bipednav_cli(run_success 0 "SUCCESS \\(SUCCESS" run hexagon_static --quiet --out ${_cli_out}/run)
+bipednav_cli(run_task_failed 1 "FAILED \\(PAT_EXCEEDED" run hexagon_static --time-limit 2 --out ${_cli_out}/run_short)
+bipednav_cli(run_bad_number 2 "--time-limit: expected a finite number > 0, got '-5'" run hexagon_static --time-limit -5)
+bipednav_cli(run_negative_seed 2 "--seed: expected a whole number >= 0" run hexagon_static --seed -1)
+bipednav_cli(run_world_needs_start 2 "--world requires --start" run --world ${_t3_world} --goal 1,1)
+bipednav_cli(run_goal_in_obstacle 2 "the goal \\(0.00, 0.00\\) is inside 'turtlebot3_world::" run --world ${_t3_world}
+             --start -2,-0.5 --goal 0,0 --out ${_cli_out}/run_world)
+bipednav_cli(run_unwritable_out 2 "--out /proc/bipednav: cannot create the directory" run hexagon_static --out /proc/bipednav)
+bipednav_cli(run_footsteps_success 0 "SUCCESS \\(SUCCESS" run nao_stairs --out ${_cli_out}/run_nao)
+bipednav_cli(run_footsteps_task_failed 1 "FAILED \\(PAT_EXCEEDED" run nao_stairs --time-limit 2 --out ${_cli_out}/run_nao_short)
+bipednav_cli(params_success 0 "^# bipednav navigation parameters" params)
+bipednav_cli(params_no_machine_path 0 "# behavior_tree: the built-in config/behavior_trees/navigate.xml" params)
+bipednav_cli(params_humanoid_layout 2 "reads the footstep navigator's layout"
+             params --robot nao --params ${_data}/navigator_params/override.yaml)
+bipednav_cli(sim_success 0 "1.0 s simulated" sim hexagon_static --duration 1 --quiet --out ${_cli_out}/sim)
+bipednav_cli(sim_bad_scenario 2 "no scenario 'no_such_scenario'" sim no_such_scenario)
+bipednav_cli(route_success 0 "margin \\+0.348 m" route hexagon_static)
+bipednav_cli(route_task_failed 1 "no route" route --world ${_t3_world} --start -2,-0.5 --goal 0,0)
+bipednav_cli(route_world_needs_start 2 "--world requires --start" route --world ${_t3_world} --goal 1,1)
+bipednav_cli(cloud_filter_success 0 "3283 points, 3283 after the pass-through, 2426 after the voxel grid"
+             cloud filter ${_cloud} ${_cli_out}/filtered.pcd --voxel 0.02)
+bipednav_cli(cloud_filter_bad_band 2 "--zmin: expected a number <= --zmax"
+             cloud filter ${_cloud} ${_cli_out}/filtered.pcd --zmin 1 --zmax 0)
+bipednav_cli(cloud_segment_success 0 "2512 of 3283 points within 0.030 m" cloud segment ${_cloud})
+bipednav_cli(cloud_segment_task_failed 1 "no plane found" cloud segment ${_cloud} --zmin 100)
+bipednav_cli(cloud_segment_bad_probability 2 "--probability: expected a finite number in \\(0, 1\\)"
+             cloud segment ${_cloud} --probability 1)
+bipednav_cli(costmap_info_success 0 "\"width_cells\": 200" costmap info ${_maze})
+bipednav_cli(costmap_info_image 2 "a PNG image, not a map_server YAML" costmap info ${_data}/teb_tutorials/maps/maze.png)
+bipednav_cli(costmap_inflate_success 0 "\"inscribed\"" costmap inflate ${_maze} --inscribed-radius 0.2 --inflation-radius 0.5
+             --cost-scaling 2 --out ${_cli_out}/inflated.png)
+bipednav_cli(costmap_inflate_bad_radii 2 "--inflation-radius: expected >= --inscribed-radius"
+             costmap inflate ${_maze} --inscribed-radius 0.3 --inflation-radius 0.1)
+bipednav_cli(costmap_inflate_old_flag 2 "--inscribed" costmap inflate ${_maze} --inscribed 0.3)
+bipednav_cli(plan_grid_success 0 "^SUCCESS \\(dstar_lite\\)" plan grid ${_maze} --start 1,1 --goal 8,8 --out ${_cli_out}/plan.png)
+bipednav_cli(plan_grid_blocked_goal 1 "^BLOCKED_GOAL" plan grid ${_maze} --start 1,1 --goal 0.02,5)
+bipednav_cli(plan_grid_off_the_map 1 "^OUT_OF_MAP" plan grid ${_maze} --start 1,1 --goal 20,5)
+bipednav_cli(plan_grid_bad_pose 2 "--goal: expected x,y or x,y,yaw" plan grid ${_maze} --start 1,1 --goal 8)
+bipednav_cli(plan_movingai_success 0 "160/160 rows solved"
+             plan movingai ${_data}/movingai/maps/arena.map ${_data}/movingai/scen/arena.map.scen)
+bipednav_cli(plan_movingai_missing_file 2 "scen: File does not exist" plan movingai ${_data}/movingai/maps/arena.map no.scen)
+bipednav_cli(local_plan_success 0 "\"reached\": true" local plan ${_maze} --start 1,1 --goal 8,8 --out ${_cli_out}/local.png)
+bipednav_cli(local_plan_task_failed 1 "\"reached\": false" local plan ${_maze} --start 1,1 --goal 8,8 --steps 5)
+bipednav_cli(local_plan_bad_planner 2 "--planner: teb2 not in" local plan ${_maze} --start 1,1 --goal 8,8 --planner teb2)
+bipednav_cli(register_success 0 "converged after" register ${_pair}/251370668.pcd ${_pair}/251371071.pcd)
+bipednav_cli(register_bad_threads 2 "--threads: expected a whole number in \\[1, 256\\]"
+             register ${_pair}/251370668.pcd ${_pair}/251371071.pcd --threads 0)
+bipednav_cli(footsteps_success 0 "^SUCCESS: footstep plan" footsteps ${_gradient} --start 1,1 --goal 2.5,1.5
+             --min-height -0.01 --max-height 0 --out ${_cli_out}/footsteps.png)
+bipednav_cli(footsteps_task_failed 1 "^BLOCKED_GOAL" footsteps ${_gradient} --start 0.3,0.5 --goal 1.5,0.5
+             --out ${_cli_out}/footsteps_failed.png)
+bipednav_cli(footsteps_map_server_yaml 2 "this is a map_server occupancy map" footsteps ${_maze} --start 1,1 --goal 2,2
+             --out ${_cli_out}/footsteps_maze.png)
+bipednav_cli(bench_local_bad_cycles 2 "--cycles: expected a whole number >= 1" bench local --cycles 0)
+
+# Every numeric option fed a negative number, NaN and zero (numeric_flag.sh): NaN always exits 2
+# naming the option; the table gives the status for -1 and for 0 (0 or 1 where the value is valid).
+# bipednav_numeric(NAME FLAG NEGATIVE_STATUS ZERO_STATUS ARG...): ARG... is a command that runs (fast) as given.
+function(bipednav_numeric name flag negative zero)
+  add_test(NAME cli_numeric_${name} COMMAND sh ${_cli_dir}/numeric_flag.sh ${flag} ${negative} ${zero}
+                                            $<TARGET_FILE:bipednav> ${ARGN})
+  set_tests_properties(cli_numeric_${name} PROPERTIES TIMEOUT 300 LABELS cli)
+endfunction()
+#               test name                 flag            -1 0  command
+bipednav_numeric(run_seed                  --seed             2 1  run hexagon_static --time-limit 0.5 --out ${_cli_out}/num_run)  # 0 is a seed; the run times out
+bipednav_numeric(run_time_limit            --time-limit       2 2  run hexagon_static --out ${_cli_out}/num_run)
+bipednav_numeric(sim_duration              --duration         2 2  sim hexagon_static --out ${_cli_out}/num_sim)
+bipednav_numeric(sim_step                  --step             2 2  sim hexagon_static --out ${_cli_out}/num_sim)
+bipednav_numeric(route_resolution          --resolution       2 2  route hexagon_static)
+bipednav_numeric(cloud_filter_voxel        --voxel            2 0  cloud filter ${_cloud} ${_cli_out}/num.pcd)  # 0: no voxel grid
+bipednav_numeric(cloud_filter_range        --range            2 2  cloud filter ${_cloud} ${_cli_out}/num.pcd)
+bipednav_numeric(cloud_filter_zmin         --zmin             0 0  cloud filter ${_cloud} ${_cli_out}/num.pcd)  # heights may be negative
+bipednav_numeric(cloud_filter_zmax         --zmax             0 0  cloud filter ${_cloud} ${_cli_out}/num.pcd)
+bipednav_numeric(cloud_segment_threshold   --threshold        2 2  cloud segment ${_cloud})
+bipednav_numeric(cloud_segment_probability --probability      2 2  cloud segment ${_cloud})
+bipednav_numeric(cloud_segment_max_iterations --max-iterations   2 2  cloud segment ${_cloud})
+bipednav_numeric(cloud_segment_seed        --seed             2 0  cloud segment ${_cloud})  # 0 is a seed
+bipednav_numeric(costmap_inflate_inscribed_radius --inscribed-radius 2 0  costmap inflate ${_maze})  # a point robot
+bipednav_numeric(costmap_inflate_inflation_radius --inflation-radius 2 2  costmap inflate ${_maze})  # 0 < the inscribed radius 0.2
+bipednav_numeric(costmap_inflate_cost_scaling --cost-scaling     2 0  costmap inflate ${_maze})  # 0: flat inflation
+bipednav_numeric(costmap_inflate_scale     --scale            2 2  costmap inflate ${_maze} --out ${_cli_out}/num.png)
+bipednav_numeric(plan_grid_inscribed_radius --inscribed-radius 2 0  plan grid ${_maze} --start 1,1 --goal 8,8)
+bipednav_numeric(plan_grid_inflation_radius --inflation-radius 2 2  plan grid ${_maze} --start 1,1 --goal 8,8)
+bipednav_numeric(plan_grid_cost_scaling    --cost-scaling     2 0  plan grid ${_maze} --start 1,1 --goal 8,8)
+bipednav_numeric(plan_grid_cost_weight     --cost-weight      2 0  plan grid ${_maze} --start 1,1 --goal 8,8)  # 0: shortest path
+bipednav_numeric(local_plan_steps          --steps            2 2  local plan ${_maze} --start 1,1 --goal 8,8)
+bipednav_numeric(local_plan_threads        --threads          2 2  local plan ${_maze} --start 1,1 --goal 8,8 --steps 1)
+bipednav_numeric(register_voxel            --voxel            2 0  register ${_pair}/251370668.pcd ${_pair}/251371071.pcd)  # 0: no down-sampling
+bipednav_numeric(register_threads          --threads          2 2  register ${_pair}/251370668.pcd ${_pair}/251371071.pcd)
+bipednav_numeric(footsteps_resolution      --resolution       2 2  footsteps ${_gradient} --start 1,1 --goal 2.5,1.5 --out ${_cli_out}/num_fs.png)
+bipednav_numeric(footsteps_min_height      --min-height       1 1  footsteps ${_gradient} --start 1,1 --goal 2.5,1.5 --out ${_cli_out}/num_fs.png)  # valid; the slope is too steep
+bipednav_numeric(footsteps_max_height      --max-height       2 1  footsteps ${_gradient} --start 1,1 --goal 2.5,1.5 --out ${_cli_out}/num_fs.png)  # -1 < --min-height -0.5
+bipednav_numeric(footsteps_time_limit      --time-limit       2 2  footsteps ${_gradient} --start 1,1 --goal 2.5,1.5 --out ${_cli_out}/num_fs.png)
+bipednav_numeric(bench_sim_duration       --duration         2 2  bench sim)
+bipednav_numeric(bench_perception_reps    --reps             2 2  bench perception)
+bipednav_numeric(bench_mapping_iterations --iterations       2 2  bench mapping)
+bipednav_numeric(bench_global_max_replans --max-replans      2 2  bench global)
+bipednav_numeric(bench_local_cycles       --cycles           2 2  bench local)
+bipednav_numeric(bench_local_threads      --threads          2 2  bench local)
+bipednav_numeric(bench_footsteps_maps     --maps             2 2  bench footsteps)
+bipednav_numeric(bench_footsteps_problems --problems         2 2  bench footsteps)
+bipednav_numeric(bench_footsteps_optimal_limit --optimal-limit    2 2  bench footsteps)
+bipednav_numeric(bench_footsteps_short_limit --short-limit      2 2  bench footsteps)
+bipednav_numeric(bench_footsteps_long_limit --long-limit       2 2  bench footsteps)
+bipednav_numeric(bench_footsteps_jobs     --jobs             2 2  bench footsteps)
+
+# The README's command-line examples run as written (readme_examples.sh).
+add_test(NAME cli_readme_examples COMMAND sh ${_cli_dir}/readme_examples.sh ${PROJECT_SOURCE_DIR} $<TARGET_FILE:bipednav>
+                                          ${CMAKE_CURRENT_BINARY_DIR}/cli_readme)
+set_tests_properties(cli_readme_examples PROPERTIES TIMEOUT 600 LABELS cli)
