@@ -73,6 +73,7 @@ void run_all(std::vector<BenchRun>& runs, const std::vector<sim::Scenario>& load
 nlohmann::json failure_json(const BenchRun& b) {
   return b.error.empty() ? nlohmann::json{{"seed", b.seed},
                                           {"outcome", std::string(outcome_name(b.result.outcome.outcome))},
+                                          {"verdict", b.result.verdict},
                                           {"collisions", b.result.collisions},
                                           {"time_s", b.result.time_s},
                                           {"min_clearance_m", b.result.min_clearance_m}}
@@ -113,7 +114,10 @@ void print_table(const nlohmann::json& rows) {
     for (const auto& f : r["failures"]) {
       failed += (failed.empty() ? "" : ", ") + std::to_string(f["seed"].get<int>()) + " (" +
                 (f.contains("error") ? std::string("error") : f["outcome"].get<std::string>()) +
-                (f.contains("collisions") && f["collisions"].get<int>() > 0 ? ", collision" : "") + ")";
+                (f.contains("collisions") && f["collisions"].get<int>() > 0 ? ", collision"
+                 : f.contains("outcome") && f["outcome"] == "SUCCESS"       ? ", off goal"
+                                                                            : "") +
+                ")";
     }
     const auto& margin = r["route_margin_m"];
     char margin_text[32] = "-";

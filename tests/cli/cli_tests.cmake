@@ -17,7 +17,7 @@ endfunction()
 
 # Per command: a success (0), a task failure (1) where the command has a task that can fail, and a
 # usage or input error (2).
-bipednav_cli(run_success 0 "SUCCESS \\(SUCCESS" run hexagon_static --quiet --out ${_cli_out}/run)
+bipednav_cli(run_success 0 ": SUCCESS \\(goal reached at t = " run hexagon_static --quiet --out ${_cli_out}/run)
 bipednav_cli(run_task_failed 1 "FAILED \\(PAT_EXCEEDED" run hexagon_static --time-limit 2 --out ${_cli_out}/run_short)
 bipednav_cli(run_bad_number 2 "--time-limit: expected a finite number > 0, got '-5'" run hexagon_static --time-limit -5)
 bipednav_cli(run_negative_seed 2 "--seed: expected a whole number >= 0" run hexagon_static --seed -1)
