@@ -5,7 +5,7 @@
 
 #include "bipednav/mapping/costmap2d.hpp"
 
-namespace bipednav::planning::local {
+namespace bipednav::tracking {
 
 // Long-standing obstacles of an occupancy grid (kLethal cells, e.g. the global map's occupancy):
 // for every cell, since when it has been lethal without interruption, as of the latest update.
@@ -26,4 +26,4 @@ class StaticStructure {
   double stamp_s_ = -1e300;
 };
 
-}  // namespace bipednav::planning::local
+}  // namespace bipednav::tracking

@@ -1,9 +1,9 @@
-#include "bipednav/planning/local/static_structure.hpp"
+#include "bipednav/tracking/static_structure.hpp"
 
 #include <cmath>
 #include <limits>
 
-namespace bipednav::planning::local {
+namespace bipednav::tracking {
 
 namespace {
 
@@ -49,4 +49,4 @@ bool StaticStructure::near(const Eigen::Vector2d& p, double margin_m, double min
   return false;
 }
 
-}  // namespace bipednav::planning::local
+}  // namespace bipednav::tracking

@@ -1,0 +1,36 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <span>
+#include <vector>
+
+#include "bipednav/common/pose2.hpp"
+#include "bipednav/tracking/detection.hpp"
+#include "bipednav/tracking/static_structure.hpp"
+#include "bipednav/tracking/tracker_params.hpp"
+
+namespace bipednav::tracking {
+
+// One sensor cycle's input to the tracker: the obstacle points (not ground) of the cycle in the
+// map frame, their heights above the floor, the robot's pose when they were seen (the sensors'
+// viewpoint, and where the visibility model looks from) and the time.
+struct DetectionInput {
+  double stamp_s = 0.0;
+  Pose2 T_map_base;
+  std::span<const Eigen::Vector2d> points_map;
+  std::span<const double> heights_m;  // empty (unknown) or one per point
+};
+
+// The points of `in` the static map does not explain: within max_range_m of the robot, finite, and
+// not within static_margin_m of a cell of `static_cells` lethal for static_age_s. (x, y, height);
+// an unknown height is 0. Throws Error when heights_m is neither empty nor one per point.
+std::vector<Eigen::Vector3d> unexplained_points(const DetectionInput& in, const StaticStructure& static_cells,
+                                                const TrackerParams& params);
+
+// The cycle's detections: the unexplained points clustered (euclidean_clusters) and measured
+// (measure_cluster) from the robot's position; clusters wider than max_cluster_radius_m are left
+// out.
+std::vector<Detection> detect_objects(const DetectionInput& in, const StaticStructure& static_cells,
+                                      const TrackerParams& params);
+
+}  // namespace bipednav::tracking

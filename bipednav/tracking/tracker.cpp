@@ -1,0 +1,162 @@
+#include "bipednav/tracking/tracker.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <utility>
+
+#include "bipednav/tracking/association.hpp"
+
+namespace bipednav::tracking {
+
+namespace {
+
+// The larger eigenvalue of a symmetric 2 x 2 matrix.
+double largest_eigenvalue(const Eigen::Matrix2d& C) {
+  const double m = 0.5 * (C(0, 0) + C(1, 1)), d = 0.5 * (C(0, 0) - C(1, 1));
+  return m + std::sqrt(d * d + C(0, 1) * C(0, 1));
+}
+
+}  // namespace
+
+const char* track_status_name(TrackStatus s) {
+  switch (s) {
+    case TrackStatus::kTentative:
+      return "tentative";
+    case TrackStatus::kConfirmed:
+      return "confirmed";
+    case TrackStatus::kCoasting:
+      return "coasting";
+  }
+  return "?";
+}
+
+MultiObjectTracker::MultiObjectTracker(TrackerParams params, SensorVisibility visibility)
+    : params_(std::move(params)), visibility_(std::move(visibility)) {
+  params_.validate();
+}
+
+void MultiObjectTracker::set_static_map(const mapping::Costmap2D& occupancy, double stamp_s) {
+  static_.update(occupancy, stamp_s);
+}
+
+void MultiObjectTracker::clear() {
+  tracks_.clear();
+  detections_.clear();
+  static_.clear();
+  last_stamp_s_ = -1e300;
+}
+
+void MultiObjectTracker::update(const DetectionInput& in) {
+  if (!std::isfinite(in.stamp_s) || in.stamp_s <= last_stamp_s_ || !in.T_map_base.is_finite()) return;
+  update_detections(detect_objects(in, static_, params_), in.stamp_s, in.T_map_base);
+}
+
+void MultiObjectTracker::update_detections(const std::vector<Detection>& detections, double stamp_s,
+                                           const Pose2& T_map_base) {
+  if (!std::isfinite(stamp_s) || stamp_s <= last_stamp_s_ || !T_map_base.is_finite()) return;
+  const double cycle_dt_s = last_stamp_s_ > -1e299 ? stamp_s - last_stamp_s_ : 0.0;
+  last_stamp_s_ = stamp_s;
+  detections_.clear();
+  for (const auto& d : detections)
+    if (d.finite()) detections_.push_back(d);
+  std::vector<const TrackFilter*> filters;
+  for (auto& t : tracks_) {
+    t.filter.predict(stamp_s - t.stamp_s);
+    t.stamp_s = stamp_s;
+    filters.push_back(&t.filter);
+  }
+  const std::vector<int> match = associate(filters, detections_, params_.gate_chi2);
+  std::vector<char> used(detections_.size(), 0);
+  std::vector<Track> kept;
+  kept.reserve(tracks_.size() + detections_.size());
+  for (std::size_t i = 0; i < tracks_.size(); ++i) {
+    Track& t = tracks_[i];
+    ++t.updates;
+    t.hit_history <<= 1;
+    if (match[i] >= 0) {
+      used[static_cast<std::size_t>(match[i])] = 1;
+      update_track(t, detections_[static_cast<std::size_t>(match[i])], stamp_s);
+    } else {
+      t.filter.miss();
+      if (!keep_unseen(t, cycle_dt_s, T_map_base)) continue;
+    }
+    kept.push_back(std::move(t));
+  }
+  tracks_ = std::move(kept);
+  for (std::size_t j = 0; j < detections_.size(); ++j)
+    if (!used[j]) start_track(detections_[j], stamp_s);
+}
+
+void MultiObjectTracker::update_track(Track& t, const Detection& d, double stamp_s) const {
+  t.filter.update(d.position, d.covariance);
+  ++t.hits;
+  t.hit_history |= 1u;
+  const double dt = stamp_s - t.last_seen_s;
+  const double decayed = params_.radius_memory_s > 0.0 ? t.radius_m * std::exp(-dt / params_.radius_memory_s) : 0.0;
+  t.radius_m = std::max(d.radius_m, decayed);
+  t.top_m = std::max(t.top_m, d.top_m);
+  t.last_seen_s = stamp_s;
+  t.unseen_in_view_s = 0.0;
+  if (t.status == TrackStatus::kCoasting) t.status = TrackStatus::kConfirmed;
+  if (t.status == TrackStatus::kTentative && t.updates <= params_.confirm_window &&
+      std::popcount(t.hit_history) >= params_.confirm_hits) {
+    t.status = TrackStatus::kConfirmed;
+    t.confirmed_s = stamp_s;
+  }
+}
+
+bool MultiObjectTracker::in_view(const Track& t, const Pose2& robot) const {
+  const Eigen::Vector2d p = t.position();
+  if ((p - robot.position()).norm() > params_.max_range_m) return false;
+  return visibility_.empty() || visibility_.sees(robot, p, t.top_m);
+}
+
+bool MultiObjectTracker::keep_unseen(Track& t, double dt_s, const Pose2& robot) const {
+  if (t.status == TrackStatus::kTentative) {
+    // Deleted once confirm_hits can no longer be reached within confirm_window updates.
+    const int left = params_.confirm_window - t.updates;
+    return left > 0 && std::popcount(t.hit_history) + left >= params_.confirm_hits;
+  }
+  t.status = TrackStatus::kCoasting;
+  if (in_view(t, robot)) t.unseen_in_view_s += dt_s;
+  const double std_m = std::sqrt(largest_eigenvalue(t.position_covariance()));
+  return t.unseen_in_view_s <= params_.max_unseen_in_view_s &&
+         t.stamp_s - t.last_seen_s <= params_.max_unseen_out_of_view_s && std_m <= params_.max_position_std_m;
+}
+
+void MultiObjectTracker::start_track(const Detection& d, double stamp_s) {
+  Track t{.id = next_id_++, .filter = TrackFilter(d.position, d.covariance, params_)};
+  t.radius_m = d.radius_m;
+  t.top_m = d.top_m;
+  t.born_s = t.last_seen_s = t.stamp_s = stamp_s;
+  t.updates = t.hits = 1;
+  t.hit_history = 1u;
+  if (params_.confirm_hits <= 1) {
+    t.status = TrackStatus::kConfirmed;
+    t.confirmed_s = stamp_s;
+  }
+  tracks_.push_back(std::move(t));
+}
+
+std::vector<TrackPrediction> MultiObjectTracker::predictions() const {
+  std::vector<TrackPrediction> out;
+  const int steps = static_cast<int>(std::floor(params_.horizon_s / params_.prediction_step_s + 1e-9));
+  for (const auto& t : tracks_) {
+    if (!t.confirmed()) continue;
+    TrackPrediction& p = out.emplace_back();
+    p.id = t.id;
+    p.radius_m = t.radius_m;
+    p.velocity = t.velocity();
+    p.states.resize(static_cast<std::size_t>(steps) + 1);
+    for (int k = 0; k <= steps; ++k) {
+      PredictedState& s = p.states[static_cast<std::size_t>(k)];
+      const double dt = k * params_.prediction_step_s;
+      s.t_s = t.stamp_s + dt;
+      t.filter.predict_position(dt, s.position, s.covariance);
+    }
+  }
+  return out;
+}
+
+}  // namespace bipednav::tracking

@@ -1,0 +1,74 @@
+#pragma once
+
+#include <string>
+
+namespace bipednav::tracking {
+
+// The motion model of a track's filter (TrackerParams::motion_model).
+enum class MotionModel {
+  kConstantVelocity,  // "cv": a Kalman filter on (x, y, vx, vy), white acceleration
+  kImmCvCt,           // "imm": an IMM of that and a coordinated turn (x, y, vx, vy, omega) EKF
+};
+MotionModel parse_motion_model(const std::string& name);  // "cv" | "imm"
+const char* motion_model_name(MotionModel m);
+
+// Every parameter of the multi-object tracker (detections, clustering, filters, association, life
+// cycle, predictions). SI units; a track's noise figures are standard deviations unless named psd.
+struct TrackerParams {
+  // --- Detections (detections.hpp): the obstacle points the static map does not explain.
+  // A point within static_margin_m of a cell that has been lethal without interruption for
+  // static_age_s (StaticStructure over the given occupancy grid) is the map's. A mover's cells are
+  // lethal only while it stands on them: a 0.5 m person walking at 0.3 m/s covers a 0.1 m cell for
+  // 2 s, so 4 s keeps walkers and drops walls a few seconds after they are first seen.
+  double static_margin_m = 0.15;
+  double static_age_s = 4.0;
+  double max_range_m = 8.0;  // points farther from the robot are not clustered (and not in view)
+
+  // --- Clustering (clustering.hpp): Euclidean clustering on a grid.
+  double cluster_cell_m = 0.10;       // points in 8-connected occupied cells form one cluster
+  int min_cluster_points = 4;         // fewer points are noise
+  double max_cluster_radius_m = 0.6;  // larger clusters are structure (walls, furniture), not tracked
+  // Measurement model (cluster_measurement.hpp): the centre of a cluster seen from one side is
+  // its nearest surface plus its half width along the line of sight; its covariance is the point
+  // noise plus shape_noise_ratio times the half width along that line (the unseen depth), and
+  // lateral_noise_ratio times it across.
+  double point_noise_m = 0.03;  // std of a point (LiDAR 0.02 m; depth cameras 0.003 z^2)
+  double shape_noise_ratio = 0.25;
+  double lateral_noise_ratio = 0.10;
+
+  // --- Filter (kalman_cv.hpp, imm_cv_ct.hpp).
+  std::string motion_model = "cv";
+  // Continuous white-noise acceleration, power spectral density per axis (Bar-Shalom et al. 2001,
+  // sec. 6.2.2): a walker's speed and heading changes.
+  double accel_psd_m2ps3 = 0.5;
+  double turn_rate_psd_rad2ps3 = 0.1;  // imm: the coordinated turn's turn-rate noise
+  double imm_switch_rate_hz = 0.5;     // imm: expected model switches per second
+  double initial_speed_std_mps = 1.0;  // a new track's velocity prior (zero mean)
+  double initial_turn_rate_std_radps = 0.5;
+
+  // --- Association (association.hpp): Mahalanobis gate, then global nearest neighbour.
+  double gate_chi2 = 11.83;  // chi-square, 2 dof: 99.73 % of true detections fall inside
+
+  // --- Life cycle (tracker.hpp).
+  int confirm_hits = 3;    // tentative -> confirmed after this many hits ...
+  int confirm_window = 5;  // ... within its first this many updates (M of N)
+  // A confirmed track unseen coasts on its prediction; it is deleted once it has been unseen
+  // while its prediction was in some sensor's view (SensorVisibility, within max_range_m) for
+  // max_unseen_in_view_s, or unseen for max_unseen_out_of_view_s in all, or once its position std
+  // exceeds max_position_std_m.
+  double max_unseen_in_view_s = 0.5;
+  double max_unseen_out_of_view_s = 6.0;
+  double max_position_std_m = 1.5;
+  // A track's radius: its detections' largest, decaying towards smaller ones over this time (a
+  // partial view, at the edge of a camera's view or under the LiDAR's lowest ring, is smaller).
+  double radius_memory_s = 2.0;
+
+  // --- Predictions (tracker.hpp): 0 .. horizon_s every prediction_step_s.
+  double horizon_s = 4.0;
+  double prediction_step_s = 0.1;
+
+  void validate() const;
+  MotionModel model() const { return parse_motion_model(motion_model); }
+};
+
+}  // namespace bipednav::tracking
