@@ -7,11 +7,16 @@
 namespace bipednav::tracking {
 
 Detection measure_cluster(std::span<const Eigen::Vector3d> points, const std::vector<std::size_t>& members,
-                          const Eigen::Vector2d& viewpoint, const TrackerParams& params) {
+                          const Eigen::Vector2d& viewpoint, const TrackerParams& params, bool heights_known) {
   Detection d;
   if (members.empty()) return d;
   Eigen::Vector2d mean = Eigen::Vector2d::Zero();
-  for (const std::size_t i : members) mean += points[i].head<2>(), d.top_m = std::max(d.top_m, points[i].z());
+  double bottom = std::numeric_limits<double>::infinity();
+  for (const std::size_t i : members) {
+    mean += points[i].head<2>();
+    d.top_m = std::max(d.top_m, points[i].z()), bottom = std::min(bottom, points[i].z());
+  }
+  if (heights_known) d.height_span_m = d.top_m - bottom;
   mean /= static_cast<double>(members.size());
   d.points = static_cast<int>(members.size());
   // Line of sight u from the viewpoint through the centroid, w across it (a viewpoint inside the

@@ -19,7 +19,8 @@ namespace bipednav::tracking {
 // for a circle, a square face-on and a square corner-on. Its covariance (TrackerParams): the
 // point noise, plus shape_noise_ratio times the half width along the line of sight, plus
 // lateral_noise_ratio times it across.
+// `heights_known`: the points' z are heights (else Detection::height_span_m is -1).
 Detection measure_cluster(std::span<const Eigen::Vector3d> points, const std::vector<std::size_t>& members,
-                          const Eigen::Vector2d& viewpoint, const TrackerParams& params);
+                          const Eigen::Vector2d& viewpoint, const TrackerParams& params, bool heights_known = true);
 
 }  // namespace bipednav::tracking

@@ -9,8 +9,7 @@
 
 namespace bipednav::tracking {
 
-std::vector<Eigen::Vector3d> unexplained_points(const DetectionInput& in, const StaticStructure& static_cells,
-                                                const TrackerParams& params) {
+std::vector<Eigen::Vector3d> points_in_range(const DetectionInput& in, const TrackerParams& params) {
   const bool heights = !in.heights_m.empty();
   require(!heights || in.heights_m.size() == in.points_map.size(), "tracking detection heights_m",
           "empty or one per point (" + std::to_string(in.points_map.size()) + "), got " +
@@ -22,19 +21,28 @@ std::vector<Eigen::Vector3d> unexplained_points(const DetectionInput& in, const 
   for (std::size_t i = 0; i < in.points_map.size(); ++i) {
     const Eigen::Vector2d& p = in.points_map[i];
     const double z = heights ? in.heights_m[i] : 0.0;
-    if (!p.allFinite() || !std::isfinite(z) || (p - robot).squaredNorm() > r2) continue;
-    if (static_cells.near(p, params.static_margin_m, params.static_age_s)) continue;
-    out.emplace_back(p.x(), p.y(), z);
+    if (p.allFinite() && std::isfinite(z) && (p - robot).squaredNorm() <= r2) out.emplace_back(p.x(), p.y(), z);
   }
   return out;
 }
 
-std::vector<Detection> detect_objects(const DetectionInput& in, const StaticStructure& static_cells,
-                                      const TrackerParams& params) {
-  const std::vector<Eigen::Vector3d> points = unexplained_points(in, static_cells, params);
+std::vector<Eigen::Vector3d> unexplained_points(std::span<const Eigen::Vector3d> points,
+                                                const StaticStructure& static_cells, const PersistentCells* persistent,
+                                                const TrackerParams& params) {
+  std::vector<Eigen::Vector3d> out;
+  for (const auto& p : points) {
+    if (persistent != nullptr && persistent->persistent(p.head<2>())) continue;
+    if (static_cells.near(p.head<2>(), params.static_margin_m, params.static_age_s)) continue;
+    out.push_back(p);
+  }
+  return out;
+}
+
+std::vector<Detection> detect_objects(std::span<const Eigen::Vector3d> unexplained, const Eigen::Vector2d& viewpoint,
+                                      const TrackerParams& params, bool heights_known) {
   std::vector<Detection> out;
-  for (const auto& members : euclidean_clusters(points, params.cluster_cell_m, params.min_cluster_points)) {
-    const Detection d = measure_cluster(points, members, in.T_map_base.position(), params);
+  for (const auto& members : euclidean_clusters(unexplained, params.cluster_cell_m, params.min_cluster_points)) {
+    const Detection d = measure_cluster(unexplained, members, viewpoint, params, heights_known);
     if (d.radius_m <= params.max_cluster_radius_m && d.finite()) out.push_back(d);
   }
   return out;

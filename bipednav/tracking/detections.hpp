@@ -6,6 +6,7 @@
 
 #include "bipednav/common/pose2.hpp"
 #include "bipednav/tracking/detection.hpp"
+#include "bipednav/tracking/persistent_cells.hpp"
 #include "bipednav/tracking/static_structure.hpp"
 #include "bipednav/tracking/tracker_params.hpp"
 
@@ -21,16 +22,19 @@ struct DetectionInput {
   std::span<const double> heights_m;  // empty (unknown) or one per point
 };
 
-// The points of `in` the static map does not explain: within max_range_m of the robot, finite, and
-// not within static_margin_m of a cell of `static_cells` lethal for static_age_s. (x, y, height);
-// an unknown height is 0. Throws Error when heights_m is neither empty nor one per point.
-std::vector<Eigen::Vector3d> unexplained_points(const DetectionInput& in, const StaticStructure& static_cells,
+// The finite points of `in` within max_range_m of the robot as (x, y, height); an unknown height
+// is 0. Throws Error when heights_m is neither empty nor one per point.
+std::vector<Eigen::Vector3d> points_in_range(const DetectionInput& in, const TrackerParams& params);
+
+// The points the static map does not explain: not within static_margin_m of a cell of
+// `static_cells` lethal for static_age_s, and not on a cell `persistent` (may be null) holds.
+std::vector<Eigen::Vector3d> unexplained_points(std::span<const Eigen::Vector3d> points,
+                                                const StaticStructure& static_cells, const PersistentCells* persistent,
                                                 const TrackerParams& params);
 
-// The cycle's detections: the unexplained points clustered (euclidean_clusters) and measured
-// (measure_cluster) from the robot's position; clusters wider than max_cluster_radius_m are left
-// out.
-std::vector<Detection> detect_objects(const DetectionInput& in, const StaticStructure& static_cells,
-                                      const TrackerParams& params);
+// The detections of the unexplained points: clustered (euclidean_clusters) and measured
+// (measure_cluster) from `viewpoint`; clusters wider than max_cluster_radius_m are left out.
+std::vector<Detection> detect_objects(std::span<const Eigen::Vector3d> unexplained, const Eigen::Vector2d& viewpoint,
+                                      const TrackerParams& params, bool heights_known = true);
 
 }  // namespace bipednav::tracking

@@ -13,6 +13,27 @@ double MotSummary::mota() const {
   return 1.0 - static_cast<double>(misses + false_positives + id_switches) / static_cast<double>(truths);
 }
 
+MotSummary pool(const std::vector<MotSummary>& parts) {
+  MotSummary s;
+  double position_se = 0.0, velocity_se = 0.0, pickup_sum = 0.0;
+  for (const auto& p : parts) {
+    s.truths += p.truths, s.matches += p.matches, s.misses += p.misses;
+    s.false_positives += p.false_positives, s.id_switches += p.id_switches;
+    s.appearances += p.appearances, s.appearances_picked_up += p.appearances_picked_up;
+    const auto m = static_cast<double>(p.matches);
+    position_se += p.position_rmse_m * p.position_rmse_m * m;
+    velocity_se += p.velocity_rmse_mps * p.velocity_rmse_mps * m;
+    pickup_sum += p.mean_pickup_s * static_cast<double>(p.appearances_picked_up);
+    s.max_pickup_s = std::max(s.max_pickup_s, p.max_pickup_s);
+  }
+  if (s.matches > 0) {
+    s.position_rmse_m = std::sqrt(position_se / static_cast<double>(s.matches));
+    s.velocity_rmse_mps = std::sqrt(velocity_se / static_cast<double>(s.matches));
+  }
+  if (s.appearances_picked_up > 0) s.mean_pickup_s = pickup_sum / static_cast<double>(s.appearances_picked_up);
+  return s;
+}
+
 ClearMot::ClearMot(double match_distance_m, double appearance_gap_s)
     : match_distance_m_(match_distance_m), appearance_gap_s_(appearance_gap_s) {}
 
@@ -46,7 +67,7 @@ void ClearMot::count_pickup(int truth_id, double t_s, bool matched) {
 }
 
 void ClearMot::add_frame(double t_s, const std::vector<MotObject>& truths, const std::vector<MotObject>& ignored,
-                         const std::vector<MotObject>& hypotheses) {
+                         const std::vector<MotObject>& hypotheses, const std::vector<char>& in_region) {
   std::vector<char> used(hypotheses.size(), 0);
   std::vector<int> hyp_of(truths.size(), -1);
   // Correspondences kept from earlier frames.
@@ -84,12 +105,21 @@ void ClearMot::add_frame(double t_s, const std::vector<MotObject>& truths, const
     const auto last = last_match_.find(truths[i].id);
     if (last != last_match_.end() && last->second != h.id) ++sum_.id_switches;
     last_match_[truths[i].id] = h.id;
+    last_truth_[h.id] = truths[i].id;
   }
   // Hypotheses left on an object that does not count are neither matches nor false positives.
   const std::vector<int> on_ignored = match(ignored, hypotheses, used);
   for (const int j : on_ignored)
     if (j >= 0) used[static_cast<std::size_t>(j)] = 1;
-  sum_.false_positives += static_cast<long>(std::count(used.begin(), used.end(), 0));
+  for (std::size_t j = 0; j < hypotheses.size(); ++j) {
+    const auto last = last_truth_.find(hypotheses[j].id);
+    if (used[j] || last == last_truth_.end()) continue;
+    const bool out_of_view =
+        std::any_of(ignored.begin(), ignored.end(), [&](const MotObject& o) { return o.id == last->second; });
+    if (out_of_view) used[j] = 1;
+  }
+  for (std::size_t j = 0; j < hypotheses.size(); ++j)
+    if (!used[j] && (in_region.empty() || in_region[j])) ++sum_.false_positives;
 }
 
 MotSummary ClearMot::summary() const {

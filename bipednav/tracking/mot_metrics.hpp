@@ -30,6 +30,10 @@ struct MotSummary {
   double mota() const;  // 1 - (FN + FP + IDSW) / GT (1 without truths)
 };
 
+// The summary of several sequences taken as one: counts added, the RMSEs pooled over the matches,
+// the mean pick-up delay over the picked-up appearances.
+MotSummary pool(const std::vector<MotSummary>& parts);
+
 class ClearMot {
  public:
   // match_distance_m: a hypothesis farther than this from an object is no match for it.
@@ -41,9 +45,12 @@ class ClearMot {
   // false positive), and the tracker's hypotheses. Frames in time order. Each object keeps the
   // hypothesis it was matched with while that stays within match_distance_m (an identity
   // switch when it is matched with another one later); the others are matched by the Hungarian
-  // method on the distances.
+  // method on the distances. A hypothesis left over is a false positive unless it lies within
+  // match_distance_m of an ignored object, or its latest match was an object now ignored (a track
+  // coasting on an object out of view: not scored until the object is seen again), or it lies
+  // outside the evaluated region (`in_region`, per hypothesis; empty: all inside).
   void add_frame(double t_s, const std::vector<MotObject>& truths, const std::vector<MotObject>& ignored,
-                 const std::vector<MotObject>& hypotheses);
+                 const std::vector<MotObject>& hypotheses, const std::vector<char>& in_region = {});
   MotSummary summary() const;
 
  private:
@@ -57,6 +64,7 @@ class ClearMot {
   MotSummary sum_;
   double position_se_ = 0.0, velocity_se_ = 0.0, pickup_sum_s_ = 0.0;
   std::map<int, int> last_match_;  // object id -> hypothesis id of its latest match
+  std::map<int, int> last_truth_;  // hypothesis id -> object id of its latest match
   struct Appearance {
     double start_s = 0.0, last_counted_s = 0.0;
     bool picked_up = false;

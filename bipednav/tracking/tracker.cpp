@@ -32,24 +32,44 @@ const char* track_status_name(TrackStatus s) {
 }
 
 MultiObjectTracker::MultiObjectTracker(TrackerParams params, SensorVisibility visibility)
-    : params_(std::move(params)), visibility_(std::move(visibility)) {
-  params_.validate();
-}
+    : params_((params.validate(), std::move(params))),
+      visibility_(std::move(visibility)),
+      persistent_(params_.cluster_cell_m, params_.persistent_span_s, params_.persistent_gap_s,
+                  params_.persistent_memory_s) {}
 
 void MultiObjectTracker::set_static_map(const mapping::Costmap2D& occupancy, double stamp_s) {
-  static_.update(occupancy, stamp_s);
+  static_.update(occupancy, stamp_s, params_.static_gap_s);
 }
 
 void MultiObjectTracker::clear() {
   tracks_.clear();
   detections_.clear();
   static_.clear();
+  persistent_.clear();
   last_stamp_s_ = -1e300;
 }
 
 void MultiObjectTracker::update(const DetectionInput& in) {
   if (!std::isfinite(in.stamp_s) || in.stamp_s <= last_stamp_s_ || !in.T_map_base.is_finite()) return;
-  update_detections(detect_objects(in, static_, params_), in.stamp_s, in.T_map_base);
+  const std::vector<Eigen::Vector3d> points = points_in_range(in, params_);
+  // The proven movers where they are predicted now: their points are no static evidence.
+  std::vector<std::pair<Eigen::Vector2d, double>> movers;
+  for (const auto& t : tracks_) {
+    if (!t.confirmed() || !t.proven) continue;
+    Eigen::Vector2d p;
+    Eigen::Matrix2d P;
+    t.filter.predict_position(in.stamp_s - t.stamp_s, p, P);
+    const double r = t.radius_m + params_.persistent_mover_margin_m;
+    movers.emplace_back(p, r * r);
+  }
+  persistent_.add(points, in.stamp_s, [&](const Eigen::Vector3d& q) {
+    for (const auto& [c, r2] : movers)
+      if ((q.head<2>() - c).squaredNorm() <= r2) return true;
+    return false;
+  });
+  const std::vector<Eigen::Vector3d> unexplained = unexplained_points(points, static_, &persistent_, params_);
+  update_detections(detect_objects(unexplained, in.T_map_base.position(), params_, !in.heights_m.empty()), in.stamp_s,
+                    in.T_map_base);
 }
 
 void MultiObjectTracker::update_detections(const std::vector<Detection>& detections, double stamp_s,
@@ -96,14 +116,27 @@ void MultiObjectTracker::update_track(Track& t, const Detection& d, double stamp
   const double decayed = params_.radius_memory_s > 0.0 ? t.radius_m * std::exp(-dt / params_.radius_memory_s) : 0.0;
   t.radius_m = std::max(d.radius_m, decayed);
   t.top_m = std::max(t.top_m, d.top_m);
+  t.height_span_m = std::max(t.height_span_m, d.height_span_m);
   t.last_seen_s = stamp_s;
   t.unseen_in_view_s = 0.0;
+  t.recent.push_back({stamp_s, d.position});
+  std::erase_if(t.recent, [&](const TimedPosition& s) { return s.t_s < stamp_s - params_.mover_window_s - 1e-9; });
   if (t.status == TrackStatus::kCoasting) t.status = TrackStatus::kConfirmed;
   if (t.status == TrackStatus::kTentative && t.updates <= params_.confirm_window &&
       std::popcount(t.hit_history) >= params_.confirm_hits) {
     t.status = TrackStatus::kConfirmed;
     t.confirmed_s = stamp_s;
   }
+  if (t.confirmed()) classify_motion(t);
+}
+
+void MultiObjectTracker::classify_motion(Track& t) const {
+  // A flat patch (the top of a box lower than the sensors, swept by a LiDAR ring) is no mover.
+  if (t.height_span_m >= 0.0 && t.height_span_m < params_.mover_min_height_span_m) return;
+  t.proven = t.proven || (t.position() - t.origin).norm() >= params_.mover_proof_m;
+  const WindowVelocity w = regression_velocity(t.recent);
+  t.mover = t.proven ||
+            (w.span_s >= 0.8 * params_.mover_window_s && w.moving(params_.mover_speed_mps, params_.mover_significance));
 }
 
 bool MultiObjectTracker::in_view(const Track& t, const Pose2& robot) const {
@@ -121,14 +154,18 @@ bool MultiObjectTracker::keep_unseen(Track& t, double dt_s, const Pose2& robot) 
   t.status = TrackStatus::kCoasting;
   if (in_view(t, robot)) t.unseen_in_view_s += dt_s;
   const double std_m = std::sqrt(largest_eigenvalue(t.position_covariance()));
-  return t.unseen_in_view_s <= params_.max_unseen_in_view_s &&
-         t.stamp_s - t.last_seen_s <= params_.max_unseen_out_of_view_s && std_m <= params_.max_position_std_m;
+  const double max_unseen_s = t.mover ? params_.max_unseen_out_of_view_s : params_.max_unseen_in_view_s;
+  return t.unseen_in_view_s <= params_.max_unseen_in_view_s && t.stamp_s - t.last_seen_s <= max_unseen_s &&
+         std_m <= params_.max_position_std_m;
 }
 
 void MultiObjectTracker::start_track(const Detection& d, double stamp_s) {
   Track t{.id = next_id_++, .filter = TrackFilter(d.position, d.covariance, params_)};
   t.radius_m = d.radius_m;
   t.top_m = d.top_m;
+  t.height_span_m = d.height_span_m;
+  t.origin = d.position;
+  t.recent.push_back({stamp_s, d.position});
   t.born_s = t.last_seen_s = t.stamp_s = stamp_s;
   t.updates = t.hits = 1;
   t.hit_history = 1u;
@@ -143,7 +180,7 @@ std::vector<TrackPrediction> MultiObjectTracker::predictions() const {
   std::vector<TrackPrediction> out;
   const int steps = static_cast<int>(std::floor(params_.horizon_s / params_.prediction_step_s + 1e-9));
   for (const auto& t : tracks_) {
-    if (!t.confirmed()) continue;
+    if (!t.confirmed() || !t.mover) continue;
     TrackPrediction& p = out.emplace_back();
     p.id = t.id;
     p.radius_m = t.radius_m;

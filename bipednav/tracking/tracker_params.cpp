@@ -24,6 +24,11 @@ const char* motion_model_name(MotionModel m) { return m == MotionModel::kImmCvCt
 void TrackerParams::validate() const {
   require(tracker_non_negative(static_margin_m), "tracking.static_margin_m", ">= 0");
   require(tracker_non_negative(static_age_s), "tracking.static_age_s", ">= 0");
+  require(tracker_non_negative(static_gap_s), "tracking.static_gap_s", ">= 0");
+  require(tracker_non_negative(persistent_span_s), "tracking.persistent_span_s", ">= 0");
+  require(tracker_non_negative(persistent_gap_s), "tracking.persistent_gap_s", ">= 0");
+  require(tracker_non_negative(persistent_memory_s), "tracking.persistent_memory_s", ">= 0");
+  require(tracker_non_negative(persistent_mover_margin_m), "tracking.persistent_mover_margin_m", ">= 0");
   require(tracker_positive(max_range_m), "tracking.max_range_m", "> 0");
   require(tracker_positive(cluster_cell_m), "tracking.cluster_cell_m", "> 0");
   require(min_cluster_points >= 1, "tracking.min_cluster_points", ">= 1");
@@ -44,6 +49,11 @@ void TrackerParams::validate() const {
   require(tracker_non_negative(max_unseen_out_of_view_s) && max_unseen_out_of_view_s >= max_unseen_in_view_s,
           "tracking.max_unseen_out_of_view_s", ">= max_unseen_in_view_s");
   require(tracker_positive(max_position_std_m), "tracking.max_position_std_m", "> 0");
+  require(tracker_non_negative(mover_speed_mps), "tracking.mover_speed_mps", ">= 0");
+  require(tracker_positive(mover_window_s), "tracking.mover_window_s", "> 0");
+  require(tracker_non_negative(mover_significance), "tracking.mover_significance", ">= 0");
+  require(tracker_non_negative(mover_proof_m), "tracking.mover_proof_m", ">= 0");
+  require(tracker_non_negative(mover_min_height_span_m), "tracking.mover_min_height_span_m", ">= 0");
   require(tracker_non_negative(radius_memory_s), "tracking.radius_memory_s", ">= 0");
   require(tracker_non_negative(horizon_s), "tracking.horizon_s", ">= 0");
   require(tracker_positive(prediction_step_s), "tracking.prediction_step_s", "> 0");

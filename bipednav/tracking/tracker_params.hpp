@@ -22,6 +22,17 @@ struct TrackerParams {
   // 2 s, so 4 s keeps walkers and drops walls a few seconds after they are first seen.
   double static_margin_m = 0.15;
   double static_age_s = 4.0;
+  // A cell's lethal spell survives gaps up to this long (the map's ray clearing empties wall cells
+  // now and then; StaticStructure).
+  double static_gap_s = 1.0;
+  // Besides, the points' own persistent cells (PersistentCells, cluster_cell_m): hit without a
+  // break longer than persistent_gap_s for persistent_span_s, kept until unhit for
+  // persistent_memory_s. Points on a proven mover (mover_proof_m; within its radius plus
+  // persistent_mover_margin_m) add no evidence, so a person who stops stays seen.
+  double persistent_span_s = 3.0;
+  double persistent_gap_s = 1.0;
+  double persistent_memory_s = 30.0;
+  double persistent_mover_margin_m = 0.2;
   double max_range_m = 8.0;  // points farther from the robot are not clustered (and not in view)
 
   // --- Clustering (clustering.hpp): Euclidean clustering on a grid.
@@ -54,14 +65,30 @@ struct TrackerParams {
   int confirm_window = 5;  // ... within its first this many updates (M of N)
   // A confirmed track unseen coasts on its prediction; it is deleted once it has been unseen
   // while its prediction was in some sensor's view (SensorVisibility, within max_range_m) for
-  // max_unseen_in_view_s, or unseen for max_unseen_out_of_view_s in all, or once its position std
-  // exceeds max_position_std_m.
+  // max_unseen_in_view_s, or unseen for max_unseen_out_of_view_s in all (a mover; any other
+  // track max_unseen_in_view_s), or once its position std exceeds max_position_std_m.
   double max_unseen_in_view_s = 0.5;
   double max_unseen_out_of_view_s = 6.0;
   double max_position_std_m = 1.5;
   // A track's radius: its detections' largest, decaying towards smaller ones over this time (a
   // partial view, at the edge of a camera's view or under the LiDAR's lowest ring, is smaller).
   double radius_memory_s = 2.0;
+
+  // --- Movers (tracker.hpp): a confirmed track is a mover while the line fitted to its
+  // detections of the last mover_window_s (regression_velocity; at least 80 % of the window
+  // covered) runs at mover_speed_mps or faster, with that speed at least mover_significance
+  // standard errors; and for good once it has been mover_proof_m from where it was first seen (a
+  // person who stops stays one). A static object's measured centre jitters as the robot sees more
+  // or less of it. The rest are obstacles the maps do not hold yet (clutter, a wall in its first
+  // seconds): tracked, not movers, deleted once unseen for max_unseen_in_view_s wherever they are.
+  double mover_speed_mps = 0.15;
+  double mover_window_s = 1.5;
+  double mover_significance = 3.0;
+  double mover_proof_m = 1.0;
+  // ... and a mover has shown a vertical surface: detections spanning this much height (where
+  // heights are known). The top of a box lower than a LiDAR, swept by one ring as the robot
+  // walks, slides like a mover but lies flat.
+  double mover_min_height_span_m = 0.1;
 
   // --- Predictions (tracker.hpp): 0 .. horizon_s every prediction_step_s.
   double horizon_s = 4.0;
