@@ -39,9 +39,11 @@ Detection measure_cluster(std::span<const Eigen::Vector3d> points, const std::ve
   if (near_ranges.empty()) {  // nothing in the middle (two groups side by side): every point's range
     for (const std::size_t i : members) near_ranges.push_back((points[i].head<2>() - viewpoint).dot(u));
   }
-  const auto mid = near_ranges.begin() + static_cast<std::ptrdiff_t>(near_ranges.size() / 2);
-  std::nth_element(near_ranges.begin(), mid, near_ranges.end());
-  d.position = viewpoint + u * (*mid + half_width) + w * middle;
+  const auto k = static_cast<std::size_t>(params.near_surface_quantile * static_cast<double>(near_ranges.size() - 1));
+  const auto near = near_ranges.begin() + static_cast<std::ptrdiff_t>(k);
+  std::nth_element(near_ranges.begin(), near, near_ranges.end());
+  d.surface = viewpoint + u * *near + w * middle;
+  d.position = d.surface + u * half_width;
   double r2 = 0.0;
   for (const std::size_t i : members) r2 = std::max(r2, (points[i].head<2>() - d.position).squaredNorm());
   d.radius_m = std::max(half_width, std::sqrt(r2));

@@ -1,5 +1,6 @@
 #include "bipednav/tracking/detections.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -28,11 +29,14 @@ std::vector<Eigen::Vector3d> points_in_range(const DetectionInput& in, const Tra
 
 std::vector<Eigen::Vector3d> unexplained_points(std::span<const Eigen::Vector3d> points,
                                                 const StaticStructure& static_cells, const PersistentCells* persistent,
-                                                const TrackerParams& params) {
+                                                std::span<const MoverCircle> movers, const TrackerParams& params) {
   std::vector<Eigen::Vector3d> out;
   for (const auto& p : points) {
-    if (persistent != nullptr && persistent->persistent(p.head<2>())) continue;
-    if (static_cells.near(p.head<2>(), params.static_margin_m, params.static_age_s)) continue;
+    const Eigen::Vector2d q = p.head<2>();
+    const bool on_mover =
+        std::any_of(movers.begin(), movers.end(), [&](const MoverCircle& c) { return c.contains(q); });
+    if (!on_mover && persistent != nullptr && persistent->persistent(q)) continue;
+    if (!on_mover && static_cells.near(q, params.static_margin_m, params.static_age_s)) continue;
     out.push_back(p);
   }
   return out;

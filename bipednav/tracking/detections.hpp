@@ -26,11 +26,20 @@ struct DetectionInput {
 // is 0. Throws Error when heights_m is neither empty nor one per point.
 std::vector<Eigen::Vector3d> points_in_range(const DetectionInput& in, const TrackerParams& params);
 
-// The points the static map does not explain: not within static_margin_m of a cell of
-// `static_cells` lethal for static_age_s, and not on a cell `persistent` (may be null) holds.
+// Where a proven mover is predicted: no static map explains the points in it (the cells a
+// person stands on turn lethal in a map, and long-standing if they wait).
+struct MoverCircle {
+  Eigen::Vector2d center = Eigen::Vector2d::Zero();
+  double radius_m = 0.0;
+  bool contains(const Eigen::Vector2d& p) const { return (p - center).squaredNorm() <= radius_m * radius_m; }
+};
+
+// The points the static map does not explain: in a mover circle, or else neither within
+// static_margin_m of a cell of `static_cells` lethal for static_age_s nor on a cell `persistent`
+// (may be null) holds.
 std::vector<Eigen::Vector3d> unexplained_points(std::span<const Eigen::Vector3d> points,
                                                 const StaticStructure& static_cells, const PersistentCells* persistent,
-                                                const TrackerParams& params);
+                                                std::span<const MoverCircle> movers, const TrackerParams& params);
 
 // The detections of the unexplained points: clustered (euclidean_clusters) and measured
 // (measure_cluster) from `viewpoint`; clusters wider than max_cluster_radius_m are left out.

@@ -8,6 +8,7 @@ namespace bipednav::tracking {
 struct TimedPosition {
   double t_s = 0.0;
   Eigen::Vector2d position = Eigen::Vector2d::Zero();
+  Eigen::Vector2d surface = Eigen::Vector2d::Zero();  // a point of the surface seen (not used here)
 };
 
 // The least-squares line through positions over time, per axis: its slope (the velocity over the

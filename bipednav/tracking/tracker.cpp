@@ -52,24 +52,24 @@ void MultiObjectTracker::clear() {
 void MultiObjectTracker::update(const DetectionInput& in) {
   if (!std::isfinite(in.stamp_s) || in.stamp_s <= last_stamp_s_ || !in.T_map_base.is_finite()) return;
   const std::vector<Eigen::Vector3d> points = points_in_range(in, params_);
-  // The proven movers where they are predicted now: their points are no static evidence.
-  std::vector<std::pair<Eigen::Vector2d, double>> movers;
+  // The proven movers where they are predicted now: their points are no static evidence, and no
+  // static map explains them.
+  std::vector<MoverCircle> movers;
   for (const auto& t : tracks_) {
     if (!t.confirmed() || !t.proven) continue;
-    Eigen::Vector2d p;
+    MoverCircle& c = movers.emplace_back();
     Eigen::Matrix2d P;
-    t.filter.predict_position(in.stamp_s - t.stamp_s, p, P);
-    const double r = t.radius_m + params_.persistent_mover_margin_m;
-    movers.emplace_back(p, r * r);
+    t.filter.predict_position(in.stamp_s - t.stamp_s, c.center, P);
+    c.radius_m = t.radius_m + params_.mover_margin_m;
   }
   persistent_.add(points, in.stamp_s, [&](const Eigen::Vector3d& q) {
-    for (const auto& [c, r2] : movers)
-      if ((q.head<2>() - c).squaredNorm() <= r2) return true;
-    return false;
+    return std::any_of(movers.begin(), movers.end(), [&](const MoverCircle& c) { return c.contains(q.head<2>()); });
   });
-  const std::vector<Eigen::Vector3d> unexplained = unexplained_points(points, static_, &persistent_, params_);
+  const std::vector<Eigen::Vector3d> unexplained = unexplained_points(points, static_, &persistent_, movers, params_);
+  cycle_points_ = &points;
   update_detections(detect_objects(unexplained, in.T_map_base.position(), params_, !in.heights_m.empty()), in.stamp_s,
                     in.T_map_base);
+  cycle_points_ = nullptr;
 }
 
 void MultiObjectTracker::update_detections(const std::vector<Detection>& detections, double stamp_s,
@@ -119,7 +119,7 @@ void MultiObjectTracker::update_track(Track& t, const Detection& d, double stamp
   t.height_span_m = std::max(t.height_span_m, d.height_span_m);
   t.last_seen_s = stamp_s;
   t.unseen_in_view_s = 0.0;
-  t.recent.push_back({stamp_s, d.position});
+  t.recent.push_back({stamp_s, d.position, d.surface});
   std::erase_if(t.recent, [&](const TimedPosition& s) { return s.t_s < stamp_s - params_.mover_window_s - 1e-9; });
   if (t.status == TrackStatus::kCoasting) t.status = TrackStatus::kConfirmed;
   if (t.status == TrackStatus::kTentative && t.updates <= params_.confirm_window &&
@@ -131,12 +131,25 @@ void MultiObjectTracker::update_track(Track& t, const Detection& d, double stamp
 }
 
 void MultiObjectTracker::classify_motion(Track& t) const {
+  t.mover = t.proven;
+  if (t.proven) return;
   // A flat patch (the top of a box lower than the sensors, swept by a LiDAR ring) is no mover.
   if (t.height_span_m >= 0.0 && t.height_span_m < params_.mover_min_height_span_m) return;
-  t.proven = t.proven || (t.position() - t.origin).norm() >= params_.mover_proof_m;
   const WindowVelocity w = regression_velocity(t.recent);
-  t.mover = t.proven ||
-            (w.span_s >= 0.8 * params_.mover_window_s && w.moving(params_.mover_speed_mps, params_.mover_significance));
+  if (w.span_s < 0.8 * params_.mover_window_s || !w.moving(params_.mover_speed_mps, params_.mover_significance)) return;
+  if (!vacated(t)) return;
+  t.mover = true;
+  t.proven = (t.position() - t.origin).norm() >= params_.mover_proof_m;
+}
+
+bool MultiObjectTracker::vacated(const Track& t) const {
+  if (cycle_points_ == nullptr || t.recent.empty()) return true;
+  const Eigen::Vector2d& was = t.recent.front().surface;
+  const double r2 = params_.mover_vacated_radius_m * params_.mover_vacated_radius_m;
+  int left = 0;
+  for (const auto& p : *cycle_points_)
+    if ((p.head<2>() - was).squaredNorm() <= r2 && ++left >= params_.min_cluster_points) return false;
+  return true;
 }
 
 bool MultiObjectTracker::in_view(const Track& t, const Pose2& robot) const {
@@ -165,7 +178,7 @@ void MultiObjectTracker::start_track(const Detection& d, double stamp_s) {
   t.top_m = d.top_m;
   t.height_span_m = d.height_span_m;
   t.origin = d.position;
-  t.recent.push_back({stamp_s, d.position});
+  t.recent.push_back({stamp_s, d.position, d.surface});
   t.born_s = t.last_seen_s = t.stamp_s = stamp_s;
   t.updates = t.hits = 1;
   t.hit_history = 1u;

@@ -97,6 +97,9 @@ class MultiObjectTracker {
   void update_track(Track& t, const Detection& d, double stamp_s) const;
   // Sets t.mover and t.proven after an update (TrackerParams: movers).
   void classify_motion(Track& t) const;
+  // Whether the surface where t was seen first in its mover window holds fewer than
+  // min_cluster_points of this cycle's points (always, without them: update_detections).
+  bool vacated(const Track& t) const;
   // After a cycle without a detection: false when the track is to be deleted.
   bool keep_unseen(Track& t, double dt_s, const Pose2& robot) const;
   bool in_view(const Track& t, const Pose2& robot) const;
@@ -108,6 +111,7 @@ class MultiObjectTracker {
   PersistentCells persistent_;
   std::vector<Track> tracks_;
   std::vector<Detection> detections_;
+  const std::vector<Eigen::Vector3d>* cycle_points_ = nullptr;  // this cycle's points in range, during update()
   int next_id_ = 1;
   double last_stamp_s_ = -1e300;
 };

@@ -28,11 +28,12 @@ void TrackerParams::validate() const {
   require(tracker_non_negative(persistent_span_s), "tracking.persistent_span_s", ">= 0");
   require(tracker_non_negative(persistent_gap_s), "tracking.persistent_gap_s", ">= 0");
   require(tracker_non_negative(persistent_memory_s), "tracking.persistent_memory_s", ">= 0");
-  require(tracker_non_negative(persistent_mover_margin_m), "tracking.persistent_mover_margin_m", ">= 0");
+  require(tracker_non_negative(mover_margin_m), "tracking.mover_margin_m", ">= 0");
   require(tracker_positive(max_range_m), "tracking.max_range_m", "> 0");
   require(tracker_positive(cluster_cell_m), "tracking.cluster_cell_m", "> 0");
   require(min_cluster_points >= 1, "tracking.min_cluster_points", ">= 1");
   require(tracker_positive(max_cluster_radius_m), "tracking.max_cluster_radius_m", "> 0");
+  require(near_surface_quantile >= 0.0 && near_surface_quantile <= 1.0, "tracking.near_surface_quantile", "in [0, 1]");
   require(tracker_positive(point_noise_m), "tracking.point_noise_m", "> 0");
   require(tracker_non_negative(shape_noise_ratio), "tracking.shape_noise_ratio", ">= 0");
   require(tracker_non_negative(lateral_noise_ratio), "tracking.lateral_noise_ratio", ">= 0");
@@ -54,6 +55,7 @@ void TrackerParams::validate() const {
   require(tracker_non_negative(mover_significance), "tracking.mover_significance", ">= 0");
   require(tracker_non_negative(mover_proof_m), "tracking.mover_proof_m", ">= 0");
   require(tracker_non_negative(mover_min_height_span_m), "tracking.mover_min_height_span_m", ">= 0");
+  require(tracker_non_negative(mover_vacated_radius_m), "tracking.mover_vacated_radius_m", ">= 0");
   require(tracker_non_negative(radius_memory_s), "tracking.radius_memory_s", ">= 0");
   require(tracker_non_negative(horizon_s), "tracking.horizon_s", ">= 0");
   require(tracker_positive(prediction_step_s), "tracking.prediction_step_s", "> 0");

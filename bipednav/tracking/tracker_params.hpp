@@ -24,15 +24,16 @@ struct TrackerParams {
   double static_age_s = 4.0;
   // A cell's lethal spell survives gaps up to this long (the map's ray clearing empties wall cells
   // now and then; StaticStructure).
-  double static_gap_s = 1.0;
+  double static_gap_s = 5.0;
   // Besides, the points' own persistent cells (PersistentCells, cluster_cell_m): hit without a
   // break longer than persistent_gap_s for persistent_span_s, kept until unhit for
   // persistent_memory_s. Points on a proven mover (mover_proof_m; within its radius plus
-  // persistent_mover_margin_m) add no evidence, so a person who stops stays seen.
+  // mover_margin_m of its prediction) add no evidence and are explained by neither map, so a
+  // person who stops stays seen.
   double persistent_span_s = 3.0;
   double persistent_gap_s = 1.0;
   double persistent_memory_s = 30.0;
-  double persistent_mover_margin_m = 0.2;
+  double mover_margin_m = 0.15;
   double max_range_m = 8.0;  // points farther from the robot are not clustered (and not in view)
 
   // --- Clustering (clustering.hpp): Euclidean clustering on a grid.
@@ -43,6 +44,9 @@ struct TrackerParams {
   // its nearest surface plus its half width along the line of sight; its covariance is the point
   // noise plus shape_noise_ratio times the half width along that line (the unseen depth), and
   // lateral_noise_ratio times it across.
+  // The near surface's range: this quantile of the ranges of the points in the middle quarter
+  // (low, since a sensor looking down also sees an object's top behind its near face).
+  double near_surface_quantile = 0.25;
   double point_noise_m = 0.03;  // std of a point (LiDAR 0.02 m; depth cameras 0.003 z^2)
   double shape_noise_ratio = 0.25;
   double lateral_noise_ratio = 0.10;
@@ -89,6 +93,10 @@ struct TrackerParams {
   // heights are known). The top of a box lower than a LiDAR, swept by one ring as the robot
   // walks, slides like a mover but lies flat.
   double mover_min_height_span_m = 0.1;
+  // ... and has left where it was: fewer than min_cluster_points of the cycle's points lie within
+  // mover_vacated_radius_m of the surface it showed at the start of its mover window. A wall
+  // revealed bit by bit behind a post, whose visible piece slides as the robot walks, stays.
+  double mover_vacated_radius_m = 0.1;
 
   // --- Predictions (tracker.hpp): 0 .. horizon_s every prediction_step_s.
   double horizon_s = 4.0;
