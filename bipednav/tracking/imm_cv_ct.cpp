@@ -45,6 +45,7 @@ Vector5d ct_transition(const Vector5d& x, double dt_s, Matrix5d* F) {
 
 ImmCvCt::ImmCvCt(const Eigen::Vector2d& z, const Eigen::Matrix2d& R, const TrackerParams& params)
     : accel_psd_(params.accel_psd_m2ps3),
+      turn_accel_psd_(params.imm_turn_accel_psd_m2ps3),
       turn_psd_(params.turn_rate_psd_rad2ps3),
       switch_rate_hz_(params.imm_switch_rate_hz),
       omega_std_(params.initial_turn_rate_std_radps) {
@@ -62,7 +63,7 @@ ImmCvCt::ImmCvCt(const Eigen::Vector2d& z, const Eigen::Matrix2d& R, const Track
 void ImmCvCt::predict_model(int m, Vector5d& x, Matrix5d& P, double dt_s) const {
   Matrix5d F = Matrix5d::Zero();
   Matrix5d Q = Matrix5d::Zero();
-  Q.topLeftCorner<4, 4>() = cv_process_noise(dt_s, accel_psd_);
+  Q.topLeftCorner<4, 4>() = cv_process_noise(dt_s, m == 0 ? accel_psd_ : turn_accel_psd_);
   if (m == 0) {
     // Constant velocity; its turn rate is zero with the prior's spread (so mixing into the turn
     // model neither claims nor forgets a turn it does not model).

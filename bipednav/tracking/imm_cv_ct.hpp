@@ -18,7 +18,8 @@ Vector5d ct_transition(const Vector5d& x, double dt_s, Matrix5d* F);
 
 // An interacting multiple model estimator (Blom and Bar-Shalom 1988; Bar-Shalom et al. 2001,
 // sec. 11.6.6) of two models on the state (x, y, vx, vy, omega): 0 constant velocity (omega held
-// at zero), 1 coordinated turn (EKF). Both share the white acceleration of accel_psd_m2ps3; the
+// at zero), 1 coordinated turn (EKF). The constant velocity's white acceleration is accel_psd_m2ps3,
+// the turn's imm_turn_accel_psd_m2ps3 (the manoeuvring model: larger); the
 // turn rate walks with turn_rate_psd_rad2ps3. The models switch as a Markov chain at
 // imm_switch_rate_hz.
 class ImmCvCt {
@@ -46,7 +47,7 @@ class ImmCvCt {
   void predict_model(int m, Vector5d& x, Matrix5d& P, double dt_s) const;
   void combine();
 
-  double accel_psd_, turn_psd_, switch_rate_hz_, omega_std_;
+  double accel_psd_, turn_accel_psd_, turn_psd_, switch_rate_hz_, omega_std_;
   std::array<Vector5d, 2> xm_;
   std::array<Matrix5d, 2> Pm_;
   std::array<double, 2> mu_{0.5, 0.5};

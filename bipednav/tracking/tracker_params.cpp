@@ -39,6 +39,7 @@ void TrackerParams::validate() const {
   require(tracker_non_negative(lateral_noise_ratio), "tracking.lateral_noise_ratio", ">= 0");
   parse_motion_model(motion_model);
   require(tracker_positive(accel_psd_m2ps3), "tracking.accel_psd_m2ps3", "> 0");
+  require(tracker_positive(imm_turn_accel_psd_m2ps3), "tracking.imm_turn_accel_psd_m2ps3", "> 0");
   require(tracker_positive(turn_rate_psd_rad2ps3), "tracking.turn_rate_psd_rad2ps3", "> 0");
   require(tracker_positive(imm_switch_rate_hz), "tracking.imm_switch_rate_hz", "> 0");
   require(tracker_positive(initial_speed_std_mps), "tracking.initial_speed_std_mps", "> 0");

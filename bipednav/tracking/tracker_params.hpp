@@ -55,10 +55,11 @@ struct TrackerParams {
   std::string motion_model = "cv";
   // Continuous white-noise acceleration, power spectral density per axis (Bar-Shalom et al. 2001,
   // sec. 6.2.2): a walker's speed and heading changes.
-  double accel_psd_m2ps3 = 0.5;
-  double turn_rate_psd_rad2ps3 = 0.1;  // imm: the coordinated turn's turn-rate noise
-  double imm_switch_rate_hz = 0.5;     // imm: expected model switches per second
-  double initial_speed_std_mps = 1.0;  // a new track's velocity prior (zero mean)
+  double accel_psd_m2ps3 = 0.05;
+  double turn_rate_psd_rad2ps3 = 0.1;     // imm: the coordinated turn's turn-rate noise
+  double imm_turn_accel_psd_m2ps3 = 0.5;  // imm: the coordinated turn's white acceleration
+  double imm_switch_rate_hz = 0.5;        // imm: expected model switches per second
+  double initial_speed_std_mps = 1.0;     // a new track's velocity prior (zero mean)
   double initial_turn_rate_std_radps = 0.5;
 
   // --- Association (association.hpp): Mahalanobis gate, then global nearest neighbour.
@@ -86,7 +87,7 @@ struct TrackerParams {
   // or less of it. The rest are obstacles the maps do not hold yet (clutter, a wall in its first
   // seconds): tracked, not movers, deleted once unseen for max_unseen_in_view_s wherever they are.
   double mover_speed_mps = 0.15;
-  double mover_window_s = 1.5;
+  double mover_window_s = 2.0;
   double mover_significance = 3.0;
   double mover_proof_m = 1.0;
   // ... and a mover has shown a vertical surface: detections spanning this much height (where

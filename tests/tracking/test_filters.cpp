@@ -59,7 +59,7 @@ TEST(ImmCvCt, TurnModelTakesOverOnACircleAndNotOnALine) {
   // A target at 0.6 m/s on a circle of 2 m radius (0.3 rad/s), then one on a line, 1 cm noise.
   TrackerParams p;
   p.motion_model = "imm";
-  p.accel_psd_m2ps3 = 0.01;  // small: a straight line and a turn tell apart
+  p.accel_psd_m2ps3 = p.imm_turn_accel_psd_m2ps3 = 0.01;  // small: a straight line and a turn tell apart
   const Eigen::Matrix2d R = Eigen::Matrix2d::Identity() * 1e-4;
   Rng rng(3);
   const auto noisy = [&](const Eigen::Vector2d& z) {

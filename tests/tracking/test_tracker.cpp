@@ -257,4 +257,57 @@ TEST(Tracker, PointsOnTheStaticMapAreNoDetections) {
   EXPECT_LT((mot.detections()[0].position - Eigen::Vector2d(3.0, 2.0)).norm(), 0.05);
 }
 
+TEST(Tracker, WalkerBecomesAMoverAndStaysOneWhenItStops) {
+  // 0.4 m/s for 5 s, then standing for 8 s, 3 m ahead.
+  MultiObjectTracker mot;
+  Rng rng(8);
+  const auto at = [](double t) { return Eigen::Vector2d(3.0, -1.0 + 0.4 * std::min(t, 5.0)); };
+  double mover_s = -1.0;
+  for (int k = 0; k <= 130; ++k) {
+    const double t = 0.1 * k;
+    Scan scan;
+    scan_cylinder(scan, {0.0, 0.0}, at(t), 0.25, 1.7, 0.02, rng);
+    mot.update({t, Pose2{}, scan.points, scan.heights});
+    const Track* track = confirmed_near(mot, at(t), 0.3);
+    if (k >= 3) {
+      ASSERT_NE(track, nullptr) << "t " << t;
+    }
+    if (track != nullptr && track->mover && mover_s < 0.0) mover_s = t;
+    if (t > 3.0) {
+      EXPECT_TRUE(track->mover) << "t " << t;
+    }
+  }
+  // The first full mover window (2 s) plus the 3 cycles of confirmation.
+  EXPECT_GT(mover_s, 1.5);
+  EXPECT_LT(mover_s, 2.5);
+  EXPECT_TRUE(confirmed_near(mot, at(13.0), 0.2)->proven);
+  EXPECT_EQ(mot.predictions().size(), 1u);
+}
+
+TEST(Tracker, WallRevealedBitByBitIsNoMover) {
+  // The robot sees a wall along y = 2 up to x = s(t) = 1 + 0.4 t (revealed as it walks), and the
+  // map knows the wall up to 0.3 m short of that: the fresh piece slides at 0.4 m/s like a mover,
+  // but where it was stays occupied. The same piece without the wall behind it is a mover.
+  TrackerParams p;
+  p.static_age_s = 0.0;
+  for (const bool wall_behind : {true, false}) {
+    MultiObjectTracker mot(p);
+    mapping::Costmap2D occupancy = test::free_grid(3.0, 2.0, 12.0, 0.1);
+    bool mover = false;
+    for (int k = 0; k <= 60; ++k) {
+      const double t = 0.1 * k, s = 1.0 + 0.4 * t;
+      std::vector<Eigen::Vector2d> points;
+      std::vector<double> heights;
+      for (double x = wall_behind ? 0.0 : s - 0.5; x <= s; x += 0.02) {
+        for (const double z : {0.3, 0.6, 0.9}) points.emplace_back(x, 2.0), heights.push_back(z);
+        if (x < s - 0.3) occupancy.set_cost(*occupancy.geometry().world_to_cell(x, 2.0), mapping::kLethal);
+      }
+      mot.set_static_map(occupancy, t);
+      mot.update({t, Pose2{s - 1.0, 0.0, 0.0}, points, heights});
+      for (const auto& tr : mot.tracks()) mover = mover || tr.mover;
+    }
+    EXPECT_EQ(mover, !wall_behind);
+  }
+}
+
 }  // namespace bipednav::tracking
