@@ -28,12 +28,8 @@ inline SensorVisibility digit_visibility() { return SensorVisibility(digit_senso
 
 // A free square grid of side size_m centred at (cx, cy).
 inline mapping::Costmap2D free_grid(double cx, double cy, double size_m, double resolution_m) {
-  mapping::GridGeometry g;
-  g.width = g.height = static_cast<int>(std::lround(size_m / resolution_m));
-  g.resolution_m = resolution_m;
-  g.origin_x_m = cx - 0.5 * size_m;
-  g.origin_y_m = cy - 0.5 * size_m;
-  return mapping::Costmap2D(g, mapping::kFree);
+  const int cells = static_cast<int>(std::lround(size_m / resolution_m));
+  return mapping::Costmap2D({cells, cells, resolution_m, cx - 0.5 * size_m, cy - 0.5 * size_m}, mapping::kFree);
 }
 
 // One scan of a planar range sensor at `viewpoint`: a ray every 0.25 deg towards a vertical
