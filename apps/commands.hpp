@@ -14,5 +14,6 @@ void add_local_commands(CLI::App& app, CLI::App& bench);         // local, bench
 void add_localization_commands(CLI::App& app, CLI::App& bench);  // register, odometry, bench localization
 void add_footstep_commands(CLI::App& app, CLI::App& bench);      // footsteps, bench footsteps
 void add_run_commands(CLI::App& app, CLI::App& bench);           // run, params, bench scenarios
+void add_tracking_commands(CLI::App& app, CLI::App& bench);      // bench tracking
 
 }  // namespace bipednav::app

@@ -28,6 +28,7 @@ int main(int argc, char** argv) {
   add_local_commands(app, *bench);
   add_localization_commands(app, *bench);
   add_footstep_commands(app, *bench);
+  add_tracking_commands(app, *bench);
 
   try {
     app.parse(argc, argv);

@@ -7,7 +7,7 @@
 #include "bipednav/common/clock.hpp"
 #include "bipednav/common/cpu_time.hpp"
 #include "bipednav/planning/local/moving_obstacle_yield.hpp"
-#include "bipednav/planning/local/sensor_visibility.hpp"
+#include "bipednav/tracking/sensor_visibility.hpp"
 
 namespace bipednav::navigation {
 namespace {
@@ -66,12 +66,12 @@ Navigator::Navigator(NavigatorParams params, RobotProfile robot, const mapping::
   lidar_name_ = lidar_mount_name(robot_);
   // Where the sensors see (for coasting tracks through their blind zone), with the ranges and the
   // obstacle height the perception pipeline keeps.
-  planning::local::SensorVisibilityParams visibility;
+  tracking::SensorVisibilityParams visibility;
   visibility.depth_max_range_m = params_.perception.depth_max_range_m;
   visibility.lidar_min_range_m = params_.perception.lidar_min_range_m;
   visibility.lidar_max_range_m = params_.perception.lidar_max_range_m;
   visibility.min_obstacle_height_m = params_.perception.min_obstacle_height_m;
-  moving_.set_visibility(planning::local::SensorVisibility(robot_, visibility));
+  moving_.set_visibility(tracking::SensorVisibility(robot_, visibility));
 }
 
 BtFactory Navigator::leaf_factory() {

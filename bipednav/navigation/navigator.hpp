@@ -143,6 +143,12 @@ class Navigator {
   const SensorGate& sensor_gate() const { return gate_; }
   const RobotProfile& robot() const { return robot_; }
   const planning::local::MovingObstacleTracker& moving_obstacles() const { return moving_; }
+  // The obstacle points (map frame) and their heights above the floor that the latest local map
+  // update marked (the moving-obstacle tracker's input; empty while it is disabled), and that
+  // update's time.
+  const std::vector<Eigen::Vector2d>& obstacle_points() const { return moving_points_; }
+  const std::vector<double>& obstacle_heights() const { return moving_heights_; }
+  double obstacle_points_stamp_s() const { return moving_points_stamp_s_; }
   // Depth frames not processed under NavigatorParams::newest_depth_only (superseded before the
   // local map would have integrated them).
   std::size_t depth_frames_skipped() const { return depth_frames_skipped_; }
@@ -188,6 +194,7 @@ class Navigator {
   SourceRuns source_runs_;
   std::vector<Eigen::Vector2d> moving_points_;  // track_moving_obstacles' input, kept for reuse
   std::vector<double> moving_heights_;
+  double moving_points_stamp_s_ = -1.0;
   struct DepthClock {
     std::string camera;
     double last_stamp_s = 0.0;

@@ -99,6 +99,7 @@ void Navigator::track_moving_obstacles() {
   if (!params_.moving_obstacles.enabled) return;  // switched off: no point copies on the loop's hot path
   // The obstacle points of every sensor since the last local map update, in the map frame.
   marking_points(local_obs_, moving_points_, moving_heights_);
+  moving_points_stamp_s_ = now_s_;
   if (moving_points_.empty()) return;
   moving_.set_static_structure(global_.occupancy(), now_s_);  // walls' pieces are not movers
   moving_.update(moving_points_, moving_heights_, localizer_.T_map_base(), now_s_);

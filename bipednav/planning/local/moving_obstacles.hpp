@@ -9,8 +9,8 @@
 #include "bipednav/mapping/costmap2d.hpp"
 #include "bipednav/planning/local/moving_obstacle_params.hpp"
 #include "bipednav/planning/local/obstacle_blobs.hpp"
-#include "bipednav/planning/local/sensor_visibility.hpp"
-#include "bipednav/planning/local/static_structure.hpp"
+#include "bipednav/tracking/sensor_visibility.hpp"
+#include "bipednav/tracking/static_structure.hpp"
 
 namespace bipednav::planning::local {
 
@@ -74,10 +74,10 @@ class MovingObstacleTracker {
   // The static structure blobs are checked against (ignore_static_structure): the global map's
   // occupancy, given before the cycle's update(). Without it no blob counts as structure.
   void set_static_structure(const mapping::Costmap2D& occupancy, double stamp_s);
-  const StaticStructure& static_structure() const { return structure_; }
+  const tracking::StaticStructure& static_structure() const { return structure_; }
   // The robot's sensors, for coasting (default: none, no coasting).
-  void set_visibility(SensorVisibility visibility) { visibility_ = std::move(visibility); }
-  const SensorVisibility& visibility() const { return visibility_; }
+  void set_visibility(tracking::SensorVisibility visibility) { visibility_ = std::move(visibility); }
+  const tracking::SensorVisibility& visibility() const { return visibility_; }
 
   const std::vector<TrackedObstacle>& tracks() const { return tracks_; }
   // Tracks that are confirmed (min_hits), moving (min_moving_speed_mps, min_displacement_m,
@@ -107,8 +107,8 @@ class MovingObstacleTracker {
   void continue_lost(TrackedObstacle& t, const Blob& blob, double stamp_s);
 
   MovingObstacleParams params_;
-  SensorVisibility visibility_;
-  StaticStructure structure_;
+  tracking::SensorVisibility visibility_;
+  tracking::StaticStructure structure_;
   std::vector<TrackedObstacle> tracks_;
   // With radius_floor: confirmed moving tracks dropped within the last max_coast_s and when.
   std::vector<std::pair<TrackedObstacle, double>> lost_;

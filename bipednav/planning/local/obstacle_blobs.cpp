@@ -231,7 +231,8 @@ Blob blob_of(const std::vector<Eigen::Vector2d>& points, const std::vector<doubl
 }
 
 // Whether the blob of BlobScratch::members lies on static structure (structure_min_fraction).
-bool on_structure(const BlobScratch& w, const MovingObstacleParams& params, const StaticStructure& structure) {
+bool on_structure(const BlobScratch& w, const MovingObstacleParams& params,
+                  const tracking::StaticStructure& structure) {
   const double cell = params.cluster_cell_m;
   const auto& cell_xy = w.cell_xy;
   // The share of the blob's binning cells (at their centres) on long-standing structure.
@@ -248,7 +249,7 @@ bool on_structure(const BlobScratch& w, const MovingObstacleParams& params, cons
 
 std::vector<Blob> cluster_blobs(const std::vector<Eigen::Vector2d>& points, const Eigen::Vector2d& center,
                                 const MovingObstacleParams& params, const std::vector<double>& heights,
-                                const StaticStructure* structure, BlobScratch* scratch) {
+                                const tracking::StaticStructure* structure, BlobScratch* scratch) {
   const bool check_structure = params.ignore_static_structure && structure != nullptr && !structure->empty();
   require(heights.empty() || heights.size() == points.size(), "cluster_blobs heights",
           "empty or one per point (" + std::to_string(points.size()) + "), got " + std::to_string(heights.size()));

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "bipednav/planning/local/moving_obstacle_params.hpp"
-#include "bipednav/planning/local/static_structure.hpp"
+#include "bipednav/tracking/static_structure.hpp"
 
 namespace bipednav::planning::local {
 
@@ -38,6 +38,6 @@ struct BlobScratch {
 // (MovingObstacleParams::structure_*). Without `scratch` the call allocates its own buffers.
 std::vector<Blob> cluster_blobs(const std::vector<Eigen::Vector2d>& points, const Eigen::Vector2d& center,
                                 const MovingObstacleParams& params, const std::vector<double>& heights = {},
-                                const StaticStructure* structure = nullptr, BlobScratch* scratch = nullptr);
+                                const tracking::StaticStructure* structure = nullptr, BlobScratch* scratch = nullptr);
 
 }  // namespace bipednav::planning::local

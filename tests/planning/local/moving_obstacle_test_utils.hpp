@@ -4,9 +4,8 @@
 #include <cmath>
 #include <vector>
 
-#include "bipednav/common/robot_profile.hpp"
 #include "bipednav/planning/local/moving_obstacle_params.hpp"
-#include "bipednav/planning/local/sensor_visibility.hpp"
+#include "tracking/tracking_test_utils.hpp"
 
 // Helpers shared by the moving-obstacle tests.
 namespace bipednav::planning::local {
@@ -35,17 +34,7 @@ inline MovingObstacleParams enabled_tracking() {
   return p;
 }
 
-// Digit's range sensors (config/digit.yaml): a VLP-16 at 1.474 m and two D430s at the pelvis
-// (0.95 m), pitched 45 deg down, facing forward and back.
-inline RobotProfile digit_sensors() {
-  RobotProfile r;
-  const double pitch = 0.25 * M_PI;
-  r.sensors = {{"lidar", "vlp16", 0.0, 0.0, 1.474},
-               {"depth_front", "d430", 0.1, 0.0, 0.95, 0.0, pitch, 0.0},
-               {"depth_back", "d430", -0.1, 0.0, 0.95, 0.0, pitch, M_PI}};
-  return r;
-}
-
-inline SensorVisibility digit_visibility() { return SensorVisibility(digit_sensors(), SensorVisibilityParams{}); }
+using tracking::test::digit_sensors;
+using tracking::test::digit_visibility;
 
 }  // namespace bipednav::planning::local

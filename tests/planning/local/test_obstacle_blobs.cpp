@@ -12,7 +12,7 @@
 
 #include "bipednav/common/error.hpp"
 #include "bipednav/planning/local/obstacle_blobs.hpp"
-#include "bipednav/planning/local/static_structure.hpp"
+#include "bipednav/tracking/static_structure.hpp"
 #include "moving_obstacle_test_utils.hpp"
 
 namespace bipednav::planning::local {
@@ -99,7 +99,8 @@ std::uint64_t reference_cell_key(long x, long y) {
 // bitwise reference of ClusterBlobsBinningMatchesTheScalarCode.
 std::vector<Blob> cluster_blobs_scalar_binning(const std::vector<Eigen::Vector2d>& points,
                                                const Eigen::Vector2d& center, const MovingObstacleParams& params,
-                                               const std::vector<double>& heights, const StaticStructure* structure) {
+                                               const std::vector<double>& heights,
+                                               const tracking::StaticStructure* structure) {
   const bool check_structure = params.ignore_static_structure && structure != nullptr && !structure->empty();
   require(heights.empty() || heights.size() == points.size(), "cluster_blobs heights",
           "empty or one per point (" + std::to_string(points.size()) + "), got " + std::to_string(heights.size()));

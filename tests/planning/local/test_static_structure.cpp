@@ -4,7 +4,6 @@
 #include <vector>
 
 #include "bipednav/planning/local/moving_obstacles.hpp"
-#include "bipednav/planning/local/static_structure.hpp"
 #include "local_test_utils.hpp"
 #include "moving_obstacle_test_utils.hpp"
 
@@ -37,36 +36,6 @@ void add_wall_piece(std::vector<Eigen::Vector2d>& pts, double wall_y, double t) 
 }
 
 }  // namespace
-
-TEST(MovingObstacles, StaticStructureIsLethalCellsOfAGivenAge) {
-  mapping::Costmap2D m = test::empty_costmap(0.0, 0.0, 4.0, 0.1);
-  const auto cell = *m.geometry().world_to_cell(1.0, 1.0);
-  const Eigen::Vector2d at(1.05, 1.05), beside(1.25, 1.05);
-  StaticStructure s;
-  EXPECT_TRUE(s.empty());
-  EXPECT_FALSE(s.near(at, 0.2, 0.0));
-  m.set_cost(cell, mapping::kLethal);
-  s.update(m, 0.0);
-  EXPECT_TRUE(s.near(at, 0.0, 0.0));
-  EXPECT_FALSE(s.near(at, 0.0, 4.0));  // not old enough yet
-  s.update(m, 3.9);
-  EXPECT_FALSE(s.near(at, 0.0, 4.0));
-  s.update(m, 4.0);
-  EXPECT_TRUE(s.near(at, 0.0, 4.0));
-  EXPECT_TRUE(s.near(beside, 0.2, 4.0));  // within the margin
-  EXPECT_FALSE(s.near(beside, 0.1, 4.0));
-  s.update(m, 3.0);  // a time that does not advance changes nothing
-  EXPECT_TRUE(s.near(at, 0.0, 4.0));
-  m.set_cost(cell, mapping::kFree);  // cleared: its age starts over when it is marked again
-  s.update(m, 5.0);
-  EXPECT_FALSE(s.near(at, 0.0, 0.0));
-  m.set_cost(cell, mapping::kLethal);
-  s.update(m, 6.0);
-  s.update(m, 9.9);
-  EXPECT_FALSE(s.near(at, 0.0, 4.0));
-  s.update(m, 10.0);
-  EXPECT_TRUE(s.near(at, 0.0, 4.0));
-}
 
 TEST(MovingObstacles, SlidingPieceOfAWallIsNoMover) {
   // The robot walks along a wall 1 m to its left while the piece of it that it sees slides along

@@ -1,4 +1,4 @@
-#include "bipednav/planning/local/sensor_visibility.hpp"
+#include "bipednav/tracking/sensor_visibility.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 
 #include "bipednav/common/error.hpp"
 
-namespace bipednav::planning::local {
+namespace bipednav::tracking {
 
 namespace {
 
@@ -72,4 +72,4 @@ bool SensorVisibility::sees(const Pose2& robot, const Eigen::Vector2d& p, double
   return false;
 }
 
-}  // namespace bipednav::planning::local
+}  // namespace bipednav::tracking

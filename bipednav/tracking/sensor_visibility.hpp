@@ -7,7 +7,7 @@
 #include "bipednav/common/robot_profile.hpp"
 #include "bipednav/common/se3.hpp"
 
-namespace bipednav::planning::local {
+namespace bipednav::tracking {
 
 // Where the robot's range sensors can see an obstacle: a VLP-16 sees a point whose elevation from
 // the sensor is within its rings' span (so a low object only beyond z_lidar / tan(15 deg) minus its
@@ -47,4 +47,4 @@ class SensorVisibility {
   std::vector<SE3> cameras_;             // T_sensor_base
 };
 
-}  // namespace bipednav::planning::local
+}  // namespace bipednav::tracking

@@ -5,15 +5,17 @@
 
 #include "bipednav/mapping/costmap2d.hpp"
 
-namespace bipednav::planning::local {
+namespace bipednav::tracking {
 
 // Long-standing obstacles of an occupancy grid (kLethal cells, e.g. the global map's occupancy):
 // for every cell, since when it has been lethal without interruption, as of the latest update.
+// With a gap allowance an interruption up to max_gap_s long does not count (a wall cell that the
+// map's ray clearing empties now and then stays long-standing).
 class StaticStructure {
  public:
   // The occupancy at stamp_s (times that do not advance are ignored). A grid of another geometry
   // starts over.
-  void update(const mapping::Costmap2D& occupancy, double stamp_s);
+  void update(const mapping::Costmap2D& occupancy, double stamp_s, double max_gap_s = 0.0);
   void clear();
   bool empty() const { return since_.empty(); }
   // Whether a cell within margin_m of p (map frame) had been lethal for at least min_age_s at the
@@ -23,7 +25,8 @@ class StaticStructure {
  private:
   mapping::GridGeometry geometry_;
   std::vector<double> since_;  // +infinity: not lethal
+  std::vector<double> last_;   // when last lethal (with a gap allowance)
   double stamp_s_ = -1e300;
 };
 
-}  // namespace bipednav::planning::local
+}  // namespace bipednav::tracking

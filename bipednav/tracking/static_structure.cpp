@@ -1,9 +1,9 @@
-#include "bipednav/planning/local/static_structure.hpp"
+#include "bipednav/tracking/static_structure.hpp"
 
 #include <cmath>
 #include <limits>
 
-namespace bipednav::planning::local {
+namespace bipednav::tracking {
 
 namespace {
 
@@ -11,25 +11,38 @@ constexpr double kNotLethal = std::numeric_limits<double>::infinity();
 
 }  // namespace
 
-void StaticStructure::update(const mapping::Costmap2D& occupancy, double stamp_s) {
+void StaticStructure::update(const mapping::Costmap2D& occupancy, double stamp_s, double max_gap_s) {
   if (!std::isfinite(stamp_s) || stamp_s <= stamp_s_) return;
   const mapping::GridGeometry& g = occupancy.geometry();
   if (since_.size() != g.size() || g != geometry_) {
     geometry_ = g;
     since_.assign(g.size(), kNotLethal);
+    last_.assign(g.size(), -kNotLethal);
   }
   const auto& cost = occupancy.data();
-  for (std::size_t i = 0; i < since_.size(); ++i) {
-    if (cost[i] != mapping::kLethal)
-      since_[i] = kNotLethal;
-    else if (since_[i] == kNotLethal)
-      since_[i] = stamp_s;
+  if (max_gap_s > 0.0) {
+    for (std::size_t i = 0; i < since_.size(); ++i) {
+      if (cost[i] == mapping::kLethal) {
+        if (since_[i] == kNotLethal) since_[i] = stamp_s;
+        last_[i] = stamp_s;
+      } else if (stamp_s - last_[i] > max_gap_s) {
+        since_[i] = kNotLethal;
+      }
+    }
+  } else {
+    for (std::size_t i = 0; i < since_.size(); ++i) {
+      if (cost[i] != mapping::kLethal)
+        since_[i] = kNotLethal;
+      else if (since_[i] == kNotLethal)
+        since_[i] = stamp_s;
+    }
   }
   stamp_s_ = stamp_s;
 }
 
 void StaticStructure::clear() {
   since_.clear();
+  last_.clear();
   geometry_ = {};
   stamp_s_ = -1e300;
 }
@@ -49,4 +62,4 @@ bool StaticStructure::near(const Eigen::Vector2d& p, double margin_m, double min
   return false;
 }
 
-}  // namespace bipednav::planning::local
+}  // namespace bipednav::tracking

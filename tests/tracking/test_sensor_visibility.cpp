@@ -3,12 +3,15 @@
 #include <cmath>
 
 #include "bipednav/common/error.hpp"
-#include "bipednav/planning/local/sensor_visibility.hpp"
-#include "moving_obstacle_test_utils.hpp"
+#include "bipednav/tracking/sensor_visibility.hpp"
+#include "tracking/tracking_test_utils.hpp"
 
-namespace bipednav::planning::local {
+namespace bipednav::tracking {
 
-TEST(MovingObstacles, VisibilityOfKnownPointsFromDigitsSensors) {
+using test::digit_sensors;
+using test::digit_visibility;
+
+TEST(SensorVisibility, VisibilityOfKnownPointsFromDigitsSensors) {
   const SensorVisibility vis = digit_visibility();
   // The LiDAR's lowest ring (-15 deg from 1.474 m) reaches a 0.5 m top at 0.974 / tan(15 deg) =
   // 3.635 m: beside the robot (outside both cameras) a 0.5 m cube is seen only beyond that.
@@ -42,4 +45,4 @@ TEST(MovingObstacles, VisibilityOfKnownPointsFromDigitsSensors) {
   EXPECT_THROW(SensorVisibility(digit_sensors(), bad), Error);
 }
 
-}  // namespace bipednav::planning::local
+}  // namespace bipednav::tracking

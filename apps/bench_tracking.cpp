@@ -1,0 +1,234 @@
+// `bipednav bench tracking --json`: the multi-object tracker's accuracy against the simulator's
+// ground truth (CLEAR MOT, position and velocity RMSE, time to confirm) over closed-loop runs of
+// the navigator, compared in the same runs with the navigator's MovingObstacleTracker.
+#include "apps/bench_tracking.hpp"
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "apps/commands.hpp"
+#include "apps/scenario_files.hpp"
+#include "apps/tracking_harness.hpp"
+#include "bipednav/common/cpu_time.hpp"
+#include "bipednav/common/error.hpp"
+#include "bipednav/common/progress.hpp"
+
+namespace bipednav::app {
+
+namespace {
+
+// The accuracy goals of issue 35 for people in view within 6 m.
+constexpr double kGoalPositionRmseM = 0.10, kGoalVelocityRmseMps = 0.15, kGoalMota = 0.90;
+
+struct BenchTrackingArgs {
+  std::vector<std::string> scenarios{"hexagon_dynamic", "three_rooms", "digit_lab_dynamic"};
+  std::vector<std::string> robots{"turtlebot3", "digit"};
+  int seeds = 1;
+  int first_seed = 1;
+  std::vector<std::string> variants;  // NAME:key=value,... (beyond the two default trackers)
+  bool json = false;
+};
+
+// TrackerParams' numeric fields by name, for --variant.
+void set_tracker_field(tracking::TrackerParams& p, const std::string& key, const std::string& value) {
+  const std::map<std::string, double*> reals{{"static_margin_m", &p.static_margin_m},
+                                             {"static_age_s", &p.static_age_s},
+                                             {"static_gap_s", &p.static_gap_s},
+                                             {"persistent_span_s", &p.persistent_span_s},
+                                             {"persistent_gap_s", &p.persistent_gap_s},
+                                             {"persistent_memory_s", &p.persistent_memory_s},
+                                             {"mover_margin_m", &p.mover_margin_m},
+                                             {"max_range_m", &p.max_range_m},
+                                             {"cluster_cell_m", &p.cluster_cell_m},
+                                             {"max_cluster_radius_m", &p.max_cluster_radius_m},
+                                             {"point_noise_m", &p.point_noise_m},
+                                             {"near_surface_quantile", &p.near_surface_quantile},
+                                             {"shape_noise_ratio", &p.shape_noise_ratio},
+                                             {"lateral_noise_ratio", &p.lateral_noise_ratio},
+                                             {"accel_psd_m2ps3", &p.accel_psd_m2ps3},
+                                             {"turn_rate_psd_rad2ps3", &p.turn_rate_psd_rad2ps3},
+                                             {"imm_turn_accel_psd_m2ps3", &p.imm_turn_accel_psd_m2ps3},
+                                             {"imm_switch_rate_hz", &p.imm_switch_rate_hz},
+                                             {"initial_speed_std_mps", &p.initial_speed_std_mps},
+                                             {"initial_turn_rate_std_radps", &p.initial_turn_rate_std_radps},
+                                             {"gate_chi2", &p.gate_chi2},
+                                             {"max_unseen_in_view_s", &p.max_unseen_in_view_s},
+                                             {"max_unseen_out_of_view_s", &p.max_unseen_out_of_view_s},
+                                             {"max_position_std_m", &p.max_position_std_m},
+                                             {"radius_memory_s", &p.radius_memory_s},
+                                             {"mover_speed_mps", &p.mover_speed_mps},
+                                             {"mover_window_s", &p.mover_window_s},
+                                             {"mover_significance", &p.mover_significance},
+                                             {"mover_proof_m", &p.mover_proof_m},
+                                             {"mover_min_height_span_m", &p.mover_min_height_span_m},
+                                             {"mover_vacated_radius_m", &p.mover_vacated_radius_m}};
+  const std::map<std::string, int*> ints{{"min_cluster_points", &p.min_cluster_points},
+                                         {"confirm_hits", &p.confirm_hits},
+                                         {"confirm_window", &p.confirm_window}};
+  try {
+    if (key == "motion_model") {
+      p.motion_model = value;
+    } else if (reals.count(key)) {
+      *reals.at(key) = std::stod(value);
+    } else if (ints.count(key)) {
+      *ints.at(key) = std::stoi(value);
+    } else {
+      throw CLI::ValidationError("--variant", "no tracker parameter '" + key + "'");
+    }
+  } catch (const std::logic_error&) {  // std::stod / std::stoi
+    throw CLI::ValidationError("--variant", "'" + key + "=" + value + "' is not a number");
+  }
+}
+
+// The trackers under test: the constant-velocity and IMM filters with their defaults, then each
+// --variant NAME:key=value,... (the defaults changed by its settings).
+std::vector<TrackerVariant> tracker_variants(const std::vector<std::string>& specs) {
+  std::vector<TrackerVariant> out{{"kalman_cv", {}}, {"kalman_imm_cv_ct", {}}};
+  out[1].params.motion_model = "imm";
+  for (const auto& spec : specs) {
+    const auto colon = spec.find(':');
+    TrackerVariant v{spec.substr(0, colon), {}};
+    if (v.name.empty() || colon == std::string::npos)
+      throw CLI::ValidationError("--variant", "expected NAME:key=value[,key=value...], got '" + spec + "'");
+    std::size_t at = colon + 1;
+    while (at < spec.size()) {
+      const auto comma = std::min(spec.find(',', at), spec.size());
+      const std::string item = spec.substr(at, comma - at);
+      const auto eq = item.find('=');
+      if (eq == std::string::npos) throw CLI::ValidationError("--variant", "expected key=value, got '" + item + "'");
+      set_tracker_field(v.params, item.substr(0, eq), item.substr(eq + 1));
+      at = comma + 1;
+    }
+    try {
+      v.params.validate();
+    } catch (const ParamError& e) {
+      throw CLI::ValidationError("--variant", e.what());
+    }
+    out.push_back(v);
+  }
+  return out;
+}
+
+nlohmann::json score_json(const TrackerScore& s) {
+  const tracking::MotSummary& m = s.mot;
+  return {{"truths", m.truths},
+          {"matches", m.matches},
+          {"misses", m.misses},
+          {"false_positives", m.false_positives},
+          {"id_switches", m.id_switches},
+          {"mota_ratio", m.mota()},
+          {"position_rmse_m", m.position_rmse_m},
+          {"velocity_rmse_mps", m.velocity_rmse_mps},
+          {"appearances", m.appearances},
+          {"appearances_confirmed", m.appearances_picked_up},
+          {"mean_time_to_confirm_s", m.mean_pickup_s},
+          {"max_time_to_confirm_s", m.max_pickup_s},
+          {"cpu_ms_per_update", s.updates > 0 ? s.cpu_ms / static_cast<double>(s.updates) : 0.0}};
+}
+
+// Every tracker's scores pooled over the runs, with the goals met or not.
+nlohmann::json pooled_json(const std::vector<TrackingRun>& runs) {
+  std::map<std::string, std::vector<tracking::MotSummary>> parts;
+  std::map<std::string, TrackerScore> cpu;
+  for (const auto& r : runs) {
+    for (const auto& [name, s] : r.scores) {
+      parts[name].push_back(s.mot);
+      cpu[name].updates += s.updates, cpu[name].cpu_ms += s.cpu_ms;
+    }
+  }
+  nlohmann::json out = nlohmann::json::object();
+  for (const auto& [name, p] : parts) {
+    TrackerScore s = cpu[name];
+    s.mot = tracking::pool(p);
+    nlohmann::json j = score_json(s);
+    j["meets_position_goal"] = s.mot.matches > 0 && s.mot.position_rmse_m <= kGoalPositionRmseM;
+    j["meets_velocity_goal"] = s.mot.matches > 0 && s.mot.velocity_rmse_mps <= kGoalVelocityRmseMps;
+    j["meets_mota_goal"] = s.mot.mota() >= kGoalMota;
+    out[name] = j;
+  }
+  return out;
+}
+
+nlohmann::json run_json(const TrackingRun& r) {
+  nlohmann::json scores = nlohmann::json::object();
+  for (const auto& [name, s] : r.scores) scores[name] = score_json(s);
+  return {{"scenario", r.scenario},       {"robot", r.robot},           {"seed", r.seed},
+          {"outcome", r.outcome},         {"collisions", r.collisions}, {"time_s", r.time_s},
+          {"evaluations", r.evaluations}, {"trackers", scores}};
+}
+
+void print_table(const nlohmann::json& pooled) {
+  std::printf("%-34s %9s %9s %7s %6s %6s %6s %6s %9s\n", "tracker", "pos RMSE", "vel RMSE", "MOTA", "FN", "FP", "IDSW",
+              "GT", "confirm");
+  for (const auto& [name, j] : pooled.items()) {
+    std::printf("%-34s %7.3f m %5.3f m/s %7.3f %6ld %6ld %6ld %6ld %7.2f s\n", name.c_str(),
+                j["position_rmse_m"].get<double>(), j["velocity_rmse_mps"].get<double>(), j["mota_ratio"].get<double>(),
+                j["misses"].get<long>(), j["false_positives"].get<long>(), j["id_switches"].get<long>(),
+                j["truths"].get<long>(), j["mean_time_to_confirm_s"].get<double>());
+  }
+}
+
+}  // namespace
+
+nlohmann::json bench_tracking(const std::vector<sim::Scenario>& scenarios, const std::vector<std::string>& robots,
+                              const std::vector<std::uint64_t>& seeds, const std::vector<TrackerVariant>& variants,
+                              bool progress) {
+  std::vector<TrackingRun> runs;
+  ProgressBar bar("tracking", scenarios.size() * robots.size() * seeds.size(), progress);
+  const double cpu0 = process_cpu_ms();
+  for (const auto& s : scenarios)
+    for (const auto& robot : robots)
+      for (const auto seed : seeds) {
+        runs.push_back(run_tracking(s, robot, seed, variants));
+        bar.update(runs.size());
+      }
+  bar.finish();
+  nlohmann::json rows = nlohmann::json::array();
+  for (const auto& r : runs) rows.push_back(run_json(r));
+  return {{"goals",
+           {{"position_rmse_m", kGoalPositionRmseM},
+            {"velocity_rmse_mps", kGoalVelocityRmseMps},
+            {"mota_ratio", kGoalMota}}},
+          {"evaluation",
+           {{"range_m", TrackingEvaluationParams{}.range_m},
+            {"match_distance_m", TrackingEvaluationParams{}.match_distance_m},
+            {"min_points_in_view", TrackingEvaluationParams{}.min_points}}},
+          {"trackers", pooled_json(runs)},
+          {"runs", rows},
+          {"cpu_s", (process_cpu_ms() - cpu0) * 1e-3}};
+}
+
+void add_tracking_commands(CLI::App& /*app*/, CLI::App& bench) {
+  auto a = std::make_shared<BenchTrackingArgs>();
+  CLI::App* b = bench.add_subcommand(
+      "tracking", "Multi-object tracking accuracy against the simulator's actors (CLEAR MOT, RMSE) in closed loops");
+  b->add_option("--scenarios", a->scenarios, "Scenario names or files")->capture_default_str();
+  b->add_option("--robots", a->robots, "Robot profiles (names in config/ or profile files)")->capture_default_str();
+  b->add_option("--seeds", a->seeds, "Seeds per scenario and robot")->capture_default_str()->check(CLI::Range(1, 1000));
+  b->add_option("--first-seed", a->first_seed, "The first seed: runs seeds first .. first + N - 1")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000000));
+  b->add_option("--variant", a->variants,
+                "A further tracker: NAME:key=value[,key=value...] over the defaults (TrackerParams fields)");
+  b->add_flag("--json", a->json, "Print one JSON object (pooled scores and every run's)");
+  b->callback([a] {
+    const std::vector<TrackerVariant> variants = tracker_variants(a->variants);
+    if (a->scenarios.empty() || a->robots.empty()) throw CLI::ValidationError("--scenarios/--robots", "not empty");
+    std::vector<sim::Scenario> scenarios;
+    for (const auto& name : a->scenarios) scenarios.push_back(sim::load_scenario(resolve_scenario(name)));
+    std::vector<std::uint64_t> seeds;
+    for (int i = 0; i < a->seeds; ++i) seeds.push_back(static_cast<std::uint64_t>(a->first_seed + i));
+    const nlohmann::json j = bench_tracking(scenarios, a->robots, seeds, variants, !a->json);
+    if (a->json)
+      std::printf("%s\n", j.dump(2).c_str());
+    else
+      print_table(j["trackers"]);
+  });
+}
+
+}  // namespace bipednav::app

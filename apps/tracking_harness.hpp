@@ -1,0 +1,64 @@
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "bipednav/sim/scenario.hpp"
+#include "bipednav/tracking/mot_metrics.hpp"
+#include "bipednav/tracking/tracker_params.hpp"
+
+// The harness of `bipednav bench tracking`: closed-loop runs of the navigator in the simulator
+// with trackers fed from the navigator's local-map input, scored against the simulator's actors.
+namespace bipednav::app {
+
+// A multi-object tracker under test: a name and its parameters.
+struct TrackerVariant {
+  std::string name;
+  tracking::TrackerParams params;
+};
+
+// The evaluation (TrackingEvaluationParams): the actors that count at an evaluation time are
+// those within range_m of the robot that the sensors returned at least min_points obstacle points
+// from in the cycle (within point_margin_m of the actor's footprint): seen, so occlusion by walls
+// and the sensors' blind zones are the simulator's own. Tracks are taken into the world frame
+// through the robot's true pose (T_world_map = T_world_base_true * T_map_base_estimated^-1), so
+// the scores are the tracker's relative to the robot, without the localization's drift.
+struct TrackingEvaluationParams {
+  double range_m = 6.0;
+  int min_points = 3;
+  double point_margin_m = 0.1;
+  double match_distance_m = 0.5;  // CLEAR MOT's threshold
+  double appearance_gap_s = 1.0;  // unseen this long: in view again is a new appearance
+  double velocity_step_s = 0.05;  // truth velocity: central difference of Actor::pose_at over +-this
+};
+
+// Scores of one tracker over one run (or pooled over runs) and its CPU time per update.
+struct TrackerScore {
+  tracking::MotSummary mot;
+  long updates = 0;
+  double cpu_ms = 0.0;
+};
+
+struct TrackingRun {
+  std::string scenario, robot;
+  std::uint64_t seed = 0;
+  std::string outcome;  // the navigation's outcome, or what the run threw
+  double time_s = 0.0;
+  int collisions = 0;
+  long evaluations = 0;                        // local-map updates scored
+  std::map<std::string, TrackerScore> scores;  // by tracker name: the variants, then the baselines
+};
+
+// The names under which the navigator's own MovingObstacleTracker is scored: its moving() tracks
+// (what the navigator yields to) and every track it has confirmed (min_hits; fresh or coasting).
+inline constexpr const char* kBaselineMoving = "baseline_moving_obstacle_tracker";
+inline constexpr const char* kBaselineAll = "baseline_all_confirmed_tracks";
+
+// One closed-loop run of `scenario` with `robot` (a profile name or file) and `seed`, every variant
+// fed each local-map update's obstacle points and the global map's occupancy as static map.
+TrackingRun run_tracking(const sim::Scenario& scenario, const std::string& robot, std::uint64_t seed,
+                         const std::vector<TrackerVariant>& variants, const TrackingEvaluationParams& eval = {});
+
+}  // namespace bipednav::app
