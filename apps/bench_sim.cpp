@@ -164,9 +164,7 @@ bool run_sim_bench(const BenchOptions& o) {
 void add_sim_bench(CLI::App& bench) {
   auto opts = std::make_shared<BenchOptions>();
   CLI::App* cmd = bench.add_subcommand("sim", "Simulator speed: Digit's LiDAR + two depth cameras, one core");
-  cmd->add_option("--duration", opts->duration_s, "simulated seconds")
-      ->capture_default_str()
-      ->check(check::positive());
+  cmd->add_option("--duration", opts->duration_s, "simulated seconds")->capture_default_str()->check(check::positive());
   cmd->add_option("--robot", opts->robot_file, "robot profile YAML (default: built-in Digit)");
   cmd->add_option("--sensors", opts->sensors, "which sensors run")
       ->check(CLI::IsMember({"all", "lidar", "depth"}))

@@ -87,11 +87,11 @@ void run_filter(const FilterOptions& o) {
   const double ms = sw.elapsed_ms();
   io::write_pcd(o.out, out, encoding);
   if (o.voxel_m > 0.0)
-    std::printf("%s: %zu points, %zu after the pass-through, %zu after the voxel grid (%.2f ms) -> %s\n",
-                o.in.c_str(), in.size(), after_band, out.size(), ms, o.out.c_str());
+    std::printf("%s: %zu points, %zu after the pass-through, %zu after the voxel grid (%.2f ms) -> %s\n", o.in.c_str(),
+                in.size(), after_band, out.size(), ms, o.out.c_str());
   else
-    std::printf("%s: %zu points, %zu after the pass-through, no voxel grid (%.2f ms) -> %s\n", o.in.c_str(),
-                in.size(), after_band, ms, o.out.c_str());
+    std::printf("%s: %zu points, %zu after the pass-through, no voxel grid (%.2f ms) -> %s\n", o.in.c_str(), in.size(),
+                after_band, ms, o.out.c_str());
 }
 
 struct SegmentOptions {

@@ -45,11 +45,10 @@ bool footsteps_command(const FootstepArgs& a) {
   const Pose2 start = parse_pose(a.start, "--start"), goal = parse_pose(a.goal, "--goal");
   prepare_output_file(a.out, "--out");
   mapping::Heightmap map;
-  with_flag_names({{"resolution_m", "--resolution"}, {"min_height_m", "--min-height"}, {"max_height_m", "--max-height"}},
-                  [&] {
-                    map = mapping::read_heightmap_image(a.heightmap,
-                                                        {a.resolution_m, a.min_height_m, a.max_height_m, 0.0, 0.0});
-                  });
+  with_flag_names(
+      {{"resolution_m", "--resolution"}, {"min_height_m", "--min-height"}, {"max_height_m", "--max-height"}}, [&] {
+        map = mapping::read_heightmap_image(a.heightmap, {a.resolution_m, a.min_height_m, a.max_height_m, 0.0, 0.0});
+      });
   FootstepPlannerParams p;
   p.robot = a.robot;
   p.heuristic = a.heuristic;

@@ -143,8 +143,9 @@ bool local_plan(const PlanOptions& o) {
   j["final_pose"] = {p.x, p.y, p.theta};
   if (!o.out.empty()) {
     char title[200];
-    std::snprintf(title, sizeof title, "local plan (%s): %s after %.1f s", runner::local_planner_label(o.planner).c_str(),
-                  reached ? "goal reached" : outcome.c_str(), step * dt);
+    std::snprintf(title, sizeof title, "local plan (%s): %s after %.1f s",
+                  runner::local_planner_label(o.planner).c_str(), reached ? "goal reached" : outcome.c_str(),
+                  step * dt);
     draw_run(o.out, map, global.path, start, goal, driven, last_traj, p, o.planner, title);
     j["out"] = o.out;
   }

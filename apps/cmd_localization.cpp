@@ -10,9 +10,9 @@
 #include <optional>
 #include <sstream>
 
-#include "apps/cmd_odometry.hpp"
 #include "apps/cli_checks.hpp"
 #include "apps/cli_exit.hpp"
+#include "apps/cmd_odometry.hpp"
 #include "apps/commands.hpp"
 #include "apps/scenario_files.hpp"
 #include "bipednav/common/angles.hpp"

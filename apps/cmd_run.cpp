@@ -14,6 +14,7 @@
 #include "apps/cmd_run_footsteps.hpp"
 #include "apps/commands.hpp"
 #include "apps/scenario_files.hpp"
+#include "bipednav/io/number_list.hpp"
 #include "bipednav/navigation/navigator_params_yaml.hpp"
 #include "bipednav/runner/footstep_runner.hpp"
 #include "bipednav/runner/replay_recorder.hpp"
@@ -189,22 +190,11 @@ bool run_succeeded(const runner::RunResult& r) { return r.success; }
 // --goal-tolerance M,RAD: two positive numbers.
 void apply_goal_tolerance(const std::string& text, sim::Scenario& s) {
   if (text.empty()) return;
-  const auto comma = text.find(',');
-  double m = 0.0, rad = 0.0;
-  try {
-    if (comma == std::string::npos) throw std::invalid_argument(text);
-    std::size_t used_m = 0, used_rad = 0;
-    const std::string a = text.substr(0, comma), b = text.substr(comma + 1);
-    m = std::stod(a, &used_m);
-    rad = std::stod(b, &used_rad);
-    if (used_m != a.size() || used_rad != b.size()) throw std::invalid_argument(text);
-  } catch (const std::exception&) {
-    m = rad = -1.0;
-  }
-  if (!(m > 0.0 && rad > 0.0 && std::isfinite(m) && std::isfinite(rad)))
+  const std::vector<double> v = io::parse_number_list(text);
+  if (v.size() != 2 || !(v[0] > 0.0 && v[1] > 0.0))
     throw Error("--goal-tolerance: expected M,RAD (two positive numbers: metres, radians), got '" + text + "'");
-  s.goal_tolerance_m = m;
-  s.goal_tolerance_rad = rad;
+  s.goal_tolerance_m = v[0];
+  s.goal_tolerance_rad = v[1];
 }
 
 bool run_command(const RunArgs& a) {

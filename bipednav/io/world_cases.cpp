@@ -7,27 +7,10 @@
 #include <sstream>
 
 #include "bipednav/common/error.hpp"
+#include "bipednav/io/number_list.hpp"
 
 namespace bipednav::io {
 namespace {
-
-// Comma-separated finite numbers; empty on anything else.
-std::vector<double> numbers_of(const std::string& text) {
-  std::vector<double> v;
-  std::stringstream ss(text);
-  std::string part;
-  while (std::getline(ss, part, ',')) {
-    try {
-      std::size_t used = 0;
-      const double x = std::stod(part, &used);
-      if (used != part.size() || !std::isfinite(x)) return {};
-      v.push_back(x);
-    } catch (const std::exception&) {
-      return {};
-    }
-  }
-  return v;
-}
 
 // The shortest text that reads back to the same double.
 std::string text_of(double v) {
@@ -47,17 +30,17 @@ class LineParser {
     throw FileError(file_, where_ + (key.empty() ? "" : " (" + key + ")"), what);
   }
   Pose2 pose(const std::string& key, const std::string& text) const {
-    const std::vector<double> v = numbers_of(text);
+    const std::vector<double> v = parse_number_list(text);
     if (v.size() != 2 && v.size() != 3) fail(key, "expected x,y or x,y,yaw (metres, radians), got '" + text + "'");
     return {v[0], v[1], v.size() == 3 ? v[2] : 0.0};
   }
   double positive(const std::string& key, const std::string& text) const {
-    const std::vector<double> v = numbers_of(text);
+    const std::vector<double> v = parse_number_list(text);
     if (v.size() != 1 || v[0] <= 0.0) fail(key, "expected a positive number, got '" + text + "'");
     return v[0];
   }
   void tolerance(const std::string& text, WorldCase& c) const {
-    const std::vector<double> v = numbers_of(text);
+    const std::vector<double> v = parse_number_list(text);
     if (v.size() != 2 || v[0] <= 0.0 || v[1] <= 0.0)
       fail("tolerance", "expected M,RAD (two positive numbers), got '" + text + "'");
     c.goal_tolerance_m = v[0];

@@ -162,8 +162,7 @@ void draw_statics(viz::Canvas& canvas, const World& world, const WorldStyle& sty
   }
   std::vector<std::pair<double, const Geometry*>> by_height;
   for (const Geometry& g : world.statics) by_height.emplace_back(top_height_m(g, SE3::Identity()), &g);
-  std::stable_sort(by_height.begin(), by_height.end(),
-                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::stable_sort(by_height.begin(), by_height.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   for (const auto& [top, g] : by_height)
     for (const Polygon2& poly : footprint(*g, SE3::Identity(), style.max_z_m))
       canvas.polygon(poly, height_fill(style, top), viz::colors::kGrey, 0.8);

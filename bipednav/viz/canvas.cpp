@@ -16,7 +16,8 @@ void CanvasParams::validate() const {
   require(pixels_per_m > 0.0, "pixels_per_m", "> 0");
   require(margin_px >= 0, "margin_px", ">= 0");
   const auto band = [](int px) { return px >= 0 && px <= 20000; };
-  require(band(top_px) && band(right_px) && band(bottom_px), "top_px", "bands of 0..20000 pixels (and right_px, bottom_px)");
+  require(band(top_px) && band(right_px) && band(bottom_px), "top_px",
+          "bands of 0..20000 pixels (and right_px, bottom_px)");
   const double w = (max_x_m - min_x_m) * pixels_per_m, h = (max_y_m - min_y_m) * pixels_per_m;
   require(w <= 20000 && h <= 20000, "pixels_per_m", "a picture of at most 20000 x 20000 pixels");
 }

@@ -17,7 +17,8 @@ TEST(FigureLegend, ScaleBarLengthIsRound) {
 TEST(FigureLegend, BandsMakeRoomForTheLegend) {
   CanvasParams p;
   p.min_x_m = 0, p.max_x_m = 2, p.min_y_m = 0, p.max_y_m = 1, p.pixels_per_m = 50, p.margin_px = 10;
-  const std::vector<LegendEntry> entries = {{"a path", colors::kRed}, {"an area", colors::kBlue, LegendMark::kBox},
+  const std::vector<LegendEntry> entries = {{"a path", colors::kRed},
+                                            {"an area", colors::kBlue, LegendMark::kBox},
                                             {"a pose", colors::kBlack, LegendMark::kArrow}};
   const CanvasParams b = with_legend_bands(p, entries);
   EXPECT_GT(b.top_px, 0);
