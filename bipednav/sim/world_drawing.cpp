@@ -3,33 +3,13 @@
 #include <algorithm>
 #include <cmath>
 
+#include "bipednav/sim/footprint2d.hpp"
+
 namespace bipednav::sim {
 namespace {
 
 constexpr double kGroundZ_m = 0.02;
 constexpr int kCircleSegments = 32;
-
-// Convex hull (Andrew's monotone chain), counter-clockwise.
-Polygon2 convex_hull(Polygon2 pts) {
-  std::sort(pts.begin(), pts.end(),
-            [](const auto& a, const auto& b) { return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y()); });
-  if (pts.size() < 3) return pts;
-  const auto cross = [](const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-    return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
-  };
-  Polygon2 hull(2 * pts.size());
-  std::size_t k = 0;
-  for (std::size_t i = 0; i < pts.size(); ++i) {
-    while (k >= 2 && cross(hull[k - 2], hull[k - 1], pts[i]) <= 0) --k;
-    hull[k++] = pts[i];
-  }
-  for (std::size_t i = pts.size() - 1, t = k + 1; i > 0; --i) {
-    while (k >= t && cross(hull[k - 2], hull[k - 1], pts[i - 1]) <= 0) --k;
-    hull[k++] = pts[i - 1];
-  }
-  hull.resize(k - 1);
-  return hull;
-}
 
 // Sample points on the surface of a solid shape, in the shape frame.
 std::vector<Eigen::Vector3d> solid_samples(const Shape& shape) {
