@@ -207,8 +207,8 @@ LayoutDraft draw_corridor(Rng& rng) {
   }
   w.statics.push_back(wall_segment("wall_west", {0, -y}, {0, y}));
   w.statics.push_back(wall_segment("wall_east", {L, -y}, {L, y}));
-  d.start = Pose2(0.9, rng.uniform(-0.2, 0.2), 0.0);
-  d.goal = Pose2(L - 0.9, rng.uniform(-0.2, 0.2), 0.0);
+  d.start = Pose2{0.9, rng.uniform(-0.2, 0.2), 0.0};
+  d.goal = Pose2{L - 0.9, rng.uniform(-0.2, 0.2), 0.0};
   // Benches against the walls, away from the ends and the crossing.
   const int benches = static_cast<int>(rng.uniform_int(0, 2));
   for (int i = 0; i < benches; ++i) {
@@ -253,8 +253,8 @@ LayoutDraft draw_hall(Rng& rng) {
   d.layout = "hall";
   const double wx = rng.uniform(9.0, 13.0), wy = rng.uniform(7.0, 10.0);
   add_room_walls(d.world, wx, wy);
-  d.start = Pose2(1.0, rng.uniform(1.5, wy - 1.5), 0.0);
-  d.goal = Pose2(wx - 1.0, rng.uniform(1.5, wy - 1.5), 0.0);
+  d.start = Pose2{1.0, rng.uniform(1.5, wy - 1.5), 0.0};
+  d.goal = Pose2{wx - 1.0, rng.uniform(1.5, wy - 1.5), 0.0};
   int index = 1;
   scatter_furniture(d, rng, static_cast<int>(rng.uniform_int(3, 8)), {0.6, 0.6}, {wx - 0.6, wy - 0.6},
                     d.start.position(), 0.0, index);
