@@ -96,7 +96,7 @@ struct MethodStep {
 
 class OdometryMethod {
  public:
-  OdometryMethod(const RecordedOdometryOptions& o, const SE3& T_world_first) : o_(o) {
+  OdometryMethod(const RecordedOdometryOptions& o, const SE3& T_world_first) {
     if (o.method == "loam") {
       localization::LoamParams lp = o.loam;
       lp.T_world_lidar_initial = T_world_first;
@@ -126,7 +126,6 @@ class OdometryMethod {
   }
 
  private:
-  const RecordedOdometryOptions& o_;
   std::optional<localization::Loam> loam_;
   std::optional<localization::GicpOdometry> gicp_;
   perception::VoxelGrid voxel_;
