@@ -170,12 +170,6 @@ struct BenchLoopArgs {
   bool json = false;
 };
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n == 0 ? 0.0 : (n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
-}
-
 // Issue 8's real-time goal: the whole closed loop (simulator included) on one thread, `runs` times
 // one after another; the real-time factor is simulated time over process CPU time (the run is
 // single-threaded, so this is one core), medians over the runs against the 10x goal.

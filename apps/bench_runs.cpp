@@ -1,5 +1,6 @@
 #include "apps/bench_runs.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <mutex>
 #include <thread>
@@ -25,6 +26,12 @@ void run_in_parallel(std::size_t n, int jobs, const std::string& label, const st
   worker();
   for (auto& t : threads) t.join();
   bar.finish();
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n == 0 ? 0.0 : (n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
 }
 
 std::map<std::string, RobotProfile> robot_profiles(const std::vector<std::string>& robots,

@@ -15,6 +15,9 @@ namespace bipednav::app {
 // progress bar labelled `label` counting finished items. Each item should catch its own errors.
 void run_in_parallel(std::size_t n, int jobs, const std::string& label, const std::function<void(std::size_t)>& work);
 
+// The median of v (0 when empty).
+double median(std::vector<double> v);
+
 // Each robot's profile by the name given (a profile file's robot by its path), after reading its
 // navigation parameters with `base` (a bad parameters file is reported once, not as every run's error).
 std::map<std::string, RobotProfile> robot_profiles(const std::vector<std::string>& robots,

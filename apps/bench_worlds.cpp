@@ -130,13 +130,6 @@ nlohmann::json rate(std::size_t k, std::size_t n) {
       {"count", k}, {"ratio", n > 0 ? static_cast<double>(k) / static_cast<double>(n) : 0.0}, {"ci95", {ci.lo, ci.hi}}};
 }
 
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 nlohmann::json run_row(const WorldRun& r, const BenchWorld& w, const WorldRun* baseline) {
   nlohmann::json j{{"world", w.scenario.name}, {"seed", w.scenario.seed},      {"layout", w.layout},
                    {"robot", r.robot},         {"route_margin_m", r.margin_m}, {"feasible", r.feasible}};
