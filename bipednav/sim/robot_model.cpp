@@ -8,25 +8,6 @@
 
 namespace bipednav::sim {
 
-Pose2 integrate_arc(const Pose2& start, double v_mps, double w_radps, double t_s) {
-  const double dth = w_radps * t_s;
-  double fx, fy;  // displacement in the start frame
-  if (std::abs(dth) < 1e-9) {
-    fx = v_mps * t_s;
-    fy = 0.5 * v_mps * t_s * dth;
-  } else {
-    const double r = v_mps / w_radps;
-    fx = r * std::sin(dth);
-    fy = r * (1.0 - std::cos(dth));
-  }
-  return start * Pose2{fx, fy, dth};
-}
-
-double track_first_order(double current, double target, double dt_s, double time_constant_s, double max_delta) {
-  const double alpha = time_constant_s > 0.0 ? 1.0 - std::exp(-dt_s / time_constant_s) : 1.0;
-  return current + std::clamp((target - current) * alpha, -max_delta, max_delta);
-}
-
 RobotModel::RobotModel(const RobotProfile& profile, const Pose2& start)
     : profile_(profile), walker_(profile.kind != "diff_drive"), nominal_(start), step_start_nominal_(start) {
   profile_.validate();

@@ -1,5 +1,6 @@
 #pragma once
 
+#include "bipednav/common/body_response.hpp"
 #include "bipednav/common/pose2.hpp"
 #include "bipednav/common/robot_profile.hpp"
 #include "bipednav/common/twist.hpp"
@@ -49,11 +50,5 @@ class RobotModel {
   double v_ = 0.0, w_ = 0.0;  // tracked forward speed and yaw rate
   RobotState state_;
 };
-
-// Pose after driving at constant (v, w) for t seconds along an arc (exact unicycle motion).
-Pose2 integrate_arc(const Pose2& start, double v_mps, double w_radps, double t_s);
-
-// One step of first-order tracking toward target, each change limited to max_delta.
-double track_first_order(double current, double target, double dt_s, double time_constant_s, double max_delta);
 
 }  // namespace bipednav::sim
