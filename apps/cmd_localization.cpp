@@ -299,9 +299,9 @@ json bench_loam(const BenchOptions& o) {
 
 fs::path scan_pair_dir(const BenchOptions& o) {
   if (!o.data_dir.empty()) return o.data_dir;
-  for (const fs::path d : {"tests/data/lidar/fast_gicp", "../shared/data/lidar/fast_gicp"})
-    if (fs::exists(d / "relative.txt")) return d;
-  throw Error("scan pair not found in tests/data/lidar/fast_gicp or ../shared/data/lidar/fast_gicp (use --data-dir)");
+  const fs::path d = "tests/data/lidar/fast_gicp";  // the repository's copy of the scan pair
+  if (fs::exists(d / "relative.txt")) return d;
+  throw Error("scan pair not found in tests/data/lidar/fast_gicp (run from the repository's root, or use --data-dir)");
 }
 
 json bench_gicp(const BenchOptions& o) {

@@ -159,8 +159,7 @@ fs::path find_movingai_dir(const std::string& given) {
   if (!ec) roots.push_back(exe.parent_path());
   for (fs::path p : roots)
     for (; !p.empty(); p = p.parent_path()) {
-      for (const char* rel : {"tests/data/movingai", "../shared/data/movingai"})
-        if (fs::exists(p / rel / "maps")) return p / rel;
+      if (fs::exists(p / "tests/data/movingai/maps")) return p / "tests/data/movingai";
       if (p == p.parent_path()) break;
     }
   return {};
