@@ -25,6 +25,7 @@
 #include "bipednav/localization/loam.hpp"
 #include "bipednav/perception/voxel_grid.hpp"
 #include "bipednav/runner/scenario_runner.hpp"
+#include "bipednav/sim/route_clearance.hpp"
 #include "bipednav/sim/scenario.hpp"
 #include "bipednav/sim/simulation.hpp"
 
@@ -111,23 +112,55 @@ struct OdometryOptions {
   std::string params;  // a navigation parameters file: LOAM's parameters from its localization.loam
 };
 
-// The route for `bipednav odometry`: explicit waypoints, a built-in route through three_rooms, or
-// straight ahead.
-std::vector<Eigen::Vector2d> route_for(const OdometryOptions& o, const sim::Scenario& s) {
-  std::vector<Eigen::Vector2d> wps;
+// The route for `bipednav odometry` and how it was chosen: explicit waypoints; else the widest
+// route of the scenario's static world from its start through its goals in turn (sim::
+// widest_route, the search `bipednav route` reports on), thinned to waypoints kRouteSpacingM apart;
+// a scenario without goals: straight ahead.
+struct OdometryRoute {
+  std::vector<Eigen::Vector2d> waypoints;
+  std::string source;  // "waypoints", "widest_route" or "straight (no goal)"
+};
+
+constexpr double kRouteSpacingM = 0.75;
+constexpr double kRouteResolutionM = 0.05;
+
+OdometryRoute route_for(const OdometryOptions& o, const sim::Scenario& s, const RobotProfile& robot) {
+  OdometryRoute route;
   std::istringstream in(o.waypoints);
   std::string item;
   while (in >> item) {
     double x = 0, y = 0;
     if (std::sscanf(item.c_str(), "%lf,%lf", &x, &y) != 2)
       throw Error("--waypoints: expected 'x,y x,y ...', got '" + item + "'");
-    wps.emplace_back(x, y);
+    route.waypoints.emplace_back(x, y);
   }
-  if (!wps.empty()) return wps;
-  if (s.name == "three_rooms")
-    return {{2.2, 1.6}, {9.0, 1.6}, {11.2, 1.6}, {12.8, 0.4}, {16.0, -0.2}, {17.2, -1.6}, {21.5, -1.6}, {28.5, -1.6}};
-  const double c = std::cos(s.start.theta), sn = std::sin(s.start.theta);
-  return {{s.start.x + 100.0 * c, s.start.y + 100.0 * sn}};
+  if (!route.waypoints.empty()) {
+    route.source = "waypoints";
+    return route;
+  }
+  if (s.goals.empty()) {
+    const double c = std::cos(s.start.theta), sn = std::sin(s.start.theta);
+    route.waypoints = {{s.start.x + 100.0 * c, s.start.y + 100.0 * sn}};
+    route.source = "straight (no goal)";
+    return route;
+  }
+  sim::RouteClearanceParams p = sim::RouteClearanceParams::for_robot(robot);
+  p.resolution_m = kRouteResolutionM;
+  p.with_path = true;
+  const sim::RouteArea area{{s.bounds.min_x_m, s.bounds.min_y_m}, {s.bounds.max_x_m, s.bounds.max_y_m}};
+  Eigen::Vector2d from = s.start.position();
+  for (const sim::TimedGoal& g : s.goals) {
+    const sim::RouteClearance r = sim::widest_route(s.world, area, from, g.pose.position(), p);
+    if (!r.connected)
+      throw Error("scenario '" + s.name + "': no route from (" + std::to_string(from.x()) + ", " +
+                  std::to_string(from.y()) + ") to its goal (" + std::to_string(g.pose.x) + ", " +
+                  std::to_string(g.pose.y) + "); give --waypoints");
+    for (const Eigen::Vector2d& w : sim::route_waypoints(r.path, kRouteSpacingM)) route.waypoints.push_back(w);
+    route.waypoints.back() = g.pose.position();  // the goal itself, not its grid cell
+    from = g.pose.position();
+  }
+  route.source = "widest_route";
+  return route;
 }
 
 Twist steer(const Pose2& pose, const Eigen::Vector2d& goal, double v) {
@@ -160,7 +193,10 @@ void run_odometry(const OdometryOptions& o) {
   sp.seed = scenario.seed;
   sp.enable_depth = false;
   sim::Simulation sim(scenario.world, robot, scenario.start, sp);
-  const std::vector<Eigen::Vector2d> route = route_for(o, scenario);
+  const OdometryRoute planned = route_for(o, scenario, robot);
+  if (planned.source == "straight (no goal)" && !o.json_out)
+    std::fprintf(stderr, "note: scenario '%s' has no goal; driving straight ahead\n", scenario.name.c_str());
+  const std::vector<Eigen::Vector2d>& route = planned.waypoints;
   const double v = o.speed_mps > 0 ? std::min(o.speed_mps, robot.max_vel_x_mps) : robot.max_vel_x_mps;
   const double t_end = o.duration_s > 0 ? o.duration_s : scenario.time_limit_s;
 
@@ -214,7 +250,10 @@ void run_odometry(const OdometryOptions& o) {
                   {"simulated_s", sim.now_s()},
                   {"distance_m", dl.distance_m},
                   {"sweeps", truth.size()},
+                  {"route", planned.source},
+                  {"route_waypoints", route.size()},
                   {"route_completed", next >= route.size()},
+                  {"contacts", sim.contacts().size()},
                   {"motion_prior", !o.no_prior},
                   {"planar_motion", o.planar},
                   {"unhealthy_sweeps", unhealthy},
@@ -243,7 +282,7 @@ struct BenchOptions {
   bool json_out = false;
 };
 
-// Simulated VLP-16 sweeps (with odometry priors) along the three_rooms route; the simulator's cost
+// Simulated VLP-16 sweeps (with odometry priors) along the three_rooms route (route_for); the simulator's cost
 // is kept out of the LOAM timings.
 json bench_loam(const BenchOptions& o) {
   OdometryOptions oo;
@@ -255,7 +294,7 @@ json bench_loam(const BenchOptions& o) {
   sp.seed = scenario.seed;
   sp.enable_depth = false;
   sim::Simulation sim(scenario.world, robot, scenario.start, sp);
-  const auto route = route_for(oo, scenario);
+  const std::vector<Eigen::Vector2d> route = route_for(oo, scenario, robot).waypoints;
   std::vector<PointCloud> sweeps;
   std::size_t next = 0;
   while (static_cast<int>(sweeps.size()) < o.sweeps && sim.now_s() < 600.0) {
@@ -393,7 +432,8 @@ void add_localization_commands(CLI::App& app, CLI::App& bench) {
       ->required();
   d->add_option("--duration", odo->duration_s, "Scenario: simulated seconds (default: until the route is done)");
   d->add_option("--waypoints", odo->waypoints,
-                "Scenario: route as 'x,y x,y ...' (default: built in for three_rooms, else straight)");
+                "Scenario: route as 'x,y x,y ...' (default: the widest route from the start through the goals, "
+                "straight ahead without goals)");
   d->add_option("--speed", odo->speed_mps, "Scenario: forward speed in m/s (default: the robot's maximum)");
   d->add_option("--config-dir", odo->config_dir,
                 "Scenario: directory of robot profiles (default: <scenario>/../config)");

@@ -47,11 +47,14 @@ void draw_markers(viz::Canvas& c, const sim::Scenario& s, double t_s) {
   }
 }
 
-void draw_contact(viz::Canvas& c, const RunResult& run, double t_s) {
-  if (!run.first_collision || run.first_collision->time_s > t_s + 1e-9) return;
-  const Eigen::Vector2d q = c.to_pixel(run.first_collision->point);
-  c.line_px(q - Eigen::Vector2d(7, 7), q + Eigen::Vector2d(7, 7), viz::colors::kRed, 3.0);
-  c.line_px(q - Eigen::Vector2d(7, -7), q + Eigen::Vector2d(7, -7), viz::colors::kRed, 3.0);
+void draw_contacts(viz::Canvas& c, const RunResult& run, double t_s) {
+  const std::vector<Eigen::Vector2d> marks = contact_marks(run, t_s);
+  for (std::size_t i = 0; i < marks.size(); ++i) {
+    const Eigen::Vector2d q = c.to_pixel(marks[i]);
+    const double r = i == 0 ? 7.0 : 5.0;
+    c.line_px(q - Eigen::Vector2d(r, r), q + Eigen::Vector2d(r, r), viz::colors::kRed, 3.0);
+    c.line_px(q - Eigen::Vector2d(r, -r), q + Eigen::Vector2d(r, -r), viz::colors::kRed, 3.0);
+  }
 }
 
 // One panel: the world and the navigator's state at snap.t_s, drawn into `rect` (clipped to it).
@@ -70,7 +73,7 @@ void draw_panel(viz::Canvas& c, const sim::Scenario& s, const RunResult& run, co
   c.polyline(positions(snap.global_path), viz::colors::kRed, 2.0);
   c.polyline(positions(snap.local_trajectory), viz::colors::kGreen, 3.0);
   draw_markers(c, s, snap.t_s);
-  draw_contact(c, run, snap.t_s);
+  draw_contacts(c, run, snap.t_s);
   c.arrow(snap.pose, 0.5, viz::colors::kBlack, 3.0);
   c.end_view();
 }
@@ -82,6 +85,15 @@ void draw_title(viz::Canvas& c, const viz::PixelRect& rect, const std::string& t
 }
 
 }  // namespace
+
+std::vector<Eigen::Vector2d> contact_marks(const RunResult& run, double t_s) {
+  std::vector<Eigen::Vector2d> marks;
+  if (run.contacts.empty() && run.first_collision && run.first_collision->time_s <= t_s + 1e-9)
+    marks.push_back(run.first_collision->point);
+  for (const sim::CollisionEvent& e : run.contacts)
+    if (e.time_s <= t_s + 1e-9) marks.push_back(e.point);
+  return marks;
+}
 
 std::string local_planner_label(const std::string& local_planner) {
   return local_planner == "tracker" ? "path tracker" : local_planner == "teb" ? "TEB" : local_planner;
@@ -102,7 +114,9 @@ std::vector<viz::LegendEntry> run_figure_legend(const sim::Scenario& s, const Ru
             {"start", kStart, LegendMark::kArrow},
             {"goal (tolerance)", viz::colors::kRed, LegendMark::kRing},
             {"robot", viz::colors::kBlack, LegendMark::kArrow}});
-  if (run.first_collision) e.push_back({"first contact", viz::colors::kRed, LegendMark::kCross});
+  if (run.first_collision || !run.contacts.empty())
+    e.push_back({run.collisions > 1 ? "contacts (" + std::to_string(run.collisions) + ")" : "contact",
+                 viz::colors::kRed, LegendMark::kCross});
   return e;
 }
 

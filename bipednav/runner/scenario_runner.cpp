@@ -232,7 +232,8 @@ namespace {
 void record_outcome(RunResult& out, const sim::Scenario& scenario, const sim::Simulation& sim,
                     const navigation::Navigator& nav, double time_limit_s) {
   out.first_collision = sim.first_collision();
-  out.collisions = out.first_collision ? 1 : 0;
+  out.contacts = sim.contacts();
+  out.collisions = static_cast<int>(out.contacts.size());
   out.min_clearance_m = sim.min_clearance_m();
   out.replans = nav.replans();
   out.recoveries = nav.recoveries();

@@ -76,9 +76,12 @@ struct RunResult {
   // Why the run failed, in words ("navigator reported SUCCESS, but the robot touched wall_3 at
   // t = 12.4 s"; "true pose 0.61 m from the goal"); empty on success.
   std::string verdict;
-  Result outcome;  // the navigator's
-  int collisions = 0;
+  Result outcome;      // the navigator's
+  int collisions = 0;  // contacts: the size of `contacts` (run_scenario), of the walker's (footstep runs)
   std::optional<sim::CollisionEvent> first_collision;
+  // Every contact of the run, oldest first (sim::Simulation::contacts); run_scenario fills it, the
+  // footstep runs keep theirs in FootstepRunOutput::contacts.
+  std::vector<sim::CollisionEvent> contacts;
   double time_s = 0.0;
   Pose2 final_true_pose, final_estimated_pose;
   // The first time the true pose was within the last goal's tolerances (once every goal was given).

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <queue>
 #include <utility>
@@ -162,6 +163,48 @@ double search_widest(RouteGrid& g, FootprintIndex& index, std::size_t start, std
   return 0.0;
 }
 
+// Dijkstra over the cells keeping at least min_clearance_m, each step's length weighted by
+// 1 + 1 m / clearance: the cell centres from start to goal (empty when the goal is not reached).
+std::vector<Eigen::Vector2d> search_path(RouteGrid& g, FootprintIndex& index, std::size_t start, std::size_t goal,
+                                         double min_clearance_m) {
+  const double keep = min_clearance_m - 1e-9;
+  std::vector<double> cost(g.clearance.size(), kUnbounded);
+  std::vector<std::int64_t> parent(g.clearance.size(), -1);
+  using Entry = std::pair<double, std::size_t>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> open;
+  cost[start] = 0.0;
+  open.emplace(0.0, start);
+  while (!open.empty()) {
+    const auto [c, i] = open.top();
+    open.pop();
+    if (c > cost[i]) continue;
+    if (i == goal) break;
+    const long x = static_cast<long>(i % static_cast<std::size_t>(g.nx)), y = static_cast<long>(i / g.nx);
+    for (long dy = -1; dy <= 1; ++dy) {
+      for (long dx = -1; dx <= 1; ++dx) {
+        const long nxp = x + dx, nyp = y + dy;
+        if ((dx == 0 && dy == 0) || nxp < 0 || nyp < 0 || nxp >= g.nx || nyp >= g.ny) continue;
+        const auto n = static_cast<std::size_t>(nyp * g.nx + nxp);
+        const double clearance = g.clear(n, index);
+        if (clearance < keep) continue;
+        const double step = g.res * ((dx != 0 && dy != 0) ? std::sqrt(2.0) : 1.0);
+        const double w = c + step * (1.0 + 1.0 / clearance);
+        if (w < cost[n]) {
+          cost[n] = w;
+          parent[n] = static_cast<std::int64_t>(i);
+          open.emplace(w, n);
+        }
+      }
+    }
+  }
+  std::vector<Eigen::Vector2d> path;
+  if (!std::isfinite(cost[goal])) return path;
+  for (std::int64_t i = static_cast<std::int64_t>(goal); i >= 0; i = parent[static_cast<std::size_t>(i)])
+    path.push_back(g.center(static_cast<std::size_t>(i)));
+  std::reverse(path.begin(), path.end());
+  return path;
+}
+
 }  // namespace
 
 std::vector<RouteClearance> widest_routes(const World& world, const RouteArea& area, const Eigen::Vector2d& start,
@@ -204,7 +247,24 @@ std::vector<RouteClearance> widest_routes(const World& world, const RouteArea& a
       if (g.clearance[static_cast<std::size_t>(i)] < g.clearance[narrowest]) narrowest = static_cast<std::size_t>(i);
     r.bottleneck = g.center(narrowest);
     r.bottleneck_obstacle = index.name(index.nearest(r.bottleneck).second);
+    if (params.with_path) r.path = search_path(g, index, s, t, r.widest_m);
   }
+  return out;
+}
+
+std::vector<Eigen::Vector2d> route_waypoints(const std::vector<Eigen::Vector2d>& path, double spacing_m) {
+  require(std::isfinite(spacing_m) && spacing_m > 0.0, "route_waypoints.spacing_m", "> 0");
+  std::vector<Eigen::Vector2d> out;
+  if (path.empty()) return out;
+  double along = 0.0;
+  for (std::size_t i = 1; i + 1 < path.size(); ++i) {
+    along += (path[i] - path[i - 1]).norm();
+    if (along >= spacing_m) {
+      out.push_back(path[i]);
+      along = 0.0;
+    }
+  }
+  out.push_back(path.back());
   return out;
 }
 

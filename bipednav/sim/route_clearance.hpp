@@ -18,6 +18,9 @@ struct RouteClearanceParams {
   double resolution_m = 0.01;  // grid of candidate centre positions; the answer is within ~1 cell
   double height_m = 1.0;       // the robot's height: obstacles are what the slab meets
   CollisionParams collision;   // its ground clearance (as the simulator's collision check)
+  // Also find a path along the widest route (RouteClearance::path): a second search over the cells
+  // that keep widest_m, shortest with a penalty near obstacles.
+  bool with_path = false;
 
   void validate() const;
   // A robot's slab (its height).
@@ -42,7 +45,15 @@ struct RouteClearance {
   Eigen::Vector2d bottleneck{0, 0};  // where the widest route is narrowest
   std::string bottleneck_obstacle;   // the nearest obstacle there ("" without obstacles)
   std::size_t cells_searched = 0;
+  // With RouteClearanceParams::with_path, a route that keeps widest_m: grid cell centres from the
+  // start's cell to the goal's, 8-connected, the shortest with each step's length weighted by
+  // 1 + 1 m / clearance (it keeps to the middle of passages). Empty when not connected.
+  std::vector<Eigen::Vector2d> path;
 };
+
+// Waypoints along a path: its points at least spacing_m apart along it, and its last point (a
+// path of one point gives that point; an empty one none).
+std::vector<Eigen::Vector2d> route_waypoints(const std::vector<Eigen::Vector2d>& path, double spacing_m);
 
 // The axis-aligned search area (the route stays inside it).
 struct RouteArea {

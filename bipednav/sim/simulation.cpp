@@ -122,15 +122,14 @@ void Simulation::recycle(SensorFrame&& frame) {
 
 void Simulation::update_collision() {
   const double t = clock_.now_s();
+  const bool was_touching = proximity_.clearance_m < 0.0;
   proximity_ = collision_.nearest(robot_.state().pose.position(), t);
   min_clearance_m_ = std::min(min_clearance_m_, proximity_.clearance_m);
-  if (proximity_.clearance_m < 0.0 && !first_collision_)
-    first_collision_ = CollisionEvent{t,
-                                      robot_.state().pose,
-                                      proximity_.point,
-                                      proximity_.obstacle,
-                                      -proximity_.clearance_m,
-                                      robot_.state().velocity};
+  if (proximity_.clearance_m < 0.0 && !was_touching) {
+    contacts_.push_back(CollisionEvent{t, robot_.state().pose, proximity_.point, proximity_.obstacle,
+                                       -proximity_.clearance_m, robot_.state().velocity});
+    if (!first_collision_) first_collision_ = contacts_.back();
+  }
 }
 
 std::vector<SE3> Simulation::actor_poses() const {

@@ -37,7 +37,7 @@ struct SimulationParams {
   void validate() const;
 };
 
-// The first time the robot's footprint touched an obstacle.
+// A time the robot's footprint came into contact with an obstacle (the step that began a contact).
 struct CollisionEvent {
   double time_s = 0.0;
   Pose2 pose;                   // true robot pose then
@@ -71,8 +71,8 @@ struct SimulationStats {
 // one by one, depth images at k / rate, odometry at its rate), and collisions are checked at
 // the step's end. Sensor frames are named after the profile's mounts; the base frame is at
 // ground level under the robot centre, so T_world_sensor(t) = se3_from_pose2(pose(t)) *
-// mount.T_base_sensor(). The robot is not stopped by collisions (there is no physics); the
-// first one is recorded. Same seed and commands -> bit-identical outputs.
+// mount.T_base_sensor(). The robot is not stopped by collisions (there is no physics); each
+// contact is recorded once, at the step it began. Same seed and commands -> bit-identical outputs.
 class Simulation {
  public:
   Simulation(World world, RobotProfile robot, const Pose2& start, const SimulationParams& params = {});
@@ -99,6 +99,9 @@ class Simulation {
   Twist true_velocity() const { return robot_.state().velocity; }
   const RobotState& true_state() const { return robot_.state(); }
   const std::optional<CollisionEvent>& first_collision() const { return first_collision_; }
+  // Every contact so far, oldest first: one event per step at which the footprint, clear of every
+  // obstacle at the step before, penetrates one (a long scrape is one contact).
+  const std::vector<CollisionEvent>& contacts() const { return contacts_; }
   bool in_collision() const { return proximity_.clearance_m < 0.0; }
   double clearance_m() const { return proximity_.clearance_m; }  // now
   double min_clearance_m() const { return min_clearance_m_; }    // over the run so far
@@ -134,6 +137,7 @@ class Simulation {
   Proximity proximity_;
   double min_clearance_m_;
   std::optional<CollisionEvent> first_collision_;
+  std::vector<CollisionEvent> contacts_;
   SimulationStats stats_;
 };
 

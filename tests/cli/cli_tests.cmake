@@ -33,6 +33,10 @@ bipednav_cli(params_humanoid_layout 2 "reads the footstep navigator's layout"
              params --robot nao --params ${_data}/navigator_params/override.yaml)
 bipednav_cli(sim_success 0 "1.0 s simulated" sim hexagon_static --duration 1 --quiet --out ${_cli_out}/sim)
 bipednav_cli(sim_bad_scenario 2 "no scenario 'no_such_scenario'" sim no_such_scenario)
+# odometry's default route on a scenario: the widest route around the prism between three_rooms'
+# start and goal, driven to its end without contact.
+bipednav_cli(odometry_route_completed 0 "\"route_completed\": true" odometry three_rooms --json)
+bipednav_cli(odometry_route_no_contact 0 "\"contacts\": 0," odometry three_rooms --json)
 bipednav_cli(route_success 0 "margin \\+0.348 m" route hexagon_static)
 bipednav_cli(route_task_failed 1 "no route" route --world ${_t3_world} --start -2,-0.5 --goal 0,0)
 bipednav_cli(route_world_needs_start 2 "--world requires --start" route --world ${_t3_world} --goal 1,1)

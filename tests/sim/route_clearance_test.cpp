@@ -94,3 +94,44 @@ TEST(WidestRoute, RoomToTheScenariosGoals) {
 }
 
 }  // namespace
+
+TEST(WidestRoute, PathGoesThroughTheDoorKeepingTheWidestRoom) {
+  RouteClearanceParams p;
+  p.resolution_m = 0.02;
+  EXPECT_TRUE(widest_route(door_world(0.3), kArea, {-1.5, 0.4}, {1.5, -0.7}, p).path.empty());  // not asked for
+  p.with_path = true;
+  const RouteClearance r = widest_route(door_world(0.3), kArea, {-1.5, 0.4}, {1.5, -0.7}, p);
+  ASSERT_TRUE(r.connected);
+  ASSERT_GE(r.path.size(), 2u);
+  EXPECT_LT((r.path.front() - Eigen::Vector2d(-1.5, 0.4)).norm(), p.resolution_m);
+  EXPECT_LT((r.path.back() - Eigen::Vector2d(1.5, -0.7)).norm(), p.resolution_m);
+  bool through_door = false;
+  for (std::size_t i = 0; i < r.path.size(); ++i) {
+    if (i > 0) {
+      EXPECT_LE((r.path[i] - r.path[i - 1]).norm(), p.resolution_m * std::sqrt(2.0) + 1e-9);
+    }
+    // Within the wall's thickness: in the door's middle row, the only one keeping 0.3 m.
+    if (std::abs(r.path[i].x()) <= 0.1 + 1e-6) {
+      EXPECT_NEAR(r.path[i].y(), 0.0, 1e-6) << i;
+      through_door = true;
+    }
+  }
+  EXPECT_TRUE(through_door);
+}
+
+TEST(RouteWaypoints, ThinsAPathKeepingItsEnd) {
+  std::vector<Eigen::Vector2d> path;
+  for (int i = 0; i <= 100; ++i) path.emplace_back(0.05 * i, 0.0);  // 5 m
+  const auto w = route_waypoints(path, 0.75);
+  ASSERT_FALSE(w.empty());
+  EXPECT_EQ(w.back(), path.back());
+  for (std::size_t i = 1; i < w.size(); ++i) {
+    EXPECT_GE(w[i].x() - w[i - 1].x(), i + 1 == w.size() ? 0.0 : 0.75 - 1e-9);
+    EXPECT_LE(w[i].x() - w[i - 1].x(), 0.8 + 1e-9);
+  }
+  EXPECT_GE(w.front().x(), 0.75 - 1e-9);
+  EXPECT_LE(w.front().x(), 0.8 + 1e-9);
+  EXPECT_EQ(route_waypoints({{1.0, 2.0}}, 0.75), std::vector<Eigen::Vector2d>{Eigen::Vector2d(1.0, 2.0)});
+  EXPECT_TRUE(route_waypoints({}, 0.75).empty());
+  EXPECT_THROW(route_waypoints(path, 0.0), ParamError);
+}

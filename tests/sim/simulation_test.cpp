@@ -185,3 +185,33 @@ TEST(Simulation, RejectsBadInput) {
 }
 
 }  // namespace
+
+TEST(Simulation, RecordsEveryContactOnceAtItsStart) {
+  World w;
+  w.statics.push_back({"e", make_se3(4, 0, 1.5, 0, 0, 0), Box{{0.1, 8, 3}}});
+  SimulationParams p = small_params(1);
+  p.enable_lidar = false;
+  p.enable_depth = false;
+  Simulation sim(w, digit(), Pose2{2.5, 0, 0}, p);
+  EXPECT_TRUE(sim.contacts().empty());
+  // Drives into the wall, scrapes on for a while, backs off clear, and drives in again.
+  const auto drive_until = [&sim](const Twist& cmd, bool touching) {
+    for (int i = 0; i < 3000 && sim.in_collision() != touching; ++i) sim.step(cmd);
+    ASSERT_EQ(sim.in_collision(), touching);
+  };
+  const Twist forward{0.3, 0.0, 0.0}, back{-0.3, 0.0, 0.0};
+  drive_until(forward, true);
+  for (int i = 0; i < 50; ++i) sim.step(forward);
+  EXPECT_TRUE(sim.in_collision());
+  drive_until(back, false);
+  for (int i = 0; i < 100; ++i) sim.step(back);
+  drive_until(forward, true);
+  ASSERT_EQ(sim.contacts().size(), 2u);
+  ASSERT_TRUE(sim.first_collision());
+  EXPECT_EQ(sim.first_collision()->time_s, sim.contacts().front().time_s);
+  EXPECT_LT(sim.contacts()[0].time_s, sim.contacts()[1].time_s);
+  for (const CollisionEvent& e : sim.contacts()) {
+    EXPECT_EQ(e.obstacle, "e");
+    EXPECT_NEAR(e.point.x(), 3.95, 0.02);
+  }
+}
