@@ -83,7 +83,7 @@ TEST_P(ScenarioFile, LoadsValidatesAndStartAndGoalsAreClear) {
 
 INSTANTIATE_TEST_SUITE_P(Scenarios, ScenarioFile,
                          ::testing::Values("hexagon_static", "hexagon_dynamic", "three_rooms", "digit_lab_static",
-                                           "digit_lab_dynamic", "turtlebot3_world"));
+                                           "digit_lab_dynamic", "turtlebot3_world", "open_field"));
 
 TEST(Scenario, HexagonStaticHasTwoGoalsAndTallCylinders) {
   const Scenario s = load_scenario(scenario_file("hexagon_static"));
