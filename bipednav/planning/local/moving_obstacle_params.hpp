@@ -29,7 +29,7 @@ struct MovingObstacleParams {
   // while it passes where its track began (0: off, only the current distance counts): a box on a
   // looping path was classed static one lap later and TEB backed into its lane. Larger than
   // min_displacement_m: at 0.25 m the phantom tracks of walls (pieces whose centroids slide along
-  // them) latch too. On since session 17 for every robot (evidence: docs/closed-loop-log.md,
+  // them) latch too. On for every robot (evidence: docs/closed-loop-log.md,
   // 'Parameter evidence moved from code comments', MovingObstacleParams).
   double latch_displacement_m = 1.0;
   // Recent motion instead of the distance from the first centroid, with which someone walking to and
@@ -53,8 +53,8 @@ struct MovingObstacleParams {
   // radius grown with its position uncertainty (at most coast_max_growth_m). Without a visibility
   // model (set_visibility) or a known track height, unseen tracks are dropped after max_track_age_s.
   // Why: a 0.5 m cube crossing from the side is below the LiDAR's lowest ring within ~3.6 m and
-  // outside both pelvis cameras, so its track was dropped ~3 s before it ran into the robot. On since
-  // session 13 (evidence in docs/closed-loop-log.md, as above).
+  // outside both pelvis cameras, so its track was dropped ~3 s before it ran into the robot. On for
+  // every robot (evidence in docs/closed-loop-log.md, as above).
   bool coast_in_blind_zone = true;
   double max_coast_s = 10.0;
   double coast_max_growth_m = 0.3;
