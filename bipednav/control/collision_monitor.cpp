@@ -155,11 +155,6 @@ bool usable(const tracking::TrackPrediction& m) {
   return true;
 }
 
-double largest_eigenvalue(const Eigen::Matrix2d& c) {
-  const double a = c(0, 0), d = c(1, 1), b = 0.5 * (c(0, 1) + c(1, 0));
-  return 0.5 * (a + d) + std::sqrt(0.25 * (a - d) * (a - d) + b * b);
-}
-
 // The movers' predicted positions and keep-out distances (from the robot's centre) at
 // now_s + k * dt_s, filled as far as asked.
 class MoverTable {
@@ -183,7 +178,7 @@ class MoverTable {
       for (size_t m = 0; m < n; ++m) {
         Eigen::Matrix2d cov;
         pos_.push_back(at(*movers_[m], now_s_ + static_cast<double>(k) * dt_s_, cov));
-        const double sigma = std::sqrt(std::max(0.0, largest_eigenvalue(cov)));
+        const double sigma = tracking::major_sigma(cov);
         reach_.push_back(keep_out_m_ + movers_[m]->radius_m + sigma_scale_ * sigma);
       }
   }

@@ -118,6 +118,19 @@ struct RouteGrid {
     const auto cy = static_cast<std::size_t>(std::clamp(std::lround((p.y() - min.y()) / res), 0L, long{ny - 1}));
     return cy * static_cast<std::size_t>(nx) + cx;
   }
+  // Calls f(n, step_m) for each of cell i's 8 neighbours n inside the grid, step_m the distance
+  // between the two centres.
+  template <class F>
+  void for_neighbours(std::size_t i, F&& f) const {
+    const long x = static_cast<long>(i % static_cast<std::size_t>(nx)), y = static_cast<long>(i / nx);
+    for (long dy = -1; dy <= 1; ++dy) {
+      for (long dx = -1; dx <= 1; ++dx) {
+        const long nxp = x + dx, nyp = y + dy;
+        if ((dx == 0 && dy == 0) || nxp < 0 || nyp < 0 || nxp >= nx || nyp >= ny) continue;
+        f(static_cast<std::size_t>(nyp * nx + nxp), res * ((dx != 0 && dy != 0) ? std::sqrt(2.0) : 1.0));
+      }
+    }
+  }
   double clear(std::size_t i, FootprintIndex& index) {
     if (std::isnan(clearance[i])) clearance[i] = index.nearest(center(i)).first;
     return clearance[i];
@@ -145,20 +158,14 @@ double search_widest(RouteGrid& g, FootprintIndex& index, std::size_t start, std
     if (v < best[i]) continue;
     ++searched;
     if (i == goal) return v;
-    const long x = static_cast<long>(i % static_cast<std::size_t>(g.nx)), y = static_cast<long>(i / g.nx);
-    for (long dy = -1; dy <= 1; ++dy) {
-      for (long dx = -1; dx <= 1; ++dx) {
-        const long nxp = x + dx, nyp = y + dy;
-        if ((dx == 0 && dy == 0) || nxp < 0 || nyp < 0 || nxp >= g.nx || nyp >= g.ny) continue;
-        const auto n = static_cast<std::size_t>(nyp * g.nx + nxp);
-        const double w = std::min(v, g.clear(n, index));
-        if (w > 0.0 && w > best[n]) {
-          best[n] = w;
-          parent[n] = static_cast<std::int64_t>(i);
-          open.emplace(w, n);
-        }
+    g.for_neighbours(i, [&](std::size_t n, double /*step_m*/) {
+      const double w = std::min(v, g.clear(n, index));
+      if (w > 0.0 && w > best[n]) {
+        best[n] = w;
+        parent[n] = static_cast<std::int64_t>(i);
+        open.emplace(w, n);
       }
-    }
+    });
   }
   return 0.0;
 }
@@ -179,23 +186,16 @@ std::vector<Eigen::Vector2d> search_path(RouteGrid& g, FootprintIndex& index, st
     open.pop();
     if (c > cost[i]) continue;
     if (i == goal) break;
-    const long x = static_cast<long>(i % static_cast<std::size_t>(g.nx)), y = static_cast<long>(i / g.nx);
-    for (long dy = -1; dy <= 1; ++dy) {
-      for (long dx = -1; dx <= 1; ++dx) {
-        const long nxp = x + dx, nyp = y + dy;
-        if ((dx == 0 && dy == 0) || nxp < 0 || nyp < 0 || nxp >= g.nx || nyp >= g.ny) continue;
-        const auto n = static_cast<std::size_t>(nyp * g.nx + nxp);
-        const double clearance = g.clear(n, index);
-        if (clearance < keep) continue;
-        const double step = g.res * ((dx != 0 && dy != 0) ? std::sqrt(2.0) : 1.0);
-        const double w = c + step * (1.0 + 1.0 / clearance);
-        if (w < cost[n]) {
-          cost[n] = w;
-          parent[n] = static_cast<std::int64_t>(i);
-          open.emplace(w, n);
-        }
+    g.for_neighbours(i, [&](std::size_t n, double step_m) {
+      const double clearance = g.clear(n, index);
+      if (clearance < keep) return;
+      const double w = c + step_m * (1.0 + 1.0 / clearance);
+      if (w < cost[n]) {
+        cost[n] = w;
+        parent[n] = static_cast<std::int64_t>(i);
+        open.emplace(w, n);
       }
-    }
+    });
   }
   std::vector<Eigen::Vector2d> path;
   if (!std::isfinite(cost[goal])) return path;

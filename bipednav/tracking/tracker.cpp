@@ -9,15 +9,11 @@
 
 namespace bipednav::tracking {
 
-namespace {
-
-// The larger eigenvalue of a symmetric 2 x 2 matrix.
-double largest_eigenvalue(const Eigen::Matrix2d& C) {
+double major_sigma(const Eigen::Matrix2d& C) {
   const double m = 0.5 * (C(0, 0) + C(1, 1)), d = 0.5 * (C(0, 0) - C(1, 1));
-  return m + std::sqrt(d * d + C(0, 1) * C(0, 1));
+  const double largest = m + std::sqrt(d * d + C(0, 1) * C(0, 1));
+  return std::sqrt(largest < 0.0 ? 0.0 : largest);  // NaN stays NaN
 }
-
-}  // namespace
 
 const char* track_status_name(TrackStatus s) {
   switch (s) {
@@ -166,7 +162,7 @@ bool MultiObjectTracker::keep_unseen(Track& t, double dt_s, const Pose2& robot) 
   }
   t.status = TrackStatus::kCoasting;
   if (in_view(t, robot)) t.unseen_in_view_s += dt_s;
-  const double std_m = std::sqrt(largest_eigenvalue(t.position_covariance()));
+  const double std_m = major_sigma(t.position_covariance());
   const double max_unseen_s = t.mover ? params_.max_unseen_out_of_view_s : params_.max_unseen_in_view_s;
   return t.unseen_in_view_s <= params_.max_unseen_in_view_s && t.stamp_s - t.last_seen_s <= max_unseen_s &&
          std_m <= params_.max_position_std_m;

@@ -61,6 +61,11 @@ struct TrackPrediction {
   std::vector<PredictedState> states;
 };
 
+// The standard deviation along a position covariance's major axis: the square root of the larger
+// eigenvalue of the symmetric 2 x 2 matrix (its upper off-diagonal entry is used), 0 when that is
+// negative, NaN for a NaN matrix.
+double major_sigma(const Eigen::Matrix2d& cov);
+
 // The multi-object tracker: detections in (obstacle points the static map does not explain,
 // clustered), tracks and predictions out. Each cycle predicts every track to the cycle's time,
 // associates the detections by Mahalanobis gate and global nearest neighbour (associate), updates
