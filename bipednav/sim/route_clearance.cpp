@@ -153,7 +153,9 @@ double search_widest(RouteGrid& g, FootprintIndex& index, std::size_t start, std
   best[start] = s;
   open.emplace(s, start);
   while (!open.empty()) {
-    const auto [v, i] = open.top();
+    // Named copies, not a structured binding: the neighbour lambda captures them (clang 14).
+    const double v = open.top().first;
+    const std::size_t i = open.top().second;
     open.pop();
     if (v < best[i]) continue;
     ++searched;
@@ -182,7 +184,8 @@ std::vector<Eigen::Vector2d> search_path(RouteGrid& g, FootprintIndex& index, st
   cost[start] = 0.0;
   open.emplace(0.0, start);
   while (!open.empty()) {
-    const auto [c, i] = open.top();
+    const double c = open.top().first;
+    const std::size_t i = open.top().second;
     open.pop();
     if (c > cost[i]) continue;
     if (i == goal) break;
