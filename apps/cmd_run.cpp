@@ -96,6 +96,9 @@ void print_summary(const runner::RunResult& r) {
                 r.robot.c_str(), r.time_s);
   else
     std::printf("%s with %s: FAILED (%s)\n", r.scenario.c_str(), r.robot.c_str(), r.verdict.c_str());
+  // A success the navigator qualifies (a weak position estimate at the goal) shows its words.
+  if (r.outcome.ok() && r.outcome.message.find(';') != std::string::npos)
+    std::printf("  navigator: %s\n", r.outcome.message.c_str());
   std::printf("  time %.1f s, path %.2f m, min clearance %.3f m, collisions %d\n", r.time_s, r.path_length_m,
               r.min_clearance_m, r.collisions);
   std::printf("  goal error %.3f m / %.3f rad, localization error %.3f m\n", r.goal_error_m, r.goal_error_rad,

@@ -119,6 +119,7 @@ void Loam::mapping_step(LoamOutput& out, const std::optional<Eigen::Vector3d>& u
   out.mapped = true;
   if (m.matched && finite(m.T_world_lidar)) {
     T_world_odom_ = level(m.T_world_lidar) * T_odom_lidar_.inverse();
+    out.unobserved_xy = m.unobserved_xy;
     if (m.degenerate_dims > 0) {
       out.degenerate = true;
       append_reason(out, "mapping degenerate in " + std::to_string(m.degenerate_dims) + " direction(s)");

@@ -60,7 +60,11 @@ struct LoamOutput {
                                         // (empty unless LoamParams::output_deskewed)
   SE3 T_prev_lidar = SE3::Identity();   // estimated LiDAR motion since the previous sweep
   bool mapped = false;                  // a mapping step ran on this sweep
-  bool prior_change_used = false;       // the reference was projected with the (checked) prior change
+  // The projector onto the horizontal world directions this sweep's mapping step could not observe:
+  // they come from the motion prior (wheel or leg odometry) or constant velocity. Zero when the map
+  // observed x and y; the identity on sweeps without a matched mapping step.
+  Eigen::Matrix2d unobserved_xy = Eigen::Matrix2d::Identity();
+  bool prior_change_used = false;  // the reference was projected with the (checked) prior change
   std::size_t edge_features = 0, planar_features = 0;
 };
 

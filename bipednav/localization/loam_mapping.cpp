@@ -139,6 +139,7 @@ MappingResult LoamMapping::process(const PointCloud& edges, const PointCloud& pl
     T.translation() += step.translation();
     res.matched = sol.inliers >= p_.min_constraints;
     res.degenerate_dims = sol.degenerate_dims;
+    res.unobserved_xy = horizontal_weak_projector(sol.degenerate_directions, sol.degenerate_dims);
     res.inliers = sol.inliers;
     res.rms_m = sol.rms_m;
     if (sol.x.head<3>().norm() < p_.round_converged_translation_m &&

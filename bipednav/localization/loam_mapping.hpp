@@ -43,6 +43,9 @@ struct MappingResult {
   SE3 T_world_lidar = SE3::Identity();
   bool matched = false;  // false: the map was empty or too few correspondences (guess kept)
   int degenerate_dims = 0;
+  // The projector onto the horizontal world directions the match could not observe (kept from the
+  // guess, see horizontal_weak_projector); zero when it observes x and y.
+  Eigen::Matrix2d unobserved_xy = Eigen::Matrix2d::Zero();
   std::size_t constraints = 0;
   std::size_t inliers = 0;
   double rms_m = 0.0;

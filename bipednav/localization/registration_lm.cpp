@@ -1,6 +1,7 @@
 #include "bipednav/localization/registration_lm.hpp"
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 
 #include "bipednav/common/error.hpp"
@@ -190,32 +191,52 @@ double bisquare_loss(double r, double c) {
   return c * c / 6.0 * (1.0 - v * v * v);
 }
 
-int project_to_constrained(const Matrix6d& H, double weight_sum, double min_eigenvalue, Vector6d& delta) {
+int project_to_constrained(const Matrix6d& H, double weight_sum, double min_eigenvalue, Vector6d& delta,
+                           Matrix6d* suppressed) {
   if (weight_sum <= 0.0) {
     delta.setZero();
+    if (suppressed) suppressed->setIdentity();
     return 6;
   }
   const Eigen::SelfAdjointEigenSolver<Matrix6d> es(H / weight_sum);
-  int suppressed = 0;
+  int count = 0;
   Vector6d projected = Vector6d::Zero();
   for (int i = 0; i < 6; ++i) {
     const Vector6d v = es.eigenvectors().col(i);
     if (es.eigenvalues()(i) < min_eigenvalue) {
-      ++suppressed;
+      if (suppressed) suppressed->col(count) = v;
+      ++count;
       continue;
     }
     projected += v * v.dot(delta);
   }
   delta = projected;
-  return suppressed;
+  return count;
 }
 
-bool lm_step(const NormalEquations& ne, double lambda, double min_eigenvalue, Vector6d& delta, int& degenerate_dims) {
+Eigen::Matrix2d horizontal_weak_projector(const Matrix6d& suppressed, int count) {
+  Eigen::Matrix2d M = Eigen::Matrix2d::Zero();
+  for (int i = 0; i < std::min(count, 6); ++i) {
+    const Eigen::Vector2d h = suppressed.col(i).head<2>();
+    M += h * h.transpose();
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(M);
+  Eigen::Matrix2d P = Eigen::Matrix2d::Zero();
+  for (int i = 0; i < 2; ++i) {
+    if (es.eigenvalues()(i) < 0.25) continue;  // a horizontal part shorter than half a unit
+    const Eigen::Vector2d u = es.eigenvectors().col(i);
+    P += u * u.transpose();
+  }
+  return P;
+}
+
+bool lm_step(const NormalEquations& ne, double lambda, double min_eigenvalue, Vector6d& delta, int& degenerate_dims,
+             Matrix6d* suppressed) {
   Matrix6d A = ne.H;
   A.diagonal() += lambda * ne.H.diagonal() + Vector6d::Constant(1e-9);
   delta = -A.ldlt().solve(ne.g);
   if (!delta.allFinite()) return false;
-  degenerate_dims = project_to_constrained(ne.H, ne.weight_sum, min_eigenvalue, delta);
+  degenerate_dims = project_to_constrained(ne.H, ne.weight_sum, min_eigenvalue, delta, suppressed);
   return delta.allFinite();
 }
 
@@ -242,8 +263,10 @@ LmSolution solve_lm(const std::vector<Constraint>& constraints, const Vector6d& 
     linearized = true;
     ++sol.iterations;
     Vector6d delta;
-    if (ne.rows < 6 || !lm_step(ne, lambda, p.degenerate_min_eigenvalue, delta, sol.degenerate_dims)) {
+    if (ne.rows < 6 ||
+        !lm_step(ne, lambda, p.degenerate_min_eigenvalue, delta, sol.degenerate_dims, &sol.degenerate_directions)) {
       sol.degenerate_dims = 6;
+      sol.degenerate_directions.setIdentity();
       break;
     }
     const Vector6d candidate = sol.x + delta;

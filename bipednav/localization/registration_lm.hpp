@@ -56,12 +56,22 @@ struct NormalEquations {
 
 // Degeneracy handling (after Zhang, Kaess and Singh, ICRA 2016, used by LOAM): eigen-directions of
 // H / weight_sum with an eigenvalue below `min_eigenvalue` are not observable, so `delta` is
-// projected onto the remaining directions. Returns the number of suppressed directions.
-int project_to_constrained(const Matrix6d& H, double weight_sum, double min_eigenvalue, Vector6d& delta);
+// projected onto the remaining directions. Returns the number of suppressed directions; their unit
+// eigenvectors go to the first columns of `suppressed` when it is given.
+int project_to_constrained(const Matrix6d& H, double weight_sum, double min_eigenvalue, Vector6d& delta,
+                           Matrix6d* suppressed = nullptr);
 
 // Solves (J^T W J + lambda diag(J^T W J)) delta = -J^T W d (eq. 4.14), with degenerate directions
-// removed. Returns false when the system is singular or the step is not finite.
-bool lm_step(const NormalEquations& ne, double lambda, double min_eigenvalue, Vector6d& delta, int& degenerate_dims);
+// removed (their eigenvectors in the first `degenerate_dims` columns of `suppressed`, when given).
+// Returns false when the system is singular or the step is not finite.
+bool lm_step(const NormalEquations& ne, double lambda, double min_eigenvalue, Vector6d& delta, int& degenerate_dims,
+             Matrix6d* suppressed = nullptr);
+
+// The horizontal directions (x, y of the translation) among `count` suppressed directions (the
+// first columns of `suppressed`, x = [t; theta]): the projector onto the span of their horizontal
+// parts, keeping only parts at least half of a unit direction long (a direction that is mostly
+// rotation or height leaves x and y observed). Zero when x and y are both observed.
+Eigen::Matrix2d horizontal_weak_projector(const Matrix6d& suppressed, int count);
 
 struct LmParams {
   int max_iterations = 8;
@@ -78,6 +88,8 @@ struct LmSolution {
   int iterations = 0;
   bool converged = false;
   int degenerate_dims = 0;  // directions left at the initial guess
+  // Their unit eigenvectors (of J^T W J at the last step), in the first degenerate_dims columns.
+  Matrix6d degenerate_directions = Matrix6d::Zero();
   std::size_t inliers = 0;  // rows with non-zero bisquare weight at the solution
   double rms_m = 0.0;       // RMS distance of the inliers
 };

@@ -1,5 +1,6 @@
 #include "bipednav/navigation/localizer.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <cmath>
 
 namespace bipednav::navigation {
@@ -13,12 +14,17 @@ void LocalizerParams::validate() const {
   require(odometry_timeout_s > 0.0, "localization.odometry_timeout_s", "> 0");
   require(max_odometry_speed_mps > 0.0, "localization.max_odometry_speed_mps", "> 0");
   require(max_odometry_rate_radps > 0.0, "localization.max_odometry_rate_radps", "> 0");
+  require(std::isfinite(odometry_drift_ratio) && odometry_drift_ratio >= 0.0, "localization.odometry_drift_ratio",
+          ">= 0");
+  require(std::isfinite(scan_position_sigma_m) && scan_position_sigma_m > 0.0, "localization.scan_position_sigma_m",
+          "> 0");
   loam.validate();
 }
 
 Localizer::Localizer(LocalizerParams params, const RobotProfile& robot, const Pose2& T_map_base_initial)
     : params_(std::move(params)), correction_(T_map_base_initial) {
   params_.validate();
+  position_deviation_ = params_.scan_position_sigma_m * Eigen::Matrix2d::Identity();
   if (const SensorMount* lidar = robot.lidar()) {
     T_base_lidar_ = lidar->T_base_sensor();
     has_lidar_ = true;
@@ -32,6 +38,7 @@ Localizer::Localizer(LocalizerParams params, const RobotProfile& robot, const Po
 
 void Localizer::reset(const Pose2& T_map_base) {
   correction_ = T_map_base * odom_now_.inverse();
+  position_deviation_ = params_.scan_position_sigma_m * Eigen::Matrix2d::Identity();
   anchored_ = false;
   prev_sweep_odom_.reset();
   bad_sweeps_ = 0;
@@ -45,6 +52,10 @@ void Localizer::add_odometry(const Odometry& odom) {
   }
   // Out-of-order or repeated stamps are dropped: the history must stay sorted.
   if (!history_.empty() && odom.stamp_s <= history_.back().stamp_s) return;
+  if (!history_.empty()) {
+    const Pose2 step = history_.back().T_odom_base.inverse() * odom.T_odom_base;
+    position_deviation_ += params_.odometry_drift_ratio * std::hypot(step.x, step.y) * Eigen::Matrix2d::Identity();
+  }
   history_.push_back(odom);
   while (history_.size() > 2 && history_.front().stamp_s < odom.stamp_s - 2.0) history_.pop_front();
   odom_now_ = odom.T_odom_base;
@@ -119,6 +130,23 @@ void Localizer::add_sweep(const PointCloud& sweep) {
   bad_sweeps_ = 0;
   reason_.clear();
   correction_ = measured * odom_end->inverse();
+  // The map match fixed the directions it observed; the others keep the odometry's uncertainty.
+  const Eigen::Matrix2d& weak = out.unobserved_xy;
+  const Eigen::Matrix2d observed = Eigen::Matrix2d::Identity() - weak;
+  position_deviation_ = weak * position_deviation_ * weak + params_.scan_position_sigma_m * observed;
+}
+
+double Localizer::position_sigma_m(const Eigen::Vector2d& direction_map) const {
+  const double n = direction_map.norm();
+  if (!(n > 0.0)) return weakest_position_sigma_m();
+  const Eigen::Vector2d u = direction_map / n;
+  return u.dot(position_deviation_ * u);
+}
+
+double Localizer::weakest_position_sigma_m(Eigen::Vector2d* direction_map) const {
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(position_deviation_);
+  if (direction_map) *direction_map = es.eigenvectors().col(1);
+  return es.eigenvalues()(1);
 }
 
 bool Localizer::plausible_odometry_motion(const Pose2& delta, double dt_s) const {

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <Eigen/Core>
 #include <deque>
 #include <memory>
 #include <optional>
@@ -23,6 +24,11 @@ struct LocalizerParams {
   // glitch): LOAM then runs without the odometry prior and its pose is taken as it is.
   double max_odometry_speed_mps = 1.0;
   double max_odometry_rate_radps = 2.0;
+  // The position's uncertainty: the odometry's error grows as this share of the distance travelled
+  // (scale and heading biases make dead-reckoning error grow in proportion to distance, not its
+  // square root), and a direction the LOAM map match observes is known to scan_position_sigma_m.
+  double odometry_drift_ratio = 0.03;
+  double scan_position_sigma_m = 0.02;
 
   void validate() const;
 };
@@ -46,6 +52,12 @@ class Localizer {
   double last_odometry_s() const { return last_odom_s_; }
   double last_loam_ms() const { return last_loam_ms_; }
   std::size_t odometry_jumps() const { return odometry_jumps_; }  // absorbed by re-anchoring on LOAM
+  // The position estimate's standard deviation along a map direction (normalised here), in m.
+  // Directions the map matches observe stay at scan_position_sigma_m; a direction LOAM leaves to
+  // the odometry (open ground, a long corridor; or no LiDAR) grows with the distance travelled.
+  double position_sigma_m(const Eigen::Vector2d& direction_map) const;
+  // The largest of those and its direction (unit, map frame).
+  double weakest_position_sigma_m(Eigen::Vector2d* direction_map = nullptr) const;
   // Forces a pose (initial pose / relocalization); LOAM re-anchors at the next sweep.
   void reset(const Pose2& T_map_base);
 
@@ -61,6 +73,9 @@ class Localizer {
   Pose2 odom_now_;
   Twist velocity_;
   Pose2 correction_;  // T_map_odom
+  // The position's deviation matrix S (m, map frame; covariance S^2): grows by
+  // odometry_drift_ratio per metre, is reset where the map observes.
+  Eigen::Matrix2d position_deviation_;
   std::optional<Pose2> prev_sweep_odom_;
   double prev_sweep_end_s_ = 0.0;
   std::size_t odometry_jumps_ = 0;

@@ -23,6 +23,8 @@ void ServerParams::validate() const {
           "in (0, 1]");
   require(controller_goal_tolerance_fraction >= 0.0 && controller_goal_tolerance_fraction <= 1.0,
           "controller_goal_tolerance_fraction", "in [0, 1]");
+  require(min_controller_goal_tolerance_fraction > 0.0 && min_controller_goal_tolerance_fraction <= 1.0,
+          "min_controller_goal_tolerance_fraction", "in (0, 1]");
 }
 
 void apply_controller_goal_tolerances(ServerParams& params) {
@@ -104,6 +106,7 @@ ActionStep NavigationServer::exe_path(const Path& path, bool first) {
     cmd_ = {};
     return {ActionStep::State::SUCCEEDED, {Outcome::SUCCESS, "goal reached"}};
   }
+  local_planner_->set_xy_goal_tolerance(controller_xy_goal_tolerance());
   planning::local::LocalPlanResult r;
   {
     const CpuScope cpu(local_planner_cpu_ms_);
@@ -221,6 +224,14 @@ Result NavigationServer::relax_constraints() {
   if (relaxed_) return end_recovery({Outcome::RECOVERY_FAILURE, "constraints are already relaxed"});
   make_global_planner(true);
   return end_recovery({Outcome::SUCCESS, "planner cost weight relaxed"});
+}
+
+double NavigationServer::controller_xy_goal_tolerance() const {
+  const double tolerance_m = params_.goal.xy_tolerance_m;
+  const double aim_m = params_.local_planner == "tracker" ? params_.local.tracker.xy_goal_tolerance_m
+                                                          : params_.local.teb.xy_goal_tolerance_m;
+  const double budget_m = tolerance_m - 2.0 * view_.position_sigma_m;
+  return std::min(aim_m, std::max(params_.min_controller_goal_tolerance_fraction * tolerance_m, budget_m));
 }
 
 bool NavigationServer::goal_reached(const Pose2& goal) {

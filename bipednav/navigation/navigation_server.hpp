@@ -30,6 +30,10 @@ struct ServerParams {
   // stop, it comes to rest inside the tolerances rather than on their edge, where localization error
   // puts the true pose outside half the time. 0: the planners keep their own goal tolerances.
   double controller_goal_tolerance_fraction = 0.5;
+  // While the position estimate is weak (Localizer::weakest_position_sigma_m), the error budget of
+  // the xy tolerance goes to the estimate first: the planners aim at xy tolerance - 2 sigma when
+  // that is tighter, but not below this share of the xy tolerance.
+  double min_controller_goal_tolerance_fraction = 0.25;
   control::ProgressCheckerParams progress;
   control::OscillationCheckerParams oscillation;
   int controller_failures_allowed = 10;  // consecutive failed control cycles before exe_path fails
@@ -52,6 +56,7 @@ struct RobotView {
   // The control period: the recoveries' commands change by at most the robot's acceleration
   // limits times this per cycle (limit_velocity from `velocity`).
   double period_s = 0.1;
+  double position_sigma_m = 0.0;  // the pose estimate's largest position standard deviation
 };
 
 // One recovery as it ran, with what the recovery action reported (MBF outcomes 150-158).
@@ -92,6 +97,8 @@ class NavigationServer {
   planning::PlanResult get_path(const Pose2& goal);
   // exe_path: one control cycle following `path` (outcomes 100-118); `first` on the first cycle.
   ActionStep exe_path(const Path& path, bool first);
+  // The xy tolerance the local planner aims at this tick (see min_controller_goal_tolerance_fraction).
+  double controller_xy_goal_tolerance() const;
   // Recoveries (outcomes 150-158); the long ones are stepped each tick.
   ActionStep back_up(double distance_m, double speed_mps, bool first);
   ActionStep rotate_in_place(double angle_rad, bool first);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "bipednav/common/clock.hpp"
@@ -310,7 +311,8 @@ Twist Navigator::reference_velocity() const {
 bool Navigator::sensors_alive() const { return gate_.all_alive(now_s_); }
 
 void Navigator::control() {
-  server_.set_view({now_s_, localizer_.T_map_base(), reference_velocity(), 1.0 / params_.control_rate_hz});
+  server_.set_view({now_s_, localizer_.T_map_base(), reference_velocity(), 1.0 / params_.control_rate_hz,
+                    localizer_.weakest_position_sigma_m()});
   // Plans and goal checks wait for the first map built from the sensors.
   if (status_.state != NavState::ACTIVE || !map_ready_) {
     server_.stop();
@@ -329,12 +331,35 @@ void Navigator::control() {
   timings_.control_ms = sw.elapsed_ms();
 }
 
+std::string Navigator::weak_estimate_note() const {
+  // The goal counts as reached on the estimate; where the estimate's 2-sigma reach exceeds the
+  // tolerance (95 %), the true pose may well be outside it, and the result says so: along the
+  // direction of travel to the goal first, else across it.
+  const double tolerance_m = params_.server.goal.xy_tolerance_m;
+  Eigen::Vector2d travel{1.0, 0.0};
+  if (global_path_.poses.size() >= 2) {
+    const Pose2& a = global_path_.poses.front();
+    const Pose2& b = global_path_.poses.back();
+    if (std::hypot(b.x - a.x, b.y - a.y) > 1e-6) travel = Eigen::Vector2d(b.x - a.x, b.y - a.y).normalized();
+  }
+  const Eigen::Vector2d across{-travel.y(), travel.x()};
+  const double along_m = localizer_.position_sigma_m(travel), across_m = localizer_.position_sigma_m(across);
+  if (2.0 * std::max(along_m, across_m) <= tolerance_m) return "";
+  const bool along = 2.0 * along_m > tolerance_m;
+  char buf[220];
+  std::snprintf(buf, sizeof(buf),
+                "; the position estimate is weak %s the direction of travel (sigma %.2f m, twice that exceeds the "
+                "%.2f m tolerance): the LiDAR map did not observe it and odometry carried it",
+                along ? "along" : "across", along ? along_m : across_m, tolerance_m);
+  return buf;
+}
+
 void Navigator::finish(BtStatus s) {
   server_.stop();
   cmd_ = {};
   if (s == BtStatus::SUCCESS) {
     status_.state = NavState::SUCCEEDED;
-    status_.result = {Outcome::SUCCESS, "goal reached"};
+    status_.result = {Outcome::SUCCESS, "goal reached" + weak_estimate_note()};
     return;
   }
   status_.state = NavState::FAILED;

@@ -173,6 +173,7 @@ class Navigator {
   BtFactory leaf_factory();  // the engine's nodes and this navigator's leaves
   bool sensors_alive() const;
   void finish(BtStatus status);
+  std::string weak_estimate_note() const;  // empty unless the position estimate is weak at the goal
   bool depth_superseded(const SensorFrame& frame, const Admission& admitted, std::size_t i);
   bool depth_superseded(const std::string& camera, double stamp_s, double now_s, bool newer_in_step);
 

@@ -196,6 +196,7 @@ void visit_fields(V& v, ServerParams& p) {
   v.group("local", p.local);
   v.group("goal", p.goal);
   v("controller_goal_tolerance_fraction", p.controller_goal_tolerance_fraction);
+  v("min_controller_goal_tolerance_fraction", p.min_controller_goal_tolerance_fraction);
   v.group("progress", p.progress);
   v.group("oscillation", p.oscillation);
   v("controller_failures_allowed", p.controller_failures_allowed);

@@ -146,6 +146,8 @@ void visit_fields(V& v, LocalizerParams& p) {
   v("odometry_timeout_s", p.odometry_timeout_s);
   v("max_odometry_speed_mps", p.max_odometry_speed_mps);
   v("max_odometry_rate_radps", p.max_odometry_rate_radps);
+  v("odometry_drift_ratio", p.odometry_drift_ratio);
+  v("scan_position_sigma_m", p.scan_position_sigma_m);
 }
 
 template <class V>

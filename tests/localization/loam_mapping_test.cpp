@@ -104,6 +104,22 @@ TEST(VoxelPointMap, KeepsBothFacesOfAWallThinnerThanAVoxel) {
   EXPECT_EQ(map.viewpoints().size(), 0u);
 }
 
+TEST(RegistrationLm, HorizontalWeakProjectorKeepsMostlyHorizontalDirections) {
+  Matrix6d dirs = Matrix6d::Zero();
+  dirs.col(0) << 1, 0, 0, 0, 0, 0;  // x
+  dirs.col(1) << 0, 0, 1, 0, 0, 0;  // height
+  Eigen::Matrix2d P = horizontal_weak_projector(dirs, 2);
+  EXPECT_TRUE(P.isApprox(Eigen::Vector2d(1, 0).asDiagonal().toDenseMatrix()));
+  // A direction mostly of yaw (its horizontal part 0.3 long) leaves x and y observed.
+  dirs.col(0) << 0.3 / std::sqrt(2.0), 0.3 / std::sqrt(2.0), 0, 0, 0, std::sqrt(1.0 - 0.09);
+  EXPECT_TRUE(horizontal_weak_projector(dirs, 1).isZero());
+  // x and y both suppressed, in any basis: the identity.
+  dirs.col(0) << std::sqrt(0.5), std::sqrt(0.5), 0, 0, 0, 0;
+  dirs.col(1) << -std::sqrt(0.5), std::sqrt(0.5), 0, 0, 0, 0;
+  EXPECT_TRUE(horizontal_weak_projector(dirs, 2).isApprox(Eigen::Matrix2d::Identity()));
+  EXPECT_TRUE(horizontal_weak_projector(dirs, 0).isZero());
+}
+
 TEST(RegistrationLm, ALinearPriorFixesADirectionThePointsLeaveFree) {
   // Points on the plane z = 0 observe z, roll and pitch only; a prior pins x to 0.3.
   std::vector<Constraint> cs;

@@ -294,6 +294,31 @@ TEST(Loam, CorridorIsDegenerateAndKeepsThePriorAlongTheAxis) {
   EXPECT_NEAR(out.T_world_lidar.translation().y(), 0.0, 0.02);
 }
 
+// The map match tells which horizontal directions it observed: none along a corridor's axis
+// (the walls fix y, nothing fixes x), both in a room. Mapping runs on sweeps 1, 11, 21, ...; the
+// first only inserts.
+Eigen::Matrix2d unobserved_after_second_mapping(const test::SyntheticScene& scene) {
+  Rng rng(7);
+  const auto pose_at = constant_motion(make_se3(0, 0, 1.2, 0, 0, 0), 0.5, 0, 0);
+  Loam loam;
+  const SE3 prior = make_se3(0.05, 0, 0, 0, 0, 0);
+  LoamOutput out;
+  for (int k = 0; k < 12; ++k) out = loam.process(synthetic_sweep(scene, pose_at, 0.1 * k, SweepSpec{}, rng), prior);
+  EXPECT_TRUE(out.mapped);
+  return out.unobserved_xy;
+}
+
+TEST(Loam, ReportsTheCorridorAxisAsTheUnobservedHorizontalDirection) {
+  const Eigen::Matrix2d weak = unobserved_after_second_mapping(test::corridor_scene());
+  EXPECT_NEAR(weak(0, 0), 1.0, 0.05);  // along x
+  EXPECT_NEAR(weak(1, 1), 0.0, 0.05);
+  EXPECT_NEAR(weak(0, 1), 0.0, 0.05);
+}
+
+TEST(Loam, ReportsNoUnobservedHorizontalDirectionInARoom) {
+  EXPECT_TRUE(unobserved_after_second_mapping(test::room_scene()).isZero(1e-9));
+}
+
 TEST(Loam, ParamsAreValidated) {
   LoamParams p;
   p.features.sub_regions = 0;

@@ -46,8 +46,15 @@ class LocalPlanner {
   void set_avoidance_params(const DynamicAvoidanceParams& params) { avoidance_ = (params.validate(), params); }
   const YieldDecision& last_yield() const { return last_yield_; }
   const MovingObstacleTracker* moving_obstacles() const { return moving_; }
+  // The position tolerance the planner brings the robot inside at the goal: its parameters'
+  // xy_goal_tolerance_m until set (> 0); the navigation server tightens it while the position
+  // estimate is weak. <= 0: back to the parameters'.
+  void set_xy_goal_tolerance(double m) { xy_goal_tolerance_m_ = m; }
 
  protected:
+  double xy_goal_tolerance(double from_params_m) const {
+    return xy_goal_tolerance_m_ > 0.0 ? xy_goal_tolerance_m_ : from_params_m;
+  }
   // Replaces r.cmd by a command that yields to the predicted moving obstacles (see
   // yield_to_moving_obstacles); a failed cycle whose zero command would be run into becomes a
   // SUCCESS with the evasive command.
@@ -57,6 +64,7 @@ class LocalPlanner {
   const MovingObstacleTracker* moving_ = nullptr;
   DynamicAvoidanceParams avoidance_;
   YieldDecision last_yield_;
+  double xy_goal_tolerance_m_ = 0.0;
 };
 
 struct LocalPlannerParams {

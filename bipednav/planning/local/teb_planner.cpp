@@ -76,9 +76,9 @@ LocalPlanResult TebPlanner::plan(const Pose2& T_map_base, const Twist& current_v
   LocalPlanResult r;
   r.trajectory.frame_id = global_plan.frame_id;
   const Pose2 robot{T_map_base.x, T_map_base.y, normalize_angle(T_map_base.theta)};
-  const GoalApproach ga =
-      approach_goal(robot, global_plan.poses.back(), params_.xy_goal_tolerance_m, params_.yaw_goal_tolerance_rad,
-                    params_.rotate_gain, params_.limits.max_vel_theta_radps, params_.xy_goal_release_m, &holding_goal_);
+  const GoalApproach ga = approach_goal(robot, global_plan.poses.back(), xy_goal_tolerance(params_.xy_goal_tolerance_m),
+                                        params_.yaw_goal_tolerance_rad, params_.rotate_gain,
+                                        params_.limits.max_vel_theta_radps, params_.xy_goal_release_m, &holding_goal_);
   if (ga.near) {
     // Turn on the spot to the goal yaw; the band is not needed any more.
     homotopy_.reset();

@@ -81,8 +81,8 @@ LocalPlanResult PathTracker::follow(const Pose2& T_map_base, const Twist& curren
   lim.max_vel_x_backwards_mps = 0.0;
   const Pose2& goal = global_plan.poses.back();
   const GoalApproach ga =
-      approach_goal(T_map_base, goal, params_.xy_goal_tolerance_m, params_.yaw_goal_tolerance_rad, params_.rotate_gain,
-                    params_.max_vel_theta_radps, params_.xy_goal_release_m, &holding_goal_);
+      approach_goal(T_map_base, goal, xy_goal_tolerance(params_.xy_goal_tolerance_m), params_.yaw_goal_tolerance_rad,
+                    params_.rotate_gain, params_.max_vel_theta_radps, params_.xy_goal_release_m, &holding_goal_);
   Twist desired = ga.cmd;
   r.goal_reached = ga.reached;
   if (!ga.near) {
