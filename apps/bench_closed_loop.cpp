@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/bench_runs.hpp"
+#include "apps/cli_json.hpp"
 #include "apps/cmd_route.hpp"
 #include "apps/scenario_files.hpp"
 #include "bipednav/runner/scenario_runner.hpp"
@@ -150,13 +151,11 @@ void bench_scenarios(const BenchScenarioArgs& a) {
     rows.push_back(std::move(row));
   }
   if (a.json) {
-    std::printf("%s\n", nlohmann::json{{"rows", rows},
-                                       {"succeeded", ok_total},
-                                       {"runs", runs.size()},
-                                       {"first_seed", a.first_seed},
-                                       {"jobs", a.jobs}}
-                            .dump(2)
-                            .c_str());
+    print_json({{"rows", rows},
+                {"succeeded", ok_total},
+                {"runs", runs.size()},
+                {"first_seed", a.first_seed},
+                {"jobs", a.jobs}});
     return;
   }
   print_table(rows);
@@ -218,7 +217,7 @@ void bench_loop(const BenchLoopArgs& a) {
         rtf >= kGoalRtf ? "met" : "not met", wall_rtf);
     return;
   }
-  std::printf("%s\n", j.dump(2).c_str());
+  print_json(j);
 }
 
 }  // namespace
@@ -245,7 +244,7 @@ void add_closed_loop_benches(CLI::App& bench) {
   CLI::App* loop = bench.add_subcommand(
       "loop", "The whole closed loop's real-time factor on one core (simulated / process CPU time; goal 10x)");
   loop->add_option("scenario", lp->scenario, "Scenario name or file")->capture_default_str();
-  loop->add_flag("--json", lp->json, "Print one JSON object");
+  add_json_flag(loop, lp->json);
   loop->add_option("--runs", lp->runs, "Runs, one after another (medians; default 3)")->check(CLI::Range(1, 100));
   loop->add_option("--robot", lp->robot, "Robot profile name or file (default: the scenario's)");
   loop->add_option("--params", lp->params, "Navigation parameters YAML (as `run --params`)");

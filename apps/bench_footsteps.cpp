@@ -15,6 +15,7 @@
 
 #include "apps/cli_checks.hpp"
 #include "apps/cli_exit.hpp"
+#include "apps/cli_json.hpp"
 #include "bipednav/common/clock.hpp"
 #include "bipednav/common/error.hpp"
 #include "bipednav/common/progress.hpp"
@@ -402,7 +403,7 @@ bool bench_footsteps(const BenchArgs& a) {
   const Stopwatch wall;
   search_problems(a, maps, {probe, optimal_planner, planners, planar_planner}, log.get(), work);
   const nlohmann::json j = bench_json(a, tg, clock, wall, reused, tally_problems(a, work));
-  std::printf("%s\n", j.dump(2).c_str());
+  print_json(j);
   return bench_goals_met(j);
 }
 
@@ -445,7 +446,7 @@ void add_footstep_bench(CLI::App& bench) {
   bf->add_flag("--skip-planar", b->skip_planar, "Do not run the planar-footsteps-only baseline");
   bf->add_flag("--stance-levels", b->stance_levels,
                "Dijkstra heuristic with the (cell, stance-height level) graph (off by default)");
-  bf->add_flag("--json", *json, "Print one JSON object (the default)");
+  add_json_flag(bf, *json, true);
   bf->callback([b] { report_task(bench_footsteps(*b)); });
 }
 

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "apps/cli_json.hpp"
 #include "bipednav/common/error.hpp"
 #include "bipednav/io/pcd.hpp"
 #include "bipednav/io/trajectory_file.hpp"
@@ -183,7 +184,7 @@ json run_recorded_odometry_command(const RecordedOdometryCli& o) {
     std::ofstream(fs::path(o.out) / "run.json") << j.dump(2) << "\n";
   }
   if (o.json_out) {
-    std::printf("%s\n", j.dump(2).c_str());
+    print_json(j);
   } else if (!r.truth.empty()) {
     const json& e = j["evaluation"];
     std::printf(
