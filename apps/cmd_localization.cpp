@@ -426,11 +426,13 @@ void add_localization_commands(CLI::App& app, CLI::App& bench) {
   d->add_option("path", odo->scenario,
                 "Recording (a KITTI/PCD/PLY folder or a .bag), or a scenario name or YAML file to simulate")
       ->required();
-  d->add_option("--duration", odo->duration_s, "Scenario: simulated seconds (default: until the route is done)");
+  d->add_option("--duration", odo->duration_s, "Scenario: simulated seconds (default: until the route is done)")
+      ->check(check::positive());
   d->add_option("--waypoints", odo->waypoints,
                 "Scenario: route as 'x,y x,y ...' (default: the widest route from the start through the goals, "
                 "straight ahead without goals)");
-  d->add_option("--speed", odo->speed_mps, "Scenario: forward speed in m/s (default: the robot's maximum)");
+  d->add_option("--speed", odo->speed_mps, "Scenario: forward speed in m/s (default: the robot's maximum)")
+      ->check(check::positive());
   d->add_option("--config-dir", odo->config_dir,
                 "Scenario: directory of robot profiles (default: <scenario>/../config)");
   d->add_flag("--no-prior", odo->no_prior, "Scenario: do not give LOAM the odometry as a motion prior");

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "apps/cli_checks.hpp"
 #include "apps/cli_json.hpp"
 #include "bipednav/common/error.hpp"
 #include "bipednav/io/pcd.hpp"
@@ -41,16 +42,16 @@ void add_recorded_odometry_options(CLI::App& d, RecordedOdometryCli& o) {
   d.add_option("--deskew", o.deskew, "Per-point times from azimuth for sweeps without: auto (not KITTI), on, off")
       ->capture_default_str()
       ->check(CLI::IsMember({"auto", "on", "off"}));
-  d.add_option("--max-sweeps", o.max_sweeps, "Sweeps to run (default: all)");
-  d.add_option("--map-voxel", o.map_voxel_m, "Map leaf size in m")->capture_default_str()->check(CLI::PositiveNumber);
+  d.add_option("--max-sweeps", o.max_sweeps, "Sweeps to run (default: all)")->check(check::integer_at_least(1));
+  d.add_option("--map-voxel", o.map_voxel_m, "Map leaf size in m")->capture_default_str()->check(check::positive());
   d.add_option("--gicp-voxel", o.gicp_voxel_m, "gicp: input leaf size in m")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(check::positive());
   d.add_flag("--registration-reference", o.registration_reference,
              "Also evaluate against the sweeps' own trajectory: each registered directly onto the first (GICP)");
   d.add_option("--rpe-distance", o.rpe_distance_m, "RPE path distance in m")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(check::positive());
 }
 
 runner::SweepSequence open_recording(const RecordedOdometryCli& o, std::string& format) {

@@ -126,6 +126,24 @@ bipednav_numeric(bench_footsteps_optimal_limit --optimal-limit    2 2  bench foo
 bipednav_numeric(bench_footsteps_short_limit --short-limit      2 2  bench footsteps)
 bipednav_numeric(bench_footsteps_long_limit --long-limit       2 2  bench footsteps)
 bipednav_numeric(bench_footsteps_jobs     --jobs             2 2  bench footsteps)
+bipednav_numeric(run_goal_tolerance        --goal-tolerance   2 2  run hexagon_static --out ${_cli_out}/num_run)  # M,RAD: one number is not a pair
+bipednav_numeric(odometry_duration         --duration         2 2  odometry three_rooms --json)
+bipednav_numeric(odometry_speed            --speed            2 2  odometry three_rooms --json)
+bipednav_numeric(odometry_max_sweeps       --max-sweeps       2 2  odometry ${_pair})
+bipednav_numeric(odometry_map_voxel        --map-voxel        2 2  odometry ${_pair})
+bipednav_numeric(odometry_gicp_voxel       --gicp-voxel       2 2  odometry ${_pair} --method gicp)
+bipednav_numeric(odometry_rpe_distance     --rpe-distance     2 2  odometry ${_pair})
+# More benchmarks: every value below is rejected before any work, so none of these runs one.
+bipednav_numeric(bench_scenarios_seeds     --seeds            2 2  bench scenarios)
+bipednav_numeric(bench_scenarios_first_seed --first-seed      2 2  bench scenarios)
+bipednav_numeric(bench_scenarios_jobs      --jobs             2 2  bench scenarios)
+bipednav_numeric(bench_loop_runs           --runs             2 2  bench loop)
+bipednav_numeric(bench_worlds_worlds       --worlds           2 2  bench worlds)
+bipednav_numeric(bench_worlds_first_seed   --first-seed       2 2  bench worlds)
+bipednav_numeric(bench_worlds_jobs         --jobs             2 2  bench worlds)
+bipednav_numeric(bench_tracking_seeds      --seeds            2 2  bench tracking)
+bipednav_numeric(bench_tracking_first_seed --first-seed       2 2  bench tracking)
+bipednav_numeric(bench_localization_sweeps --sweeps           2 2  bench localization)
 
 # The README's command-line examples run as written (readme_examples.sh).
 add_test(NAME cli_readme_examples COMMAND sh ${_cli_dir}/readme_examples.sh ${PROJECT_SOURCE_DIR} $<TARGET_FILE:bipednav>
