@@ -400,6 +400,7 @@ void add_localization_bench(CLI::App& bench) {
       std::printf("LOAM odometry median %.2f ms/sweep (goal 20); GICP %.1f ms (reference 410 ms)\n",
                   j["loam_odometry_median_ms"].get<double>(), j["gicp_median_ms"].get<double>());
     });
+    report_task(bench_goals_met(j));
   });
 }
 

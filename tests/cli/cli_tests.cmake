@@ -62,10 +62,16 @@ bipednav_cli(plan_grid_bad_pose 2 "--goal: expected x,y or x,y,yaw" plan grid ${
 bipednav_cli(plan_movingai_success 0 "160/160 rows solved"
              plan movingai ${_data}/movingai/maps/arena.map ${_data}/movingai/scen/arena.map.scen)
 bipednav_cli(plan_movingai_missing_file 2 "scen: File does not exist" plan movingai ${_data}/movingai/maps/arena.map no.scen)
+# walled.map: a wall splits the 5 x 3 map; the second row's goal is behind it.
+bipednav_cli(plan_movingai_task_failed 1 "1/2 rows solved" plan movingai ${_cli_dir}/data/walled.map
+             ${_cli_dir}/data/walled.map.scen)
 bipednav_cli(local_plan_success 0 "\"reached\": true" local plan ${_maze} --start 1,1 --goal 8,8 --out ${_cli_out}/local.png)
 bipednav_cli(local_plan_task_failed 1 "\"reached\": false" local plan ${_maze} --start 1,1 --goal 8,8 --steps 5)
 bipednav_cli(local_plan_bad_planner 2 "--planner: teb2 not in" local plan ${_maze} --start 1,1 --goal 8,8 --planner teb2)
 bipednav_cli(register_success 0 "converged after" register ${_pair}/251370668.pcd ${_pair}/251371071.pcd)
+# From identity GICP finds no correspondence between the table scene (a stereo camera's view) and the LiDAR scan.
+bipednav_cli(register_task_failed 1 "NOT converged" register ${_data}/pcl/table_scene_mug_stereo_textured.pcd
+             ${_pair}/251370668.pcd)
 bipednav_cli(register_bad_threads 2 "--threads: expected a whole number in \\[1, 256\\]"
              register ${_pair}/251370668.pcd ${_pair}/251371071.pcd --threads 0)
 bipednav_cli(footsteps_success 0 "^SUCCESS: footstep plan" footsteps ${_gradient} --start 1,1 --goal 2.5,1.5
@@ -190,6 +196,10 @@ if(Python3_Interpreter_FOUND)
   bipednav_json(cloud_filter_bad_band 2 "" cloud filter ${_cloud} ${_cli_out}/json_filtered.pcd --zmin 1 --zmax 0 --json)
   bipednav_json(cloud_segment_success 0 "found,plane,inliers,points,time_ms" cloud segment ${_cloud} --json)
   bipednav_json(cloud_segment_task_failed 1 "found,points" cloud segment ${_cloud} --zmin 100 --json)
+  bipednav_json(plan_movingai_task_failed 1 "rows,summary.solved" plan movingai ${_cli_dir}/data/walled.map
+                ${_cli_dir}/data/walled.map.scen --json)
+  bipednav_json(register_task_failed 1 "converged,correspondences" register
+                ${_data}/pcl/table_scene_mug_stereo_textured.pcd ${_pair}/251370668.pcd --json)
   bipednav_json(register_success 0 "T_target_source,converged,fitness,time_ms"
                 register ${_pair}/251370668.pcd ${_pair}/251371071.pcd --json)
 else()
