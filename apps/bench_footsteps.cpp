@@ -411,7 +411,6 @@ bool bench_footsteps(const BenchArgs& a) {
 
 void add_footstep_bench(CLI::App& bench) {
   auto b = std::make_shared<BenchArgs>();
-  auto json = std::make_shared<bool>(true);
   CLI::App* bf = bench.add_subcommand("footsteps", "Table I of the footstep reference on random heightmaps");
   bf->add_option("--maps", b->maps, "Random 2.5 x 2.5 m heightmaps")
       ->capture_default_str()
@@ -446,7 +445,7 @@ void add_footstep_bench(CLI::App& bench) {
   bf->add_flag("--skip-planar", b->skip_planar, "Do not run the planar-footsteps-only baseline");
   bf->add_flag("--stance-levels", b->stance_levels,
                "Dijkstra heuristic with the (cell, stance-height level) graph (off by default)");
-  add_json_flag(bf, *json, true);
+  accept_json_flag(bf);
   bf->callback([b] { report_task(bench_footsteps(*b)); });
 }
 

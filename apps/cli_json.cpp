@@ -7,10 +7,12 @@
 
 namespace bipednav::app {
 
-CLI::Option* add_json_flag(CLI::App* cmd, bool& json, bool only_format) {
-  return cmd->add_flag("--json", json,
-                       only_format ? "Print one JSON object (the only output format)"
-                                   : "Print one JSON object with the figures instead of the text");
+CLI::Option* add_json_flag(CLI::App* cmd, bool& json) {
+  return cmd->add_flag("--json", json, "Print one JSON object with the figures instead of the text");
+}
+
+CLI::Option* accept_json_flag(CLI::App* cmd) {
+  return cmd->add_flag("--json")->description("Print one JSON object (the only output format)");
 }
 
 void print_json(const nlohmann::json& figures) {

@@ -9,10 +9,11 @@
 // key names: `_m`, `_s`, `_ms`, `_rad`), and nothing else there; notes go to stderr.
 namespace bipednav::app {
 
-// Adds `--json` to `cmd`, setting `json`. `only_format`: the command prints its JSON object either
-// way (benchmarks, `costmap info`, `local plan`); the flag is accepted so that scripts can pass it
-// to every command.
-CLI::Option* add_json_flag(CLI::App* cmd, bool& json, bool only_format = false);
+// Adds `--json` to `cmd`, setting `json`.
+CLI::Option* add_json_flag(CLI::App* cmd, bool& json);
+// Adds `--json` to a command that prints its JSON object either way (benchmarks, `costmap`,
+// `local plan`): accepted, so that scripts can pass it to every command, and bound to nothing.
+CLI::Option* accept_json_flag(CLI::App* cmd);
 
 // Prints `figures` on stdout as the command's one JSON object (throws Error when it is not an object).
 void print_json(const nlohmann::json& figures);

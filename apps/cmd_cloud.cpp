@@ -419,12 +419,11 @@ bool run_perception_bench(int reps) {
 
 void add_perception_bench(CLI::App& bench) {
   auto reps = std::make_shared<int>(15);
-  auto json = std::make_shared<bool>(false);
   CLI::App* c = bench.add_subcommand("perception", "Voxel grid, RANSAC and the Digit frame pipeline timings");
   c->add_option("--reps", *reps, "repetitions per figure (median reported)")
       ->capture_default_str()
       ->check(check::integer_in(1, 1000));
-  add_json_flag(c, *json, true);
+  accept_json_flag(c);
   c->callback([reps] { report_task(run_perception_bench(*reps)); });
 }
 

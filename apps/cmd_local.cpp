@@ -55,7 +55,6 @@ struct PlanOptions {
   std::string map, start, goal, out, planner = "teb";
   int steps = 600;
   int threads = 1;
-  bool json = true;  // --json: the only output format
 };
 
 constexpr viz::Color kDrivenColor{0.0, 0.55, 0.6, 1.0};
@@ -158,7 +157,6 @@ bool local_plan(const PlanOptions& o) {
 struct BenchLocalArgs {
   int cycles = 100;
   int threads = 1;
-  bool json = false;
   std::string params;                // a navigation parameters file: its TEB settings (server.local.teb)
   std::string robot = "turtlebot3";  // the robot whose defaults the file overlays
 };
@@ -233,7 +231,7 @@ void add_local_commands(CLI::App& app, CLI::App& bench) {
   plan->add_option("--threads", o->threads, "threads for the homotopy candidates")
       ->capture_default_str()
       ->check(check::integer_in(1, 256));
-  add_json_flag(plan, o->json, true);
+  accept_json_flag(plan);
   plan->callback([o] { report_task(local_plan(*o)); });
 
   auto* b = bench.add_subcommand("local", "TEB local planner cycle time with 0, 20 and 100 obstacles");
@@ -244,7 +242,7 @@ void add_local_commands(CLI::App& app, CLI::App& bench) {
   b->add_option("--threads", ba->threads, "threads for the homotopy candidates")
       ->capture_default_str()
       ->check(check::integer_in(1, 256));
-  add_json_flag(b, ba->json, true);
+  accept_json_flag(b);
   b->add_option("--params", ba->params,
                 "Navigation parameters YAML: its TEB settings (server.local.teb) over --robot's defaults, as `run "
                 "--params` (without it: TebParams' defaults)");

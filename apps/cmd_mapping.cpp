@@ -33,7 +33,6 @@ struct InflateOptions {
   InflationFlags inflation;  // the global costmap's defaults
   std::string out_png, out_yaml;
   int scale = 1;
-  bool json = true;  // --json: the only output format
 };
 
 nlohmann::json cost_counts(const Costmap2D& m) {
@@ -154,10 +153,9 @@ void add_mapping_commands(CLI::App& app, CLI::App& bench) {
   costmap->require_subcommand(1);
 
   auto info_map = std::make_shared<std::string>();
-  auto info_json = std::make_shared<bool>(true);
   CLI::App* info = costmap->add_subcommand("info", "Print a map_server map's geometry and cost counts as JSON");
   info->add_option("map", *info_map, "map_server YAML")->required()->check(CLI::ExistingFile);
-  add_json_flag(info, *info_json, true);
+  accept_json_flag(info);
   info->callback([info_map] {
     const Costmap2D m = mapping::read_map_server(*info_map);
     print_json({{"map", *info_map}, {"geometry", geometry_json(m.geometry())}, {"costs", cost_counts(m)}});
@@ -172,13 +170,12 @@ void add_mapping_commands(CLI::App& app, CLI::App& bench) {
       ->capture_default_str()
       ->check(check::integer_at_least(1));
   inflate->add_option("--yaml", o->out_yaml, "map_server YAML (+ PGM) to write");
-  add_json_flag(inflate, o->json, true);
+  accept_json_flag(inflate);
   inflate->callback([o] { run_inflate(*o); });
 
   auto iterations = std::make_shared<int>(100);
-  auto json = std::make_shared<bool>(true);
   CLI::App* b = bench.add_subcommand("mapping", "Local costmap update, inflation and heightmap timings");
-  add_json_flag(b, *json, true);
+  accept_json_flag(b);
   b->add_option("--iterations", *iterations, "updates to time (1..10000)")
       ->capture_default_str()
       ->check(check::integer_in(1, 10000));

@@ -264,8 +264,7 @@ void add_plan_commands(CLI::App& app, CLI::App& bench) {
   auto dir = std::make_shared<std::string>();
   auto replans = std::make_shared<int>(2000);
   CLI::App* b = bench.add_subcommand("global", "D* Lite replanning vs A* (three rooms), Moving AI first plans");
-  auto json_flag = std::make_shared<bool>(false);
-  add_json_flag(b, *json_flag, true);
+  accept_json_flag(b);
   b->add_option("--movingai-dir", *dir, "directory with maps/ and scen/ (default: tests/data/movingai)");
   b->add_option("--max-replans", *replans, "replan limit")->capture_default_str()->check(check::integer_at_least(1));
   b->callback([dir, replans] { report_task(run_bench(*dir, *replans)); });
