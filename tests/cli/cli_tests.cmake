@@ -139,17 +139,16 @@ bipednav_numeric(odometry_max_sweeps       --max-sweeps       2 2  odometry ${_p
 bipednav_numeric(odometry_map_voxel        --map-voxel        2 2  odometry ${_pair})
 bipednav_numeric(odometry_gicp_voxel       --gicp-voxel       2 2  odometry ${_pair} --method gicp)
 bipednav_numeric(odometry_rpe_distance     --rpe-distance     2 2  odometry ${_pair})
-# More benchmarks: every value below is rejected before any work, so none of these runs one.
-bipednav_numeric(bench_scenarios_seeds     --seeds            2 2  bench scenarios)
-bipednav_numeric(bench_scenarios_first_seed --first-seed      2 2  bench scenarios)
-bipednav_numeric(bench_scenarios_jobs      --jobs             2 2  bench scenarios)
-bipednav_numeric(bench_loop_runs           --runs             2 2  bench loop)
-bipednav_numeric(bench_worlds_worlds       --worlds           2 2  bench worlds)
-bipednav_numeric(bench_worlds_first_seed   --first-seed       2 2  bench worlds)
-bipednav_numeric(bench_worlds_jobs         --jobs             2 2  bench worlds)
-bipednav_numeric(bench_tracking_seeds      --seeds            2 2  bench tracking)
-bipednav_numeric(bench_tracking_first_seed --first-seed       2 2  bench tracking)
-bipednav_numeric(bench_localization_sweeps --sweeps           2 2  bench localization)
+# More benchmarks (BENCH:FLAG): -1, NaN and 0 are all rejected before any work (exit 2).
+foreach(_case scenarios:--seeds scenarios:--first-seed scenarios:--jobs loop:--runs worlds:--worlds
+              worlds:--first-seed worlds:--jobs tracking:--seeds tracking:--first-seed localization:--sweeps)
+  string(REPLACE ":" ";" _parts ${_case})
+  list(GET _parts 0 _bench)
+  list(GET _parts 1 _flag)
+  string(REGEX REPLACE "^--" "" _id ${_flag})
+  string(REPLACE "-" "_" _id ${_id})
+  bipednav_numeric(bench_${_bench}_${_id} ${_flag} 2 2 bench ${_bench})
+endforeach()
 
 # The README's command-line examples run as written (readme_examples.sh).
 add_test(NAME cli_readme_examples COMMAND sh ${_cli_dir}/readme_examples.sh ${PROJECT_SOURCE_DIR} $<TARGET_FILE:bipednav>
