@@ -9,6 +9,8 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/bench_runs.hpp"
+#include "apps/cli_exit.hpp"
+#include "apps/cli_json.hpp"
 #include "apps/cmd_route.hpp"
 #include "apps/scenario_files.hpp"
 #include "bipednav/runner/scenario_runner.hpp"
@@ -150,13 +152,11 @@ void bench_scenarios(const BenchScenarioArgs& a) {
     rows.push_back(std::move(row));
   }
   if (a.json) {
-    std::printf("%s\n", nlohmann::json{{"rows", rows},
-                                       {"succeeded", ok_total},
-                                       {"runs", runs.size()},
-                                       {"first_seed", a.first_seed},
-                                       {"jobs", a.jobs}}
-                            .dump(2)
-                            .c_str());
+    print_json({{"rows", rows},
+                {"succeeded", ok_total},
+                {"runs", runs.size()},
+                {"first_seed", a.first_seed},
+                {"jobs", a.jobs}});
     return;
   }
   print_table(rows);
@@ -173,7 +173,8 @@ struct BenchLoopArgs {
 // Issue 8's real-time goal: the whole closed loop (simulator included) on one thread, `runs` times
 // one after another; the real-time factor is simulated time over process CPU time (the run is
 // single-threaded, so this is one core), medians over the runs against the 10x goal.
-void bench_loop(const BenchLoopArgs& a) {
+// Returns whether the real-time factor meets its goal (the exit status).
+bool bench_loop(const BenchLoopArgs& a) {
   require(a.runs >= 1, "--runs", ">= 1");
   const sim::Scenario s = sim::load_scenario(resolve_scenario(a.scenario));
   runner::RunOptions o;
@@ -209,16 +210,15 @@ void bench_loop(const BenchLoopArgs& a) {
                          {"stage_cpu_median_ms", stage_median},
                          {"goal_rtf", kGoalRtf},
                          {"meets_goal", rtf >= kGoalRtf}};
-  if (!a.json) {
+  print_figures(a.json, j, [&] {
     std::printf(
         "%s with %s: %s, %.1f s simulated; CPU median %.0f ms (%.0f-%.0f over %d runs): %.1fx real time "
         "(goal %.0fx: %s); wall %.1fx\n",
         last.scenario.c_str(), last.robot.c_str(), j["outcome"].get<std::string>().c_str(), last.time_s, cpu_med,
         j["cpu_min_ms"].get<double>(), j["cpu_max_ms"].get<double>(), a.runs, rtf, kGoalRtf,
         rtf >= kGoalRtf ? "met" : "not met", wall_rtf);
-    return;
-  }
-  std::printf("%s\n", j.dump(2).c_str());
+  });
+  return bench_goals_met(j);
 }
 
 }  // namespace
@@ -245,11 +245,11 @@ void add_closed_loop_benches(CLI::App& bench) {
   CLI::App* loop = bench.add_subcommand(
       "loop", "The whole closed loop's real-time factor on one core (simulated / process CPU time; goal 10x)");
   loop->add_option("scenario", lp->scenario, "Scenario name or file")->capture_default_str();
-  loop->add_flag("--json", lp->json, "Print one JSON object");
+  add_json_flag(loop, lp->json);
   loop->add_option("--runs", lp->runs, "Runs, one after another (medians; default 3)")->check(CLI::Range(1, 100));
   loop->add_option("--robot", lp->robot, "Robot profile name or file (default: the scenario's)");
   loop->add_option("--params", lp->params, "Navigation parameters YAML (as `run --params`)");
-  loop->callback([lp] { bench_loop(*lp); });
+  loop->callback([lp] { report_task(bench_loop(*lp)); });
 }
 
 }  // namespace bipednav::app

@@ -15,6 +15,7 @@
 
 #include "apps/cli_checks.hpp"
 #include "apps/cli_exit.hpp"
+#include "apps/cli_json.hpp"
 #include "bipednav/common/clock.hpp"
 #include "bipednav/common/error.hpp"
 #include "bipednav/common/progress.hpp"
@@ -402,7 +403,7 @@ bool bench_footsteps(const BenchArgs& a) {
   const Stopwatch wall;
   search_problems(a, maps, {probe, optimal_planner, planners, planar_planner}, log.get(), work);
   const nlohmann::json j = bench_json(a, tg, clock, wall, reused, tally_problems(a, work));
-  std::printf("%s\n", j.dump(2).c_str());
+  print_json(j);
   return bench_goals_met(j);
 }
 
@@ -410,7 +411,6 @@ bool bench_footsteps(const BenchArgs& a) {
 
 void add_footstep_bench(CLI::App& bench) {
   auto b = std::make_shared<BenchArgs>();
-  auto json = std::make_shared<bool>(true);
   CLI::App* bf = bench.add_subcommand("footsteps", "Table I of the footstep reference on random heightmaps");
   bf->add_option("--maps", b->maps, "Random 2.5 x 2.5 m heightmaps")
       ->capture_default_str()
@@ -445,7 +445,7 @@ void add_footstep_bench(CLI::App& bench) {
   bf->add_flag("--skip-planar", b->skip_planar, "Do not run the planar-footsteps-only baseline");
   bf->add_flag("--stance-levels", b->stance_levels,
                "Dijkstra heuristic with the (cell, stance-height level) graph (off by default)");
-  bf->add_flag("--json", *json, "Print one JSON object (the default)");
+  accept_json_flag(bf);
   bf->callback([b] { report_task(bench_footsteps(*b)); });
 }
 

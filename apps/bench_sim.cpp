@@ -10,6 +10,7 @@
 
 #include "apps/cli_checks.hpp"
 #include "apps/cli_exit.hpp"
+#include "apps/cli_json.hpp"
 #include "bipednav/common/clock.hpp"
 #include "bipednav/common/error.hpp"
 #include "bipednav/common/progress.hpp"
@@ -155,7 +156,7 @@ bool run_sim_bench(const BenchOptions& o) {
   j["threads"] = params.raycaster.threads;
   j["goal_rtf"] = 20;
   j["meets_goal"] = cpu_rtf >= 20.0;
-  std::printf("%s\n", j.dump(2).c_str());
+  print_json(j);
   return bench_goals_met(j);
 }
 

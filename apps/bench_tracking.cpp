@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/cli_json.hpp"
 #include "apps/commands.hpp"
 #include "apps/scenario_files.hpp"
 #include "apps/tracking_harness.hpp"
@@ -224,10 +225,7 @@ void add_tracking_commands(CLI::App& /*app*/, CLI::App& bench) {
     std::vector<std::uint64_t> seeds;
     for (int i = 0; i < a->seeds; ++i) seeds.push_back(static_cast<std::uint64_t>(a->first_seed + i));
     const nlohmann::json j = bench_tracking(scenarios, a->robots, seeds, variants, !a->json);
-    if (a->json)
-      std::printf("%s\n", j.dump(2).c_str());
-    else
-      print_table(j["trackers"]);
+    print_figures(a->json, j, [&] { print_table(j["trackers"]); });
   });
 }
 

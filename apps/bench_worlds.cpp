@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/bench_runs.hpp"
+#include "apps/cli_json.hpp"
 #include "apps/cmd_route.hpp"
 #include "apps/scenario_files.hpp"
 #include "bipednav/common/error.hpp"
@@ -272,10 +273,7 @@ void bench_worlds(const BenchWorldsArgs& a) {
   report["robots"] = nlohmann::json::array();
   for (const auto& [robot, robot_rows] : rows) report["robots"].push_back(robot_summary(robot, robot_rows));
   report["runs"] = all;
-  if (a.json)
-    std::printf("%s\n", report.dump(2).c_str());
-  else
-    print_table(report);
+  print_figures(a.json, report, [&] { print_table(report); });
 }
 
 }  // namespace

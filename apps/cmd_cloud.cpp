@@ -13,6 +13,7 @@
 
 #include "apps/cli_checks.hpp"
 #include "apps/cli_exit.hpp"
+#include "apps/cli_json.hpp"
 #include "apps/cli_output.hpp"
 #include "apps/commands.hpp"
 #include "bipednav/common/clock.hpp"
@@ -69,6 +70,7 @@ struct FilterOptions {
   std::string in, out, encoding = "binary_compressed";
   double voxel_m = 0.0;
   BandOptions band;
+  bool json = false;
 };
 
 void run_filter(const FilterOptions& o) {
@@ -86,12 +88,22 @@ void run_filter(const FilterOptions& o) {
   }
   const double ms = sw.elapsed_ms();
   io::write_pcd(o.out, out, encoding);
-  if (o.voxel_m > 0.0)
-    std::printf("%s: %zu points, %zu after the pass-through, %zu after the voxel grid (%.2f ms) -> %s\n", o.in.c_str(),
-                in.size(), after_band, out.size(), ms, o.out.c_str());
-  else
-    std::printf("%s: %zu points, %zu after the pass-through, no voxel grid (%.2f ms) -> %s\n", o.in.c_str(), in.size(),
-                after_band, ms, o.out.c_str());
+  const bool voxel = o.voxel_m > 0.0;
+  const nlohmann::json j = {{"file", o.in},
+                            {"points", in.size()},
+                            {"after_pass_through", after_band},
+                            {"voxel_m", voxel ? nlohmann::json(o.voxel_m) : nlohmann::json(nullptr)},
+                            {"after_voxel_grid", voxel ? nlohmann::json(out.size()) : nlohmann::json(nullptr)},
+                            {"time_ms", ms},
+                            {"out", o.out}};
+  print_figures(o.json, j, [&] {
+    if (voxel)
+      std::printf("%s: %zu points, %zu after the pass-through, %zu after the voxel grid (%.2f ms) -> %s\n",
+                  o.in.c_str(), in.size(), after_band, out.size(), ms, o.out.c_str());
+    else
+      std::printf("%s: %zu points, %zu after the pass-through, no voxel grid (%.2f ms) -> %s\n", o.in.c_str(),
+                  in.size(), after_band, ms, o.out.c_str());
+  });
 }
 
 struct SegmentOptions {
@@ -113,14 +125,6 @@ bool run_segment(SegmentOptions o) {
   const Stopwatch sw;
   const perception::PlaneFit fit = perception::fit_plane_ransac(in.points, o.ransac, rng);
   const double ms = sw.elapsed_ms();
-  if (!o.json) {
-    if (!fit.found)
-      std::printf("no plane found in %s (%zu points after the filter)\n", o.in.c_str(), in.size());
-    else
-      std::printf("plane %.6f %.6f %.6f %.6f, %zu of %zu points within %.3f m, %.2f ms\n", fit.plane[0], fit.plane[1],
-                  fit.plane[2], fit.plane[3], fit.inliers, in.size(), o.ransac.distance_threshold_m, ms);
-    return fit.found;
-  }
   nlohmann::json j;
   j["file"] = o.in;
   j["found"] = fit.found;
@@ -131,7 +135,13 @@ bool run_segment(SegmentOptions o) {
   j["inlier_std_m"] = fit.inlier_std_m;
   j["iterations"] = fit.iterations;
   j["time_ms"] = ms;
-  std::printf("%s\n", j.dump(2).c_str());
+  print_figures(o.json, j, [&] {
+    if (!fit.found)
+      std::printf("no plane found in %s (%zu points after the filter)\n", o.in.c_str(), in.size());
+    else
+      std::printf("plane %.6f %.6f %.6f %.6f, %zu of %zu points within %.3f m, %.2f ms\n", fit.plane[0], fit.plane[1],
+                  fit.plane[2], fit.plane[3], fit.inliers, in.size(), o.ransac.distance_threshold_m, ms);
+  });
   return fit.found;
 }
 
@@ -147,6 +157,7 @@ void add_filter(CLI::App& cloud) {
   c->add_option("--encoding", o->encoding, "ascii, binary or binary_compressed")
       ->capture_default_str()
       ->check(CLI::IsMember({"ascii", "binary", "binary_compressed"}));
+  add_json_flag(c, o->json);
   c->callback([o] { run_filter(*o); });
 }
 
@@ -168,7 +179,7 @@ void add_segment(CLI::App& cloud) {
       ->capture_default_str()
       ->check(check::integer_at_least(0));
   o->band.add_to(c);
-  c->add_flag("--json", o->json, "print one JSON object");
+  add_json_flag(c, o->json);
   c->callback([o] { report_task(run_segment(*o)); });
 }
 
@@ -402,18 +413,17 @@ bool run_perception_bench(int reps) {
       "not in this binary: build the opt-in target bipednav_bench_pcl (-DBIPEDNAV_BENCH_PCL=ON, "
       "needs libpcl-dev) for the ratios against pcl::VoxelGrid and pcl::SACSegmentation "
       "(bipednav_bench_pcl_gicp for GICP)";
-  std::printf("%s\n", j.dump(2).c_str());
+  print_json(j);
   return bench_goals_met(j);
 }
 
 void add_perception_bench(CLI::App& bench) {
   auto reps = std::make_shared<int>(15);
-  auto json = std::make_shared<bool>(false);
   CLI::App* c = bench.add_subcommand("perception", "Voxel grid, RANSAC and the Digit frame pipeline timings");
   c->add_option("--reps", *reps, "repetitions per figure (median reported)")
       ->capture_default_str()
       ->check(check::integer_in(1, 1000));
-  c->add_flag("--json", *json, "print one JSON object (the only output format)");
+  accept_json_flag(c);
   c->callback([reps] { report_task(run_perception_bench(*reps)); });
 }
 

@@ -7,6 +7,7 @@
 #include "apps/bench_footsteps.hpp"
 #include "apps/cli_checks.hpp"
 #include "apps/cli_exit.hpp"
+#include "apps/cli_json.hpp"
 #include "apps/cli_output.hpp"
 #include "apps/cli_pose.hpp"
 #include "apps/commands.hpp"
@@ -38,7 +39,23 @@ void draw_plan(const std::filesystem::path& file, const mapping::Heightmap& map,
 struct FootstepArgs {
   std::string heightmap, start, goal, out = "footsteps.png", robot = "nao", heuristic = "dijkstra";
   double resolution_m = 0.02, min_height_m = -0.5, max_height_m = 1.0, time_limit_s = 5.0;
+  bool json = false;
 };
+
+// The plan's figures (a failed plan: outcome and message only, the rest null).
+nlohmann::json plan_json(const FootstepPlan& plan, const std::string& out) {
+  const bool ok = plan.result.ok();
+  const auto when_ok = [ok](auto v) { return ok ? nlohmann::json(v) : nlohmann::json(nullptr); };
+  return {{"outcome", std::string(outcome_name(plan.result.outcome))},
+          {"outcome_code", code(plan.result.outcome)},
+          {"message", plan.result.message},
+          {"steps", when_ok(plan.actions.size())},
+          {"walking_s", when_ok(plan.cost_s)},
+          {"final_epsilon", when_ok(plan.final_epsilon)},
+          {"first_solution_s", when_ok(plan.first_solution_s)},
+          {"expansions", plan.expansions},
+          {"png", out}};
+}
 
 // Returns whether a plan was found (the exit status).
 bool footsteps_command(const FootstepArgs& a) {
@@ -55,13 +72,15 @@ bool footsteps_command(const FootstepArgs& a) {
   p.search.time_limit_s = a.time_limit_s;
   const FootstepPlanner planner(p);
   const FootstepPlan plan = planner.plan(map, planner.stance_for_body(start, Foot::kLeft), goal);
-  std::printf("%s: %s\n", std::string(outcome_name(plan.result.outcome)).c_str(), plan.result.message.c_str());
-  if (plan.result.ok()) {
-    std::printf("  %zu steps, %.2f s of walking, bound eps %.2f, first solution after %.3f s, %zu expansions\n",
-                plan.actions.size(), plan.cost_s, plan.final_epsilon, plan.first_solution_s, plan.expansions);
-  }
   draw_plan(a.out, map, planner, plan, start, goal);
-  std::printf("  wrote %s\n", a.out.c_str());
+  print_figures(a.json, plan_json(plan, a.out), [&] {
+    std::printf("%s: %s\n", std::string(outcome_name(plan.result.outcome)).c_str(), plan.result.message.c_str());
+    if (plan.result.ok()) {
+      std::printf("  %zu steps, %.2f s of walking, bound eps %.2f, first solution after %.3f s, %zu expansions\n",
+                  plan.actions.size(), plan.cost_s, plan.final_epsilon, plan.first_solution_s, plan.expansions);
+    }
+    std::printf("  wrote %s\n", a.out.c_str());
+  });
   return plan.result.ok();
 }
 
@@ -92,6 +111,7 @@ void add_footstep_commands(CLI::App& app, CLI::App& bench) {
   fs->add_option("--time-limit", a->time_limit_s, "ARA* time limit, s")
       ->capture_default_str()
       ->check(check::positive());
+  add_json_flag(fs, a->json);
   fs->callback([a] { report_task(footsteps_command(*a)); });
 
   add_footstep_bench(bench);

@@ -9,6 +9,7 @@
 
 #include "apps/cli_checks.hpp"
 #include "apps/cli_exit.hpp"
+#include "apps/cli_json.hpp"
 #include "apps/cli_output.hpp"
 #include "apps/cli_pose.hpp"
 #include "apps/commands.hpp"
@@ -140,7 +141,7 @@ bool local_plan(const PlanOptions& o) {
   j["last_outcome"] = outcome;
   j["cycles"] = step;
   j["time_s"] = step * dt;
-  j["final_pose"] = {p.x, p.y, p.theta};
+  j["final_pose"] = {{"x_m", p.x}, {"y_m", p.y}, {"yaw_rad", p.theta}};
   if (!o.out.empty()) {
     char title[200];
     std::snprintf(title, sizeof title, "local plan (%s): %s after %.1f s",
@@ -149,14 +150,13 @@ bool local_plan(const PlanOptions& o) {
     draw_run(o.out, map, global.path, start, goal, driven, last_traj, p, o.planner, title);
     j["out"] = o.out;
   }
-  std::cout << j.dump(2) << std::endl;
+  print_json(j);
   return reached;
 }
 
 struct BenchLocalArgs {
   int cycles = 100;
   int threads = 1;
-  bool json = false;
   std::string params;                // a navigation parameters file: its TEB settings (server.local.teb)
   std::string robot = "turtlebot3";  // the robot whose defaults the file overlays
 };
@@ -207,7 +207,7 @@ bool bench_local(const BenchLocalArgs& a) {
       j["cpu_p99_ms"] = st.cpu_p99_ms;
     }
   }
-  std::cout << j.dump(2) << std::endl;
+  print_json(j);
   return bench_goals_met(j);
 }
 
@@ -231,6 +231,7 @@ void add_local_commands(CLI::App& app, CLI::App& bench) {
   plan->add_option("--threads", o->threads, "threads for the homotopy candidates")
       ->capture_default_str()
       ->check(check::integer_in(1, 256));
+  accept_json_flag(plan);
   plan->callback([o] { report_task(local_plan(*o)); });
 
   auto* b = bench.add_subcommand("local", "TEB local planner cycle time with 0, 20 and 100 obstacles");
@@ -241,7 +242,7 @@ void add_local_commands(CLI::App& app, CLI::App& bench) {
   b->add_option("--threads", ba->threads, "threads for the homotopy candidates")
       ->capture_default_str()
       ->check(check::integer_in(1, 256));
-  b->add_flag("--json", ba->json, "print JSON (the only output format)");
+  accept_json_flag(b);
   b->add_option("--params", ba->params,
                 "Navigation parameters YAML: its TEB settings (server.local.teb) over --robot's defaults, as `run "
                 "--params` (without it: TebParams' defaults)");

@@ -12,6 +12,7 @@
 
 #include "apps/cli_checks.hpp"
 #include "apps/cli_exit.hpp"
+#include "apps/cli_json.hpp"
 #include "apps/cmd_odometry.hpp"
 #include "apps/commands.hpp"
 #include "apps/scenario_files.hpp"
@@ -86,17 +87,15 @@ bool run_register(const RegisterOptions& o) {
                   {"source_points", source.size()},
                   {"target_points", target.size()},
                   {"time_ms", r.time_ms}};
-  if (o.json_out) {
-    std::printf("%s\n", j.dump(2).c_str());
-    return r.converged;
-  }
-  const Eigen::Vector3d t = r.T_target_source.translation();
-  const Eigen::Vector3d rpy = matrix_to_rpy(r.T_target_source.rotation());
-  std::printf(
-      "T_target_source: t = (%.4f, %.4f, %.4f) m, rpy = (%.3f, %.3f, %.3f) deg; fitness %.4f m^2, %s after %d "
-      "iterations, %.1f ms\n",
-      t.x(), t.y(), t.z(), rad2deg(rpy.x()), rad2deg(rpy.y()), rad2deg(rpy.z()), r.fitness,
-      r.converged ? "converged" : "NOT converged", r.iterations, r.time_ms);
+  print_figures(o.json_out, j, [&] {
+    const Eigen::Vector3d t = r.T_target_source.translation();
+    const Eigen::Vector3d rpy = matrix_to_rpy(r.T_target_source.rotation());
+    std::printf(
+        "T_target_source: t = (%.4f, %.4f, %.4f) m, rpy = (%.3f, %.3f, %.3f) deg; fitness %.4f m^2, %s after %d "
+        "iterations, %.1f ms\n",
+        t.x(), t.y(), t.z(), rad2deg(rpy.x()), rad2deg(rpy.y()), rad2deg(rpy.z()), r.fitness,
+        r.converged ? "converged" : "NOT converged", r.iterations, r.time_ms);
+  });
   return r.converged;
 }
 
@@ -262,15 +261,13 @@ void run_odometry(const OdometryOptions& o) {
                   {"odometry", drift_json(dd)},
                   {"loam_odometry_mean_ms", mean(odo_ms)},
                   {"loam_mapping_mean_ms", mean(map_ms)}};
-  if (o.json_out) {
-    std::printf("%s\n", j.dump(2).c_str());
-    return;
-  }
-  std::printf(
-      "%s: %.1f m in %.1f s, %zu sweeps. LOAM: %.2f %% of distance, %.3f deg per 10 m. Raw odometry: %.2f %%, "
-      "%.3f deg per 10 m\n",
-      scenario.name.c_str(), dl.distance_m, sim.now_s(), truth.size(), dl.translation_percent, dl.yaw_deg_per_10m,
-      dd.translation_percent, dd.yaw_deg_per_10m);
+  print_figures(o.json_out, j, [&] {
+    std::printf(
+        "%s: %.1f m in %.1f s, %zu sweeps. LOAM: %.2f %% of distance, %.3f deg per 10 m. Raw odometry: %.2f %%, "
+        "%.3f deg per 10 m\n",
+        scenario.name.c_str(), dl.distance_m, sim.now_s(), truth.size(), dl.translation_percent, dl.yaw_deg_per_10m,
+        dd.translation_percent, dd.yaw_deg_per_10m);
+  });
 }
 
 struct BenchOptions {
@@ -393,17 +390,17 @@ void add_localization_bench(CLI::App& bench) {
   b->add_option("--humanoid-scenario", o->humanoid_scenario, "Footstep scenario of the humanoid drift rows")
       ->capture_default_str();
   b->add_option("--sweeps", o->sweeps, "Simulated sweeps for LOAM")->capture_default_str()->check(CLI::Range(2, 10000));
-  b->add_flag("--json", o->json_out, "Print one JSON object");
+  add_json_flag(b, o->json_out);
   b->callback([o] {
     json j = bench_loam(*o);
     j.update(bench_gicp(*o));
     j.update(bench_kitti_odometry(o->kitti_dir));
     j.update(bench_humanoid_drift(o->humanoid_scenario));
-    if (o->json_out)
-      std::printf("%s\n", j.dump(2).c_str());
-    else
+    print_figures(o->json_out, j, [&] {
       std::printf("LOAM odometry median %.2f ms/sweep (goal 20); GICP %.1f ms (reference 410 ms)\n",
                   j["loam_odometry_median_ms"].get<double>(), j["gicp_median_ms"].get<double>());
+    });
+    report_task(bench_goals_met(j));
   });
 }
 
@@ -418,7 +415,7 @@ void add_localization_commands(CLI::App& app, CLI::App& bench) {
       ->capture_default_str()
       ->check(check::non_negative());
   r->add_option("--threads", reg->threads, "Worker threads")->capture_default_str()->check(check::integer_in(1, 256));
-  r->add_flag("--json", reg->json_out, "Print one JSON object");
+  add_json_flag(r, reg->json_out);
   r->callback([reg] { report_task(run_register(*reg)); });
 
   auto odo = std::make_shared<OdometryOptions>();
@@ -430,16 +427,18 @@ void add_localization_commands(CLI::App& app, CLI::App& bench) {
   d->add_option("path", odo->scenario,
                 "Recording (a KITTI/PCD/PLY folder or a .bag), or a scenario name or YAML file to simulate")
       ->required();
-  d->add_option("--duration", odo->duration_s, "Scenario: simulated seconds (default: until the route is done)");
+  d->add_option("--duration", odo->duration_s, "Scenario: simulated seconds (default: until the route is done)")
+      ->check(check::positive());
   d->add_option("--waypoints", odo->waypoints,
                 "Scenario: route as 'x,y x,y ...' (default: the widest route from the start through the goals, "
                 "straight ahead without goals)");
-  d->add_option("--speed", odo->speed_mps, "Scenario: forward speed in m/s (default: the robot's maximum)");
+  d->add_option("--speed", odo->speed_mps, "Scenario: forward speed in m/s (default: the robot's maximum)")
+      ->check(check::positive());
   d->add_option("--config-dir", odo->config_dir,
                 "Scenario: directory of robot profiles (default: <scenario>/../config)");
   d->add_flag("--no-prior", odo->no_prior, "Scenario: do not give LOAM the odometry as a motion prior");
   d->add_flag("--planar", odo->planar, "Scenario: LOAM keeps the LiDAR's height, roll and pitch (flat floor)");
-  d->add_flag("--json", odo->json_out, "Print one JSON object");
+  add_json_flag(d, odo->json_out);
   d->add_option(
        "--params", odo->params,
        "Navigation parameters file (the layout of `bipednav params`): LOAM's parameters are its "

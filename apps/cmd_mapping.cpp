@@ -9,6 +9,7 @@
 #include "apps/cli_checks.hpp"
 #include "apps/cli_exit.hpp"
 #include "apps/cli_inflation.hpp"
+#include "apps/cli_json.hpp"
 #include "apps/cli_output.hpp"
 #include "apps/commands.hpp"
 #include "bipednav/common/clock.hpp"
@@ -68,7 +69,7 @@ void run_inflate(const InflateOptions& o) {
                       {"costs", cost_counts(global.costmap())}};
   if (!o.out_png.empty()) j["png"] = o.out_png;
   if (!o.out_yaml.empty()) j["yaml"] = o.out_yaml;
-  std::printf("%s\n", j.dump(2).c_str());
+  print_json(j);
 }
 
 double median(std::vector<double> v) {
@@ -141,7 +142,7 @@ bool run_bench(int iterations) {
                             {"paper_heightmap_update_ms", 70.0},
                             {"global_update_400x400_median_ms", median(global_ms)},
                             {"global_update_400x400_max_ms", maximum(global_ms)}};
-  std::printf("%s\n", j.dump(2).c_str());
+  print_json(j);
   return bench_goals_met(j);
 }
 
@@ -154,10 +155,10 @@ void add_mapping_commands(CLI::App& app, CLI::App& bench) {
   auto info_map = std::make_shared<std::string>();
   CLI::App* info = costmap->add_subcommand("info", "Print a map_server map's geometry and cost counts as JSON");
   info->add_option("map", *info_map, "map_server YAML")->required()->check(CLI::ExistingFile);
+  accept_json_flag(info);
   info->callback([info_map] {
     const Costmap2D m = mapping::read_map_server(*info_map);
-    const nlohmann::json j = {{"map", *info_map}, {"geometry", geometry_json(m.geometry())}, {"costs", cost_counts(m)}};
-    std::printf("%s\n", j.dump(2).c_str());
+    print_json({{"map", *info_map}, {"geometry", geometry_json(m.geometry())}, {"costs", cost_counts(m)}});
   });
 
   auto o = std::make_shared<InflateOptions>();
@@ -169,12 +170,12 @@ void add_mapping_commands(CLI::App& app, CLI::App& bench) {
       ->capture_default_str()
       ->check(check::integer_at_least(1));
   inflate->add_option("--yaml", o->out_yaml, "map_server YAML (+ PGM) to write");
+  accept_json_flag(inflate);
   inflate->callback([o] { run_inflate(*o); });
 
   auto iterations = std::make_shared<int>(100);
-  auto json = std::make_shared<bool>(true);
   CLI::App* b = bench.add_subcommand("mapping", "Local costmap update, inflation and heightmap timings");
-  b->add_flag("--json", *json, "print JSON (the only output format)");
+  accept_json_flag(b);
   b->add_option("--iterations", *iterations, "updates to time (1..10000)")
       ->capture_default_str()
       ->check(check::integer_in(1, 10000));

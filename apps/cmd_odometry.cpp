@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include "apps/cli_checks.hpp"
+#include "apps/cli_json.hpp"
 #include "bipednav/common/error.hpp"
 #include "bipednav/io/pcd.hpp"
 #include "bipednav/io/trajectory_file.hpp"
@@ -40,16 +42,16 @@ void add_recorded_odometry_options(CLI::App& d, RecordedOdometryCli& o) {
   d.add_option("--deskew", o.deskew, "Per-point times from azimuth for sweeps without: auto (not KITTI), on, off")
       ->capture_default_str()
       ->check(CLI::IsMember({"auto", "on", "off"}));
-  d.add_option("--max-sweeps", o.max_sweeps, "Sweeps to run (default: all)");
-  d.add_option("--map-voxel", o.map_voxel_m, "Map leaf size in m")->capture_default_str()->check(CLI::PositiveNumber);
+  d.add_option("--max-sweeps", o.max_sweeps, "Sweeps to run (default: all)")->check(check::integer_at_least(1));
+  d.add_option("--map-voxel", o.map_voxel_m, "Map leaf size in m")->capture_default_str()->check(check::positive());
   d.add_option("--gicp-voxel", o.gicp_voxel_m, "gicp: input leaf size in m")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(check::positive());
   d.add_flag("--registration-reference", o.registration_reference,
              "Also evaluate against the sweeps' own trajectory: each registered directly onto the first (GICP)");
   d.add_option("--rpe-distance", o.rpe_distance_m, "RPE path distance in m")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(check::positive());
 }
 
 runner::SweepSequence open_recording(const RecordedOdometryCli& o, std::string& format) {
@@ -183,7 +185,7 @@ json run_recorded_odometry_command(const RecordedOdometryCli& o) {
     std::ofstream(fs::path(o.out) / "run.json") << j.dump(2) << "\n";
   }
   if (o.json_out) {
-    std::printf("%s\n", j.dump(2).c_str());
+    print_json(j);
   } else if (!r.truth.empty()) {
     const json& e = j["evaluation"];
     std::printf(

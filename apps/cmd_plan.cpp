@@ -10,6 +10,7 @@
 #include "apps/cli_checks.hpp"
 #include "apps/cli_exit.hpp"
 #include "apps/cli_inflation.hpp"
+#include "apps/cli_json.hpp"
 #include "apps/cli_output.hpp"
 #include "apps/cli_pose.hpp"
 #include "apps/commands.hpp"
@@ -30,8 +31,7 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-// "x,y" or "x,y,yaw" (metres, radians).
-json pose_json(const Pose2& p) { return {p.x, p.y, p.theta}; }
+json pose_json(const Pose2& p) { return {{"x_m", p.x}, {"y_m", p.y}, {"yaw_rad", p.theta}}; }
 
 struct GridOptions {
   std::string map, start, goal, planner = "dstar_lite", out;
@@ -82,25 +82,24 @@ bool run_grid(const GridOptions& o) {
   auto planner = planning::make_global_planner(o.planner, pp);
   const planning::PlanResult r = planner->plan(costmap.costmap(), start, goal, {});
   if (!o.out.empty()) write_plan_png(o.out, costmap.costmap(), r, start, goal, o.planner);
-  if (o.json_out) {
-    json poses = json::array();
-    for (const auto& p : r.path.poses) poses.push_back(pose_json(p));
-    json j = {{"planner", o.planner},
-              {"outcome", outcome_name(r.result.outcome)},
-              {"code", code(r.result.outcome)},
-              {"message", r.result.message},
-              {"cost", r.cost},
-              {"length_m", r.path.length_m()},
-              {"expansions", r.expansions},
-              {"time_ms", r.time_ms},
-              {"path", poses}};
-    if (!o.out.empty()) j["png"] = o.out;
-    std::printf("%s\n", j.dump(2).c_str());
-  } else {
+  json poses = json::array();
+  for (const auto& p : r.path.poses) poses.push_back(pose_json(p));
+  json j = {{"planner", o.planner},
+            {"outcome", outcome_name(r.result.outcome)},
+            {"code", code(r.result.outcome)},
+            {"message", r.result.message},
+            {"cost", r.cost},
+            {"length_m", r.path.length_m()},
+            {"poses", r.path.size()},
+            {"expansions", r.expansions},
+            {"time_ms", r.time_ms},
+            {"path", poses}};
+  if (!o.out.empty()) j["png"] = o.out;
+  print_figures(o.json_out, j, [&] {
     std::printf("%s (%s): %s\n  cost %.3f, length %.3f m, %zu poses, %zu expansions, %.3f ms\n",
                 std::string(outcome_name(r.result.outcome)).c_str(), o.planner.c_str(), r.result.message.c_str(),
                 r.cost, r.path.length_m(), r.path.size(), r.expansions, r.time_ms);
-  }
+  });
   return r.result.ok();
 }
 
@@ -110,10 +109,11 @@ json movingai_json(const std::vector<planning::MovingAiRowResult>& rows, const s
   int solved = 0;
   for (const auto& r : rows) {
     const auto& p = r.problem;
-    json row = {{"start", {p.start_x, p.start_y}}, {"goal", {p.goal_x, p.goal_y}}, {"length", nullptr},
-                {"optimal", p.optimal_length},     {"expansions", r.expansions},   {"time_ms", r.time_ms}};
+    json row = {
+        {"start_cell", {p.start_x, p.start_y}},     {"goal_cell", {p.goal_x, p.goal_y}}, {"length_cells", nullptr},
+        {"optimal_length_cells", p.optimal_length}, {"expansions", r.expansions},        {"time_ms", r.time_ms}};
     if (r.length) {
-      row["length"] = *r.length;
+      row["length_cells"] = *r.length;
       max_err = std::max(max_err, std::abs(*r.length - p.optimal_length));
       ++solved;
     } else {
@@ -126,7 +126,7 @@ json movingai_json(const std::vector<planning::MovingAiRowResult>& rows, const s
   return {{"planner", planner},
           {"rows", out},
           {"summary",
-           {{"rows", rows.size()}, {"solved", solved}, {"max_abs_error", max_err}, {"total_time_ms", total_ms}}}};
+           {{"rows", rows.size()}, {"solved", solved}, {"max_abs_error_cells", max_err}, {"total_time_ms", total_ms}}}};
 }
 
 // Returns whether every row was solved (the exit status).
@@ -139,13 +139,11 @@ bool run_movingai(const std::string& map_file, const std::string& scen_file, con
   json j = movingai_json(rows, planner_name);
   const auto& s = j["summary"];
   const bool all_solved = s["solved"].get<std::size_t>() == s["rows"].get<std::size_t>();
-  if (json_out) {
-    std::printf("%s\n", j.dump(2).c_str());
-    return all_solved;
-  }
-  std::printf("%s on %s: %d/%d rows solved, max |length - optimal| = %.6f, total %.1f ms\n", planner_name.c_str(),
-              map_file.c_str(), s["solved"].get<int>(), s["rows"].get<int>(), s["max_abs_error"].get<double>(),
-              s["total_time_ms"].get<double>());
+  print_figures(json_out, j, [&] {
+    std::printf("%s on %s: %d/%d rows solved, max |length - optimal| = %.6f cells, total %.1f ms\n",
+                planner_name.c_str(), map_file.c_str(), s["solved"].get<int>(), s["rows"].get<int>(),
+                s["max_abs_error_cells"].get<double>(), s["total_time_ms"].get<double>());
+  });
   return all_solved;
 }
 
@@ -230,7 +228,7 @@ bool run_bench(const std::string& movingai_dir, int max_replans) {
     j["movingai_dir"] = dir.string();
     j["movingai"] = movingai_first_plans(dir);
   }
-  std::printf("%s\n", j.dump(2).c_str());
+  print_json(j);
   return bench_goals_met(j);
 }
 
@@ -252,7 +250,7 @@ void add_plan_commands(CLI::App& app, CLI::App& bench) {
       ->capture_default_str()
       ->check(check::non_negative());
   grid->add_flag("--unknown-is-obstacle", g->unknown_is_obstacle, "unknown cells are impassable");
-  grid->add_flag("--json", g->json_out, "print one JSON object");
+  add_json_flag(grid, g->json_out);
   grid->callback([g] { report_task(run_grid(*g)); });
 
   auto m = std::make_shared<GridOptions>();
@@ -260,14 +258,13 @@ void add_plan_commands(CLI::App& app, CLI::App& bench) {
   mai->add_option("map", m->map, "Moving AI .map")->required()->check(CLI::ExistingFile);
   mai->add_option("scen", m->start, "Moving AI .scen")->required()->check(CLI::ExistingFile);
   mai->add_option("--planner", m->planner, "dstar_lite | astar")->check(CLI::IsMember({"dstar_lite", "astar"}));
-  mai->add_flag("--json", m->json_out, "print one JSON object with rows and summary");
+  add_json_flag(mai, m->json_out);
   mai->callback([m] { report_task(run_movingai(m->map, m->start, m->planner, m->json_out)); });
 
   auto dir = std::make_shared<std::string>();
   auto replans = std::make_shared<int>(2000);
   CLI::App* b = bench.add_subcommand("global", "D* Lite replanning vs A* (three rooms), Moving AI first plans");
-  auto json_flag = std::make_shared<bool>(false);
-  b->add_flag("--json", *json_flag, "print one JSON object (the only output format)");
+  accept_json_flag(b);
   b->add_option("--movingai-dir", *dir, "directory with maps/ and scen/ (default: tests/data/movingai)");
   b->add_option("--max-replans", *replans, "replan limit")->capture_default_str()->check(check::integer_at_least(1));
   b->callback([dir, replans] { report_task(run_bench(*dir, *replans)); });

@@ -9,6 +9,7 @@
 
 #include "apps/cli_checks.hpp"
 #include "apps/cli_exit.hpp"
+#include "apps/cli_json.hpp"
 #include "apps/scenario_files.hpp"
 #include "bipednav/common/error.hpp"
 #include "bipednav/runner/footstep_runner.hpp"
@@ -64,17 +65,14 @@ bool run_route(const RouteArgs& a) {
                                           : scenario_from_world(a.world, a.robot, a.start, a.goal);
   const RobotProfile robot = runner::load_robot(a.robot.empty() ? s.robot : a.robot);
   const nlohmann::json r = route_report(s, robot, a.resolution_m);
-  if (a.json)
-    std::printf("%s\n", r.dump(2).c_str());
-  else
+  print_figures(a.json, r, [&] {
     print_report(r);
-  if (!a.json) {  // why a route is missing: a start or goal in an obstacle or off the map
-    try {
+    try {  // why a route is missing: a start or goal in an obstacle or off the map
       sim::check_placements(s, robot, !runner::is_footstep_robot(robot));
     } catch (const Error& e) {
       std::printf("  %s\n", e.what());
     }
-  }
+  });
   return every_route_has_room(r);
 }
 
@@ -115,7 +113,7 @@ void add_route_command(CLI::App& app) {
   cmd->add_option("--resolution", a->resolution_m, "Grid of route centre positions, m")
       ->capture_default_str()
       ->check(check::in_range(0.001, 1.0));
-  cmd->add_flag("--json", a->json, "Print one JSON object");
+  add_json_flag(cmd, a->json);
   cmd->callback([a] { report_task(run_route(*a)); });
 }
 

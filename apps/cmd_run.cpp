@@ -10,6 +10,7 @@
 #include "apps/bench_worlds.hpp"
 #include "apps/cli_checks.hpp"
 #include "apps/cli_exit.hpp"
+#include "apps/cli_json.hpp"
 #include "apps/cli_output.hpp"
 #include "apps/cmd_run_footsteps.hpp"
 #include "apps/commands.hpp"
@@ -90,7 +91,8 @@ nlohmann::json to_json(const runner::RunResult& r) {
   return j;
 }
 
-void print_summary(const runner::RunResult& r) {
+// `outputs`: the files written (run_json, run_png, and bag, replay_html, trace_csv when asked for).
+void print_summary(const runner::RunResult& r, const nlohmann::json& outputs) {
   if (r.success)
     std::printf("%s with %s: SUCCESS (goal reached at t = %.1f s, nothing touched)\n", r.scenario.c_str(),
                 r.robot.c_str(), r.time_s);
@@ -128,6 +130,15 @@ void print_summary(const runner::RunResult& r) {
   for (const auto& [name, ms] : r.stage_cpu_ms)
     stages += (stages.empty() ? "" : ", ") + name + " " + std::to_string(static_cast<long>(std::lround(ms)));
   std::printf("  CPU ms per stage: %s\n", stages.c_str());
+  if (outputs.contains("bag"))
+    std::printf("  recorded %zu messages to %s\n", outputs["bag_messages"].get<std::size_t>(),
+                outputs["bag"].get<std::string>().c_str());
+  std::printf("  wrote %s and %s\n", outputs["run_json"].get<std::string>().c_str(),
+              outputs["run_png"].get<std::string>().c_str());
+  if (outputs.contains("trace_csv")) std::printf("  wrote %s\n", outputs["trace_csv"].get<std::string>().c_str());
+  if (outputs.contains("replay_html"))
+    std::printf("  wrote %s (%zu frames)\n", outputs["replay_html"].get<std::string>().c_str(),
+                outputs["replay_frames"].get<std::size_t>());
 }
 
 // The run's 10 Hz trace as CSV: true and estimated pose, command and the behavior tree's active leaf.
@@ -154,6 +165,7 @@ struct RunArgs {
   std::optional<std::uint64_t> seed;
   std::optional<double> time_limit_s;
   bool quiet = false;
+  bool json = false;
 };
 
 // Every output is checked before the run (a run takes minutes), and every start and goal: one
@@ -208,8 +220,8 @@ bool run_command(const RunArgs& a) {
   if (footsteps) reject_wheeled_only_options(a);
   const RobotProfile robot = check_before_run(a, s, footsteps);
   if (footsteps)  // humanoids walk by footsteps (apps/cmd_run_footsteps.cpp)
-    return run_footsteps_command(s, a.options.robot, a.out, {a.seed, a.time_limit_s, !a.quiet}, a.options.params_file,
-                                 a.replay);
+    return run_footsteps_command(s, a.options.robot, a.out, {a.seed, a.time_limit_s, !a.quiet, a.json},
+                                 a.options.params_file, a.replay);
   runner::RunOptions o = a.options;
   if (a.seed) o.seed = a.seed;
   if (a.time_limit_s) o.time_limit_s = a.time_limit_s;
@@ -238,22 +250,28 @@ bool run_command(const RunArgs& a) {
     replay->attach(o);
   }
   const runner::RunResult r = runner::run_scenario(s, o);
+  const auto dir = std::filesystem::path(a.out);
+  nlohmann::json j = to_json(r);
+  std::ofstream(dir / "run.json") << j.dump(2) << "\n";
+  runner::write_run_figure(dir / "run.png", s, r, runner::navigator_params(robot, o).server.local_planner);
+  j["outputs"] = {{"run_json", (dir / "run.json").string()}, {"run_png", (dir / "run.png").string()}};
+  if (!a.trace.empty()) {
+    write_trace_csv(a.trace, r.trace);
+    j["outputs"]["trace_csv"] = a.trace;
+  }
 #ifdef BIPEDNAV_WITH_ROSBAG
   if (bag) {
     bag->close();
-    std::printf("  recorded %zu messages to %s\n", bag->messages(), a.bag.c_str());
+    j["outputs"]["bag"] = a.bag;
+    j["outputs"]["bag_messages"] = bag->messages();
   }
 #endif
-  const auto dir = std::filesystem::path(a.out);
-  std::ofstream(dir / "run.json") << to_json(r).dump(2) << "\n";
-  runner::write_run_figure(dir / "run.png", s, r, runner::navigator_params(robot, o).server.local_planner);
-  if (!a.trace.empty()) write_trace_csv(a.trace, r.trace);
-  print_summary(r);
-  std::printf("  wrote %s and %s\n", (dir / "run.json").c_str(), (dir / "run.png").c_str());
   if (replay) {
     viz::write_replay_html(a.replay, replay->finish(r));
-    std::printf("  wrote %s (%zu frames)\n", a.replay.c_str(), replay->frames().size());
+    j["outputs"]["replay_html"] = a.replay;
+    j["outputs"]["replay_frames"] = replay->frames().size();
   }
+  print_figures(a.json, j, [&] { print_summary(r, j["outputs"]); });
   return run_succeeded(r);
 }
 
@@ -339,6 +357,7 @@ void add_run_commands(CLI::App& app, CLI::App& bench) {
   run->add_option("--trace", args->trace,
                   "Write the 10 Hz trace (true and estimated pose, command, active tree leaf) to this CSV file");
   run->add_flag("--quiet", args->quiet, "No progress bar (it is shown only when stderr is a terminal)");
+  add_json_flag(run, args->json);
   run->callback([args] { report_task(run_command(*args)); });
 
   add_closed_loop_benches(bench);

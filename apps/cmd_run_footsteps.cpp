@@ -7,6 +7,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "apps/cli_json.hpp"
 #include "bipednav/runner/footstep_replay.hpp"
 #include "bipednav/runner/footstep_runner.hpp"
 
@@ -83,21 +84,27 @@ bool run_footsteps_command(sim::Scenario scenario, const std::string& robot_over
     recorder->attach(o);
   }
   const runner::FootstepRunResult f = runner::run_footstep_scenario(scenario, o);
-  std::ofstream(out / "run.json") << footstep_json(f).dump(2) << "\n";
+  nlohmann::json j = footstep_json(f);
+  std::ofstream(out / "run.json") << j.dump(2) << "\n";
   runner::write_footstep_figure(out / "run.png", f);
-  const runner::RunResult& r = f.summary;
-  std::printf("%s with %s (footsteps): %s (%s: %s)\n", r.scenario.c_str(), r.robot.c_str(),
-              r.success ? "SUCCESS" : "FAILED", std::string(outcome_name(r.outcome.outcome)).c_str(),
-              r.outcome.message.c_str());
-  std::printf("  %zu steps, %.1f s walked, path %.2f m, collisions %d, min clearance %.3f m\n", f.steps.size(),
-              r.time_s, r.path_length_m, r.collisions, r.min_clearance_m);
-  std::printf("  goal error %.3f m / %.3f rad, localization error %.3f m, replans %zu, real-time factor %.1fx\n",
-              r.goal_error_m, r.goal_error_rad, r.localization_error_m, r.replans, r.real_time_factor);
-  std::printf("  wrote %s and %s\n", (out / "run.json").c_str(), (out / "run.png").c_str());
+  j["outputs"] = {{"run_json", (out / "run.json").string()}, {"run_png", (out / "run.png").string()}};
   if (recorder) {
     viz::write_replay_html(replay, recorder->finish(f));
-    std::printf("  wrote %s (%zu frames)\n", replay.c_str(), recorder->frames().size());
+    j["outputs"]["replay_html"] = replay.string();
+    j["outputs"]["replay_frames"] = recorder->frames().size();
   }
+  const runner::RunResult& r = f.summary;
+  print_figures(args.json, j, [&] {
+    std::printf("%s with %s (footsteps): %s (%s: %s)\n", r.scenario.c_str(), r.robot.c_str(),
+                r.success ? "SUCCESS" : "FAILED", std::string(outcome_name(r.outcome.outcome)).c_str(),
+                r.outcome.message.c_str());
+    std::printf("  %zu steps, %.1f s walked, path %.2f m, collisions %d, min clearance %.3f m\n", f.steps.size(),
+                r.time_s, r.path_length_m, r.collisions, r.min_clearance_m);
+    std::printf("  goal error %.3f m / %.3f rad, localization error %.3f m, replans %zu, real-time factor %.1fx\n",
+                r.goal_error_m, r.goal_error_rad, r.localization_error_m, r.replans, r.real_time_factor);
+    std::printf("  wrote %s and %s\n", (out / "run.json").c_str(), (out / "run.png").c_str());
+    if (recorder) std::printf("  wrote %s (%zu frames)\n", replay.c_str(), recorder->frames().size());
+  });
   return r.success;
 }
 

@@ -23,6 +23,7 @@ struct FootstepRunArgs {
   std::optional<std::uint64_t> seed;
   std::optional<double> time_limit_s;
   bool progress = true;  // the progress bar (on a terminal only)
+  bool json = false;     // --json: one JSON object on stdout instead of the text summary
 };
 
 // `bipednav run` for a humanoid: the footstep closed loop (runner/footstep_runner.hpp), writing

@@ -10,6 +10,7 @@
 
 #include "apps/bench_sim.hpp"
 #include "apps/cli_checks.hpp"
+#include "apps/cli_json.hpp"
 #include "apps/cli_output.hpp"
 #include "apps/cmd_route.hpp"
 #include "apps/commands.hpp"
@@ -37,6 +38,7 @@ struct SimOptions {
   std::string config_dir;  // empty: <scenario dir>/../config, then ./config
   double step_s = 0.01;
   bool quiet = false;
+  bool json = false;
 };
 
 // True robot poses over time, sampled at every step end, linearly interpolated in between.
@@ -285,13 +287,16 @@ void run_sim_command(const SimOptions& opt) {
   const RunRecord rec = run(sim, scenario, robot, opt);
 
   write_figure(out / "sim.png", sim, scenario, rec);
-  const json j = summary(sim, scenario, rec, opt);
+  json j = summary(sim, scenario, rec, opt);
   std::ofstream json_file(out / "sim.json");
   json_file << j.dump(2) << "\n";
   if (!json_file) throw FileError((out / "sim.json").string(), "", "cannot write the summary");
-  std::printf("%s: %.1f s simulated (%.0fx real time), %.2f m driven, %zu collision(s); wrote %s and %s\n",
-              scenario.name.c_str(), sim.now_s(), j["real_time_factor"].get<double>(), rec.distance_m,
-              rec.collisions.size(), (out / "sim.png").c_str(), (out / "sim.json").c_str());
+  j["outputs"] = {{"sim_png", (out / "sim.png").string()}, {"sim_json", (out / "sim.json").string()}};
+  print_figures(opt.json, j, [&] {
+    std::printf("%s: %.1f s simulated (%.0fx real time), %.2f m driven, %zu collision(s); wrote %s and %s\n",
+                scenario.name.c_str(), sim.now_s(), j["real_time_factor"].get<double>(), rec.distance_m,
+                rec.collisions.size(), (out / "sim.png").c_str(), (out / "sim.json").c_str());
+  });
 }
 
 }  // namespace
@@ -311,6 +316,7 @@ void add_sim_commands(CLI::App& app, CLI::App& bench) {
   cmd->add_option("--config-dir", opt->config_dir, "Directory of robot profiles (default: <scenario>/../config)");
   cmd->add_option("--step", opt->step_s, "Simulation step in seconds")->capture_default_str()->check(check::positive());
   cmd->add_flag("--quiet", opt->quiet, "No progress bar (it is shown only when stderr is a terminal)");
+  add_json_flag(cmd, opt->json);
   cmd->callback([opt] { run_sim_command(*opt); });
   add_sim_bench(bench);
   add_route_command(app);

@@ -7,7 +7,9 @@
 namespace bipednav {
 
 // Outcome codes of Move Base Flex's actions (mbf_msgs GetPath 50-65, ExePath 100-118,
-// Recovery 150-158). Planners, controllers and actions all report through these.
+// Recovery 150-158). Planners, controllers and actions all report through these. COLLISION names
+// only a contact that happened (the simulator's, a foot landing on an edge); a local planner whose
+// best trajectory would enter an obstacle stops with BLOCKED_PATH (ExePath's "path is blocked").
 enum class Outcome : std::uint16_t {
   SUCCESS = 0,
   // get_path

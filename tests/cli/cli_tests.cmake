@@ -67,10 +67,16 @@ bipednav_cli(plan_grid_bad_pose 2 "--goal: expected x,y or x,y,yaw" plan grid ${
 bipednav_cli(plan_movingai_success 0 "160/160 rows solved"
              plan movingai ${_data}/movingai/maps/arena.map ${_data}/movingai/scen/arena.map.scen)
 bipednav_cli(plan_movingai_missing_file 2 "scen: File does not exist" plan movingai ${_data}/movingai/maps/arena.map no.scen)
+# walled.map: a wall splits the 5 x 3 map; the second row's goal is behind it.
+bipednav_cli(plan_movingai_task_failed 1 "1/2 rows solved" plan movingai ${_cli_dir}/data/walled.map
+             ${_cli_dir}/data/walled.map.scen)
 bipednav_cli(local_plan_success 0 "\"reached\": true" local plan ${_maze} --start 1,1 --goal 8,8 --out ${_cli_out}/local.png)
 bipednav_cli(local_plan_task_failed 1 "\"reached\": false" local plan ${_maze} --start 1,1 --goal 8,8 --steps 5)
 bipednav_cli(local_plan_bad_planner 2 "--planner: teb2 not in" local plan ${_maze} --start 1,1 --goal 8,8 --planner teb2)
 bipednav_cli(register_success 0 "converged after" register ${_pair}/251370668.pcd ${_pair}/251371071.pcd)
+# From identity GICP finds no correspondence between the table scene (a stereo camera's view) and the LiDAR scan.
+bipednav_cli(register_task_failed 1 "NOT converged" register ${_data}/pcl/table_scene_mug_stereo_textured.pcd
+             ${_pair}/251370668.pcd)
 bipednav_cli(register_bad_threads 2 "--threads: expected a whole number in \\[1, 256\\]"
              register ${_pair}/251370668.pcd ${_pair}/251371071.pcd --threads 0)
 bipednav_cli(footsteps_success 0 "^SUCCESS: footstep plan" footsteps ${_gradient} --start 1,1 --goal 2.5,1.5
@@ -131,8 +137,75 @@ bipednav_numeric(bench_footsteps_optimal_limit --optimal-limit    2 2  bench foo
 bipednav_numeric(bench_footsteps_short_limit --short-limit      2 2  bench footsteps)
 bipednav_numeric(bench_footsteps_long_limit --long-limit       2 2  bench footsteps)
 bipednav_numeric(bench_footsteps_jobs     --jobs             2 2  bench footsteps)
+bipednav_numeric(run_goal_tolerance        --goal-tolerance   2 2  run hexagon_static --out ${_cli_out}/num_run)  # M,RAD: one number is not a pair
+bipednav_numeric(odometry_duration         --duration         2 2  odometry three_rooms --json)
+bipednav_numeric(odometry_speed            --speed            2 2  odometry three_rooms --json)
+bipednav_numeric(odometry_max_sweeps       --max-sweeps       2 2  odometry ${_pair})
+bipednav_numeric(odometry_map_voxel        --map-voxel        2 2  odometry ${_pair})
+bipednav_numeric(odometry_gicp_voxel       --gicp-voxel       2 2  odometry ${_pair} --method gicp)
+bipednav_numeric(odometry_rpe_distance     --rpe-distance     2 2  odometry ${_pair})
+# More benchmarks (BENCH:FLAG): -1, NaN and 0 are all rejected before any work (exit 2).
+foreach(_case scenarios:--seeds scenarios:--first-seed scenarios:--jobs loop:--runs worlds:--worlds
+              worlds:--first-seed worlds:--jobs tracking:--seeds tracking:--first-seed localization:--sweeps)
+  string(REPLACE ":" ";" _parts ${_case})
+  list(GET _parts 0 _bench)
+  list(GET _parts 1 _flag)
+  string(REGEX REPLACE "^--" "" _id ${_flag})
+  string(REPLACE "-" "_" _id ${_id})
+  bipednav_numeric(bench_${_bench}_${_id} ${_flag} 2 2 bench ${_bench})
+endforeach()
 
 # The README's command-line examples run as written (readme_examples.sh).
 add_test(NAME cli_readme_examples COMMAND sh ${_cli_dir}/readme_examples.sh ${PROJECT_SOURCE_DIR} $<TARGET_FILE:bipednav>
                                           ${CMAKE_CURRENT_BINARY_DIR}/cli_readme)
 set_tests_properties(cli_readme_examples PROPERTIES TIMEOUT 600 LABELS cli)
+
+# --json on every command that prints figures (expect_json.py): exactly one JSON object on stdout
+# with the expected keys and the command's exit status; a usage error prints nothing on stdout.
+# bipednav_json(NAME STATUS KEYS ARG...): KEYS comma-separated, nested keys joined by dots.
+find_package(Python3 COMPONENTS Interpreter QUIET)
+if(Python3_Interpreter_FOUND)
+  function(bipednav_json name status keys)
+    add_test(NAME cli_json_${name} COMMAND ${Python3_EXECUTABLE} ${_cli_dir}/expect_json.py ${status} "${keys}"
+                                           $<TARGET_FILE:bipednav> ${ARGN})
+    set_tests_properties(cli_json_${name} PROPERTIES TIMEOUT 300 LABELS cli)
+  endfunction()
+  bipednav_json(run_task_failed 1 "success,verdict,navigator_outcome,goal_error_m,outputs.run_json,outputs.run_png"
+                run hexagon_static --time-limit 2 --quiet --json --out ${_cli_out}/json_run)
+  bipednav_json(run_footsteps_task_failed 1 "success,outcome,steps,goal_error_m,outputs.run_json"
+                run nao_stairs --time-limit 2 --quiet --json --out ${_cli_out}/json_run_nao)
+  bipednav_json(run_bad_number 2 "" run hexagon_static --json --time-limit -5)
+  bipednav_json(sim_success 0 "duration_s,distance_m,collision_count,final_pose.x_m,outputs.sim_json"
+                sim hexagon_static --duration 1 --quiet --json --out ${_cli_out}/json_sim)
+  bipednav_json(sim_bad_scenario 2 "" sim no_such_scenario --json)
+  bipednav_json(route_success 0 "routes" route hexagon_static --json)
+  bipednav_json(route_task_failed 1 "routes" route --world ${_t3_world} --start -2,-0.5 --goal 0,0 --json)
+  bipednav_json(plan_grid_success 0 "outcome,length_m,poses,expansions,time_ms,path,png"
+                plan grid ${_maze} --start 1,1 --goal 8,8 --json --out ${_cli_out}/json_plan.png)
+  bipednav_json(plan_grid_blocked_goal 1 "outcome,message,path" plan grid ${_maze} --start 1,1 --goal 0.02,5 --json)
+  bipednav_json(plan_grid_bad_pose 2 "" plan grid ${_maze} --start 1,1 --goal 8 --json)
+  bipednav_json(plan_movingai_success 0 "rows,summary.solved,summary.max_abs_error_cells,summary.total_time_ms"
+                plan movingai ${_data}/movingai/maps/arena.map ${_data}/movingai/scen/arena.map.scen --json)
+  bipednav_json(local_plan_success 0 "reached,last_outcome,cycles,time_s,final_pose.yaw_rad,global_plan.length_m"
+                local plan ${_maze} --start 1,1 --goal 8,8 --json)
+  bipednav_json(local_plan_task_failed 1 "reached,last_outcome" local plan ${_maze} --start 1,1 --goal 8,8 --steps 5 --json)
+  bipednav_json(costmap_info_success 0 "geometry.width_cells,geometry.resolution_m,costs.lethal" costmap info ${_maze} --json)
+  bipednav_json(costmap_inflate_success 0 "geometry,inflate_ms,costs.inscribed" costmap inflate ${_maze} --json)
+  bipednav_json(footsteps_success 0 "outcome,steps,walking_s,expansions,png" footsteps ${_gradient} --start 1,1
+                --goal 2.5,1.5 --min-height -0.01 --max-height 0 --json --out ${_cli_out}/json_footsteps.png)
+  bipednav_json(footsteps_task_failed 1 "outcome,message,steps" footsteps ${_gradient} --start 0.3,0.5 --goal 1.5,0.5
+                --json --out ${_cli_out}/json_footsteps_failed.png)
+  bipednav_json(cloud_filter_success 0 "points,after_pass_through,after_voxel_grid,voxel_m,time_ms,out"
+                cloud filter ${_cloud} ${_cli_out}/json_filtered.pcd --voxel 0.02 --json)
+  bipednav_json(cloud_filter_bad_band 2 "" cloud filter ${_cloud} ${_cli_out}/json_filtered.pcd --zmin 1 --zmax 0 --json)
+  bipednav_json(cloud_segment_success 0 "found,plane,inliers,points,time_ms" cloud segment ${_cloud} --json)
+  bipednav_json(cloud_segment_task_failed 1 "found,points" cloud segment ${_cloud} --zmin 100 --json)
+  bipednav_json(plan_movingai_task_failed 1 "rows,summary.solved" plan movingai ${_cli_dir}/data/walled.map
+                ${_cli_dir}/data/walled.map.scen --json)
+  bipednav_json(register_task_failed 1 "converged,correspondences" register
+                ${_data}/pcl/table_scene_mug_stereo_textured.pcd ${_pair}/251370668.pcd --json)
+  bipednav_json(register_success 0 "T_target_source,converged,fitness,time_ms"
+                register ${_pair}/251370668.pcd ${_pair}/251371071.pcd --json)
+else()
+  message(STATUS "bipednav: python3 not found, the cli_json_* tests (one JSON object per --json) are not run")
+endif()

@@ -26,7 +26,7 @@ void LocalPlanner::yield(LocalPlanResult& r, const Pose2& pose, const Twist& cur
   if (moving.empty()) return;
   // Only commands the planner produced or a stop are checked; bad input stays rejected.
   const bool failed = !r.result.ok();
-  if (failed && r.result.outcome != Outcome::COLLISION && r.result.outcome != Outcome::NO_VALID_CMD &&
+  if (failed && r.result.outcome != Outcome::BLOCKED_PATH && r.result.outcome != Outcome::NO_VALID_CMD &&
       r.result.outcome != Outcome::OSCILLATION)
     return;
   const Twist cmd = failed ? Twist{} : r.cmd;

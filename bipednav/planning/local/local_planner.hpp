@@ -16,9 +16,9 @@
 
 namespace bipednav::planning::local {
 
-// One control cycle's answer. `result.outcome` is SUCCESS, NO_VALID_CMD, COLLISION (the best
-// trajectory is infeasible: zero command), OSCILLATION, or for bad input INVALID_PATH (empty or
-// non-finite global plan), CTRL_TF_ERROR (non-finite robot pose or velocity), CTRL_MAP_ERROR
+// One control cycle's answer. `result.outcome` is SUCCESS, NO_VALID_CMD, BLOCKED_PATH (the best
+// trajectory enters lethal or inscribed cells: zero command; nothing was touched), OSCILLATION, or for bad input
+// INVALID_PATH (empty or non-finite global plan), CTRL_TF_ERROR (non-finite robot pose or velocity), CTRL_MAP_ERROR
 // (empty costmap), CTRL_OUT_OF_MAP (robot outside the local costmap). `cmd` is always finite and
 // within the velocity/acceleration limits (zero on every outcome but SUCCESS).
 struct LocalPlanResult {

@@ -103,7 +103,7 @@ LocalPlanResult TebPlanner::plan(const Pose2& T_map_base, const Twist& current_v
   const std::vector<Pose2> head(best->band.poses.begin(), best->band.poses.begin() + static_cast<long>(n_check));
   if (!poses_feasible(head, local_costmap)) {
     homotopy_.reset();  // start afresh next cycle: the warm start led into an obstacle
-    r.result = {Outcome::COLLISION, "the best trajectory enters lethal or inscribed cells"};
+    r.result = {Outcome::BLOCKED_PATH, "the best trajectory enters lethal or inscribed cells"};
     return finish(std::move(r), {}, current_velocity);
   }
   const Twist desired = band_command(best->band);

@@ -96,7 +96,7 @@ LocalPlanResult PathTracker::follow(const Pose2& T_map_base, const Twist& curren
   r.trajectory = simulate_arc(T_map_base, r.cmd, params_.collision_check_horizon_s, global_plan.frame_id);
   if (!poses_keep_clearance(r.trajectory.poses, local_costmap)) {
     if (escape(r, T_map_base, current_velocity, desired, local_costmap)) return r;
-    r.result = {Outcome::COLLISION, "the tracked arc enters lethal or inscribed cells"};
+    r.result = {Outcome::BLOCKED_PATH, "the tracked arc enters lethal or inscribed cells"};
     r.cmd = Twist{};
     return r;
   }

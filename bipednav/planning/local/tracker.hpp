@@ -14,11 +14,11 @@ namespace bipednav::planning::local {
 Twist pure_pursuit_command(const Eigen::Vector2d& target_in_base, double dist_to_goal_m, const TrackerParams& p);
 
 // The simple alternative local planner: follows the global plan with pure pursuit and stops with
-// COLLISION when the forward-simulated arc hits lethal or inscribed cells. A robot already in
+// BLOCKED_PATH when the forward-simulated arc hits lethal or inscribed cells. A robot already in
 // inscribed space may only follow arcs that keep its distance to the nearest lethal cell
 // (poses_keep_clearance); when the tracked arc does not, it takes the command of a small grid
 // (backing, turning, forward) whose arc gains the most clearance (escape), and stops with
-// COLLISION only when none keeps it.
+// BLOCKED_PATH only when none keeps it.
 class PathTracker : public LocalPlanner {
  public:
   explicit PathTracker(TrackerParams params);

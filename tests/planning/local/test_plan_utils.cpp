@@ -126,7 +126,7 @@ TEST(PathTracker, ReachesGoalAndStopsBeforeObstacles) {
   EXPECT_TRUE(run.reached) << run.final_pose.x << " " << run.final_pose.y;
   test::add_disc(map, 0.6, 0.0, 0.1);
   const auto r = tracker.compute({0, 0, 0}, {0.3, 0, 0}, test::straight_plan(0, 0, 3, 0), map, 0.0);
-  EXPECT_EQ(r.result.outcome, Outcome::COLLISION);
+  EXPECT_EQ(r.result.outcome, Outcome::BLOCKED_PATH);
   EXPECT_TRUE(r.cmd.is_zero());
 }
 
@@ -165,7 +165,7 @@ TEST(PathTracker, InInscribedSpaceFacingTheObstacleNoCommandClosesIn) {
   EXPECT_GE(clearance_change(start, r.cmd, map), 0.0);
   // Walking towards it at 0.3 m/s: every reachable command still closes in, so it stops.
   r = tracker.compute(start, {0.3, 0.0, 0.0}, plan, map, 0.0);
-  EXPECT_EQ(r.result.outcome, Outcome::COLLISION);
+  EXPECT_EQ(r.result.outcome, Outcome::BLOCKED_PATH);
   EXPECT_TRUE(r.cmd.is_zero());
   // Turned 30 degrees off the wall: none of the commands closes in either.
   for (const double yaw : {-0.5, 0.5}) {

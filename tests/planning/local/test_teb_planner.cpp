@@ -156,7 +156,7 @@ TEST(TebPlanner, CollisionWhenTheRobotIsWalledIn) {
   test::add_box(map, -0.4, -0.4, -0.3, 0.4, 0.0);
   const Path plan = test::straight_plan(0.0, 0.0, 2.0, 0.0);
   const auto r = planner.compute({0, 0, 0}, {}, plan, map, 0.0);
-  EXPECT_EQ(r.result.outcome, Outcome::COLLISION);
+  EXPECT_EQ(r.result.outcome, Outcome::BLOCKED_PATH);
   EXPECT_TRUE(r.cmd.is_zero());
 }
 
