@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/cli_json.hpp"
+#include "apps/run_json.hpp"
 #include "bipednav/runner/footstep_replay.hpp"
 #include "bipednav/runner/footstep_runner.hpp"
 
@@ -40,31 +41,17 @@ nlohmann::json footstep_json(const runner::FootstepRunResult& f) {
                         {"x_m", c.point.x()},
                         {"y_m", c.point.y()},
                         {"depth_m", c.penetration_m}});
-  return {{"scenario", r.scenario},
-          {"robot", r.robot},
-          {"mode", "footsteps"},
-          {"success", r.success},
-          {"outcome", std::string(outcome_name(r.outcome.outcome))},
-          {"outcome_code", code(r.outcome.outcome)},
-          {"message", r.outcome.message},
-          {"collisions", r.collisions},
-          {"contacts", contacts},
-          {"time_s", r.time_s},
-          {"path_length_m", r.path_length_m},
-          {"min_clearance_m", r.min_clearance_m},
-          {"goal_error_m", r.goal_error_m},
-          {"goal_error_rad", r.goal_error_rad},
-          {"localization_error_m", r.localization_error_m},
-          {"replans", r.replans},
-          {"real_time_factor", r.real_time_factor},
-          {"wall_s", r.wall_s},
-          {"steps", f.steps.size()},
-          {"actions", actions},
-          {"max_body_z_m", f.max_body_z_m},
-          {"views", f.views},
-          {"gicp_corrections", f.corrections},
-          {"recovery_steps", f.recoveries},
-          {"rough_landings", f.rough_landings}};
+  nlohmann::json j = run_result_json(r);
+  j["mode"] = "footsteps";
+  j["contacts"] = contacts;
+  j["steps"] = f.steps.size();
+  j["actions"] = actions;
+  j["max_body_z_m"] = f.max_body_z_m;
+  j["views"] = f.views;
+  j["gicp_corrections"] = f.corrections;
+  j["recovery_steps"] = f.recoveries;
+  j["rough_landings"] = f.rough_landings;
+  return j;
 }
 
 }  // namespace

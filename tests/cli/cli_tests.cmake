@@ -172,7 +172,7 @@ if(Python3_Interpreter_FOUND)
   endfunction()
   bipednav_json(run_task_failed 1 "success,verdict,navigator_outcome,goal_error_m,outputs.run_json,outputs.run_png"
                 run hexagon_static --time-limit 2 --quiet --json --out ${_cli_out}/json_run)
-  bipednav_json(run_footsteps_task_failed 1 "success,outcome,steps,goal_error_m,outputs.run_json"
+  bipednav_json(run_footsteps_task_failed 1 "success,navigator_outcome,seed,verdict,final_true_pose,steps,goal_error_m,outputs.run_json"
                 run nao_stairs --time-limit 2 --quiet --json --out ${_cli_out}/json_run_nao)
   bipednav_json(run_bad_number 2 "" run hexagon_static --json --time-limit -5)
   bipednav_json(sim_success 0 "duration_s,distance_m,collision_count,final_pose.x_m,outputs.sim_json"
