@@ -42,15 +42,15 @@ nlohmann::json footstep_json(const runner::FootstepRunResult& f) {
                         {"y_m", c.point.y()},
                         {"depth_m", c.penetration_m}});
   nlohmann::json j = run_result_json(r);
-  j["mode"] = "footsteps";
-  j["contacts"] = contacts;
-  j["steps"] = f.steps.size();
-  j["actions"] = actions;
-  j["max_body_z_m"] = f.max_body_z_m;
-  j["views"] = f.views;
-  j["gicp_corrections"] = f.corrections;
-  j["recovery_steps"] = f.recoveries;
-  j["rough_landings"] = f.rough_landings;
+  j.update({{"mode", "footsteps"},
+            {"contacts", contacts},
+            {"steps", f.steps.size()},
+            {"actions", actions},
+            {"max_body_z_m", f.max_body_z_m},
+            {"views", f.views},
+            {"gicp_corrections", f.corrections},
+            {"recovery_steps", f.recoveries},
+            {"rough_landings", f.rough_landings}});
   return j;
 }
 
