@@ -89,6 +89,8 @@ void set_local_planner_limits(NavigatorParams& p, const RobotProfile& robot) {
   lim.acc_lim_x_mps2 = robot.acc_lim_x_mps2;
   lim.acc_lim_theta_radps2 = robot.acc_lim_theta_radps2;
   lim.min_obstacle_dist_m = inscribed_m + 0.12;
+  // TEB models how the body follows its commands (TebBodyResponse): the profile's velocity lag.
+  p.server.local.teb.response.time_constant_s = robot.tracking_time_constant_s;
   auto& tr = p.server.local.tracker;
   tr.max_vel_x_mps = robot.max_vel_x_mps;
   tr.max_vel_theta_radps = robot.max_vel_theta_radps;
