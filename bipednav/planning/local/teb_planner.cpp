@@ -47,14 +47,8 @@ Twist TebPlanner::body_velocity(const Twist& given) {
   return b;
 }
 
-LocalPlanResult TebPlanner::finish(LocalPlanResult r, const Twist& desired, const Twist& current, bool through_lag) {
-  // The band's first velocity is reachable from the body's within the acceleration limits; through the
-  // lag, the command that reaches it within the horizon (a lagging body needs a larger step).
+LocalPlanResult TebPlanner::finish(LocalPlanResult r, const Twist& desired, const Twist& current) {
   r.cmd = limit_velocity(desired, current, params_.control_period_s, command_limits());
-  if (through_lag) {
-    const double h = params_.response.horizon_s > 0.0 ? params_.response.horizon_s : params_.control_period_s;
-    r.cmd = invert_body_lag(current, r.cmd, h, body_lag());
-  }
   if (!r.result.ok()) {
     r.cmd = Twist{};
     return r;
@@ -71,7 +65,17 @@ LocalPlanResult TebPlanner::finish(LocalPlanResult r, const Twist& desired, cons
 LocalPlanResult TebPlanner::compute(const Pose2& T_map_base, const Twist& current_velocity, const Path& global_plan,
                                     const mapping::Costmap2D& local_costmap, double now_s) {
   LocalPlanResult r = plan(T_map_base, current_velocity, global_plan, local_costmap, now_s);
-  yield(r, T_map_base, current_velocity, local_costmap, command_limits(), params_.control_period_s, now_s);
+  const bool lag = models_lag();
+  // With the lag model, the band's (or the yield's) velocity is the body's target for the next period:
+  // reachable from the body's velocity within the acceleration limits, and the command sent is the one
+  // that brings the lagging body there within the horizon (a lagging body needs a larger step). A failed
+  // cycle's command stays zero.
+  yield(r, T_map_base, lag ? body_ : current_velocity, local_costmap, command_limits(), params_.control_period_s,
+        now_s);
+  if (lag && r.result.ok()) {
+    const double h = params_.response.horizon_s > 0.0 ? params_.response.horizon_s : params_.control_period_s;
+    r.cmd = invert_body_lag(body_, r.cmd, h, body_lag());
+  }
   last_cmd_ = r.cmd;
   return r;
 }
@@ -132,7 +136,7 @@ LocalPlanResult TebPlanner::plan(const Pose2& T_map_base, const Twist& current_v
   }
   const Twist desired = band_command(best->band);
   r.result.message = "ok";
-  return finish(std::move(r), desired, body, models_lag());
+  return finish(std::move(r), desired, body);
 }
 
 }  // namespace bipednav::planning::local

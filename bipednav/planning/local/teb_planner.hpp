@@ -38,7 +38,7 @@ class TebPlanner : public LocalPlanner {
  private:
   LocalPlanResult plan(const Pose2& T_map_base, const Twist& current_velocity, const Path& global_plan,
                        const mapping::Costmap2D& local_costmap, double now_s);
-  LocalPlanResult finish(LocalPlanResult r, const Twist& desired, const Twist& current, bool through_lag = false);
+  LocalPlanResult finish(LocalPlanResult r, const Twist& desired, const Twist& current);
   VelocityLimits command_limits() const;
   bool models_lag() const { return params_.response.time_constant_s > 0.0; }
   BodyLag body_lag() const { return {params_.response.time_constant_s, command_limits()}; }
