@@ -17,6 +17,15 @@ TEST(NavigatorParams, WheeledRobotsProjectLoamsReferenceWithThePriorChange) {
   }
 }
 
+// TEB's body response model is the profile's velocity lag, whatever the kind.
+TEST(NavigatorParams, TebModelsTheProfilesVelocityLag) {
+  RobotProfile robot;
+  for (const double tau_s : {0.0, 0.05, 0.3}) {
+    robot.tracking_time_constant_s = tau_s;
+    EXPECT_EQ(navigation::NavigatorParams::for_robot(robot).server.local.teb.response.time_constant_s, tau_s);
+  }
+}
+
 TEST(NavigatorParams, LocalPlannersAimAtAShareOfTheGoalCheckersTolerance) {
   navigation::ServerParams p;
   p.goal.xy_tolerance_m = 0.2;
