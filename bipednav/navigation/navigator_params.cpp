@@ -109,9 +109,10 @@ void set_progress_window(NavigatorParams& p, const RobotProfile& robot) {
 
 // The settings of walkers (kind walker), which follow their commands with a lag.
 void set_walker_settings(NavigatorParams& p, const RobotProfile& robot) {
-  // TEB assumes the commanded velocity is tracked at once; a walker's first-order lag (0.3 s on
-  // Digit) makes its band oscillate around obstacles, so walkers default to the path tracker
-  // (with its forward collision check) until TEB models the lag. `run --local-planner teb` overrides.
+  // Walkers default to the path tracker (with its forward collision check): TEB with its model of the
+  // walker's velocity lag (TebBodyResponse) succeeds as often over Digit's held-out seeds 11-30 (75/80
+  // each) but one run less in three_rooms (15/20 against 16/20, cube contacts; README, closed-loop
+  // results). `run --local-planner teb` overrides.
   if (robot.kind == "walker") p.server.local_planner = "tracker";
   // A walker brakes from its last command, not from its lagging odometry.
   p.brake_from_last_command = robot.kind == "walker";

@@ -129,7 +129,7 @@ struct HomotopyParams {
 // navigator passes its braking reference, the lag's prediction from the previous command) and the command
 // sent is the one that brings the lagging body to the band's first-interval velocity within horizon_s
 // (invert_body_lag), instead of that velocity itself, which a lagging body reaches only after several
-// cycles. docs/architecture.md ('Local planners') gives the measurements behind this form.
+// cycles. docs/architecture.md (4. Local planning, 'Body response') gives the measurements behind this form.
 struct TebBodyResponse {
   double time_constant_s = 0.0;  // 0: the body takes the command at once (no lag model)
   double horizon_s = 0.0;        // 0: one control period
