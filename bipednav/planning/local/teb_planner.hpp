@@ -17,7 +17,8 @@ namespace bipednav::planning::local {
 // plan, obstacles from the local costmap, homotopy candidates optimised and selected, feasibility
 // check, then the first interval's velocity clamped to the limits. With a body response model
 // (TebParams::response) the band starts from the body's velocity and the command is the one that
-// brings the lagging body to the first interval's velocity (invert_body_lag).
+// brings the lagging body to the first interval's velocity (invert_body_lag): the body's target then
+// keeps the acceleration limits and the command, within the velocity limits, leads it by more.
 class TebPlanner : public LocalPlanner {
  public:
   explicit TebPlanner(TebParams params);
