@@ -118,12 +118,19 @@ void visit_fields(V& v, planning::local::HomotopyParams& p) {
 }
 
 template <class V>
+void visit_fields(V& v, planning::local::TebBodyResponse& p) {
+  v("time_constant_s", p.time_constant_s);
+  v("horizon_s", p.horizon_s);
+}
+
+template <class V>
 void visit_fields(V& v, planning::local::TebParams& p) {
   v.group("limits", p.limits);
   v.group("band", p.band);
   v.group("optim", p.optim);
   v.group("obstacles", p.obstacles);
   v.group("homotopy", p.homotopy);
+  v.group("response", p.response);
   v("lookahead_m", p.lookahead_m);
   v("window_margin_m", p.window_margin_m);
   v("via_point_separation_m", p.via_point_separation_m);

@@ -1,6 +1,8 @@
 // Per-robot navigator defaults.
 #include <gtest/gtest.h>
 
+#include <utility>
+
 #include "bipednav/mapping/obstacle_layer.hpp"
 #include "bipednav/navigation/navigator.hpp"
 
@@ -14,6 +16,20 @@ TEST(NavigatorParams, WheeledRobotsProjectLoamsReferenceWithThePriorChange) {
     const bool wheeled = robot.kind == "diff_drive";
     EXPECT_EQ(p.localization.loam.reference_from_prior_change, wheeled) << kind;
     EXPECT_EQ(mapping::height_aware_maps_for(robot), wheeled) << kind;
+  }
+}
+
+// TEB's body response model is the profile's velocity lag, whatever the kind, where the lag spans at
+// least a control period (0.1 s at 10 Hz).
+TEST(NavigatorParams, TebModelsTheProfilesVelocityLag) {
+  RobotProfile robot;
+  for (const char* kind : {"diff_drive", "walker"}) {
+    robot.kind = kind;
+    for (const auto& [tau_s, modelled_s] : {std::pair{0.0, 0.0}, {0.05, 0.0}, {0.1, 0.1}, {0.3, 0.3}}) {
+      robot.tracking_time_constant_s = tau_s;
+      const auto p = navigation::NavigatorParams::for_robot(robot);
+      EXPECT_EQ(p.server.local.teb.response.time_constant_s, modelled_s) << kind << " " << tau_s;
+    }
   }
 }
 

@@ -77,12 +77,18 @@ void HomotopyParams::validate() const {
   require(std::isfinite(max_cost_ratio) && max_cost_ratio >= 1.0, "max_cost_ratio", ">= 1");
 }
 
+void TebBodyResponse::validate() const {
+  require(nonneg(time_constant_s), "time_constant_s", ">= 0 s");
+  require(nonneg(horizon_s), "horizon_s", ">= 0 s (0: one control period)");
+}
+
 void TebParams::validate() const {
   limits.validate();
   band.validate();
   optim.validate();
   obstacles.validate();
   homotopy.validate();
+  response.validate();
   require(pos(lookahead_m), "lookahead_m", "> 0");
   require(nonneg(window_margin_m), "window_margin_m", ">= 0");
   require(pos(via_point_separation_m), "via_point_separation_m", "> 0");

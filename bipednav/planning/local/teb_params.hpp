@@ -123,6 +123,20 @@ struct HomotopyParams {
   void validate() const;
 };
 
+// How the body follows a velocity command (a walker's walking controller: the profile's
+// tracking_time_constant_s, NavigatorParams::for_robot). With time_constant_s > 0 the planner models a
+// first-order lag between command and body velocity: the band starts from the body's velocity (where the
+// navigator passes its braking reference, the lag's prediction from the previous command) and the command
+// sent is the one that brings the lagging body to the band's first-interval velocity within horizon_s
+// (invert_body_lag), instead of that velocity itself, which a lagging body reaches only after several
+// cycles. docs/architecture.md (4. Local planning, 'Body response') gives the measurements behind this form.
+struct TebBodyResponse {
+  double time_constant_s = 0.0;  // 0: the body takes the command at once (no lag model)
+  double horizon_s = 0.0;        // 0: one control period
+
+  void validate() const;
+};
+
 // The whole TEB planner.
 struct TebParams {
   TebLimits limits;
@@ -130,6 +144,7 @@ struct TebParams {
   TebOptimizerParams optim;
   ObstacleParams obstacles;
   HomotopyParams homotopy;
+  TebBodyResponse response;
   double lookahead_m = 3.0;      // local goal: at most this far along the global path
   double window_margin_m = 0.2;  // ... and this far inside the local costmap border
   double via_point_separation_m = 0.5;

@@ -27,9 +27,25 @@ void TebPlanner::reset() {
   oscillation_.clear();
   obstacles_.clear();
   holding_goal_ = false;
+  last_cmd_ = body_ = Twist{};
 }
 
 VelocityLimits TebPlanner::command_limits() const { return VelocityLimits::forward_yaw_of(params_.limits); }
+
+Twist TebPlanner::body_velocity(const Twist& given) {
+  if (!models_lag()) return given;
+  // Where the given velocity is the last command (a walker's braking reference passes the command
+  // when it is nearer zero than the lagging measurement), the body still moves at the lag's
+  // prediction from the previous cycle's velocity under that command.
+  const Twist predicted = predict_body_velocity(body_, last_cmd_, params_.control_period_s, body_lag());
+  Twist b = given;
+  if (given.linear_x == last_cmd_.linear_x && std::abs(predicted.linear_x) > std::abs(given.linear_x))
+    b.linear_x = predicted.linear_x;
+  if (given.angular_z == last_cmd_.angular_z && std::abs(predicted.angular_z) > std::abs(given.angular_z))
+    b.angular_z = predicted.angular_z;
+  body_ = b;
+  return b;
+}
 
 LocalPlanResult TebPlanner::finish(LocalPlanResult r, const Twist& desired, const Twist& current) {
   r.cmd = limit_velocity(desired, current, params_.control_period_s, command_limits());
@@ -49,7 +65,18 @@ LocalPlanResult TebPlanner::finish(LocalPlanResult r, const Twist& desired, cons
 LocalPlanResult TebPlanner::compute(const Pose2& T_map_base, const Twist& current_velocity, const Path& global_plan,
                                     const mapping::Costmap2D& local_costmap, double now_s) {
   LocalPlanResult r = plan(T_map_base, current_velocity, global_plan, local_costmap, now_s);
-  yield(r, T_map_base, current_velocity, local_costmap, command_limits(), params_.control_period_s, now_s);
+  const bool lag = models_lag();
+  // With the lag model, the band's (or the yield's) velocity is the body's target for the next period:
+  // reachable from the body's velocity within the acceleration limits, and the command sent is the one
+  // that brings the lagging body there within the horizon (a lagging body needs a larger step). A failed
+  // cycle's command stays zero.
+  yield(r, T_map_base, lag ? body_ : current_velocity, local_costmap, command_limits(), params_.control_period_s,
+        now_s);
+  if (lag && r.result.ok()) {
+    const double h = params_.response.horizon_s > 0.0 ? params_.response.horizon_s : params_.control_period_s;
+    r.cmd = invert_body_lag(body_, r.cmd, h, body_lag());
+  }
+  last_cmd_ = r.cmd;
   return r;
 }
 
@@ -73,6 +100,7 @@ std::vector<TebMovingObstacle> TebPlanner::band_moving(double now_s) const {
 LocalPlanResult TebPlanner::plan(const Pose2& T_map_base, const Twist& current_velocity, const Path& global_plan,
                                  const mapping::Costmap2D& local_costmap, double now_s) {
   if (auto bad = reject_bad_inputs(T_map_base, current_velocity, global_plan, local_costmap)) return *bad;
+  const Twist body = body_velocity(current_velocity);
   LocalPlanResult r;
   r.trajectory.frame_id = global_plan.frame_id;
   const Pose2 robot{T_map_base.x, T_map_base.y, normalize_angle(T_map_base.theta)};
@@ -86,16 +114,16 @@ LocalPlanResult TebPlanner::plan(const Pose2& T_map_base, const Twist& current_v
     r.result.message = ga.reached ? "goal reached" : "rotating to the goal yaw";
     r.trajectory.poses = {robot};
     r.trajectory.times_s = {0.0};
-    return finish(std::move(r), ga.cmd, current_velocity);
+    return finish(std::move(r), ga.cmd, body);
   }
   const LocalGoal lg = select_local_goal(global_plan, robot, local_costmap, params_.lookahead_m,
                                          params_.window_margin_m, params_.via_point_separation_m);
   obstacles_ = extract_obstacles(local_costmap, params_.obstacles, &obstacle_scratch_);
   homotopy_.set_moving_obstacles(band_moving(now_s));
-  const BandCandidate* best = homotopy_.plan(robot, lg.goal, current_velocity, lg.via_points, obstacles_);
+  const BandCandidate* best = homotopy_.plan(robot, lg.goal, body, lg.via_points, obstacles_);
   if (best == nullptr) {
     r.result = {Outcome::NO_VALID_CMD, "no candidate trajectory could be optimised"};
-    return finish(std::move(r), {}, current_velocity);
+    return finish(std::move(r), {}, body);
   }
   r.trajectory = best->band.to_path(global_plan.frame_id);
   const std::size_t n_check =
@@ -104,11 +132,11 @@ LocalPlanResult TebPlanner::plan(const Pose2& T_map_base, const Twist& current_v
   if (!poses_feasible(head, local_costmap)) {
     homotopy_.reset();  // start afresh next cycle: the warm start led into an obstacle
     r.result = {Outcome::BLOCKED_PATH, "the best trajectory enters lethal or inscribed cells"};
-    return finish(std::move(r), {}, current_velocity);
+    return finish(std::move(r), {}, body);
   }
   const Twist desired = band_command(best->band);
   r.result.message = "ok";
-  return finish(std::move(r), desired, current_velocity);
+  return finish(std::move(r), desired, body);
 }
 
 }  // namespace bipednav::planning::local
