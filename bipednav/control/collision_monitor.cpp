@@ -52,13 +52,11 @@ class BodyModel {
 
   void step(BodyState& b, const Twist& target) const {
     const double h = dt_s_ / kBodySubsteps;
-    const double tx = std::clamp(target.linear_x, -lim_.max_vel_x_backwards_mps, lim_.max_vel_x_mps);
-    const double ty = std::clamp(target.linear_y, -lim_.max_vel_y_mps, lim_.max_vel_y_mps);
-    const double tw = std::clamp(target.angular_z, -lim_.max_vel_theta_radps, lim_.max_vel_theta_radps);
     for (int i = 0; i < kBodySubsteps; ++i) {
-      b.vx = track_first_order(b.vx, tx, h, tau_s_, lim_.acc_lim_x_mps2 * h);
-      if (lim_.max_vel_y_mps > 0.0) b.vy = track_first_order(b.vy, ty, h, tau_s_, lim_.acc_lim_y_mps2 * h);
-      b.w = track_first_order(b.w, tw, h, tau_s_, lim_.acc_lim_theta_radps2 * h);
+      const Twist v = track_command({b.vx, b.vy, b.w}, target, h, tau_s_, lim_);
+      b.vx = v.linear_x;
+      b.vy = v.linear_y;
+      b.w = v.angular_z;
       b.pose = advance_body(b.pose, b.vx, b.vy, b.w, h);
     }
   }

@@ -8,16 +8,10 @@
 namespace bipednav::planning::local {
 
 Twist predict_body_velocity(const Twist& body, const Twist& cmd, double period_s, const BodyLag& lag) {
-  const VelocityLimits& l = lag.limits;
-  const double tx = std::clamp(cmd.linear_x, -l.max_vel_x_backwards_mps, l.max_vel_x_mps);
-  const double tw = std::clamp(cmd.angular_z, -l.max_vel_theta_radps, l.max_vel_theta_radps);
   const int steps = std::max(1, static_cast<int>(std::ceil(period_s / 0.01 - 1e-9)));
   const double h = period_s / steps;
   Twist v{body.linear_x, 0.0, body.angular_z};
-  for (int i = 0; i < steps; ++i) {
-    v.linear_x = track_first_order(v.linear_x, tx, h, lag.time_constant_s, l.acc_lim_x_mps2 * h);
-    v.angular_z = track_first_order(v.angular_z, tw, h, lag.time_constant_s, l.acc_lim_theta_radps2 * h);
-  }
+  for (int i = 0; i < steps; ++i) v = track_command(v, cmd, h, lag.time_constant_s, lag.limits);
   return v;
 }
 
