@@ -18,6 +18,7 @@
 #include "bipednav/common/cpu_time.hpp"
 #include "bipednav/common/error.hpp"
 #include "bipednav/common/progress.hpp"
+#include "bipednav/sim/world_generator.hpp"
 
 namespace bipednav::app {
 
@@ -31,6 +32,8 @@ struct BenchTrackingArgs {
   std::vector<std::string> robots{"turtlebot3", "digit"};
   int seeds = 1;
   int first_seed = 1;
+  int crowd_worlds = 0;  // generated crowd worlds scored after the scenarios (`bench worlds`' family)
+  int first_world = 1;
   std::vector<std::string> variants;  // NAME:key=value,... (beyond the two default trackers)
   bool json = false;
 };
@@ -208,20 +211,34 @@ void add_tracking_commands(CLI::App& /*app*/, CLI::App& bench) {
   auto a = std::make_shared<BenchTrackingArgs>();
   CLI::App* b = bench.add_subcommand(
       "tracking", "Multi-object tracking accuracy against the simulator's actors (CLEAR MOT, RMSE) in closed loops");
-  b->add_option("--scenarios", a->scenarios, "Scenario names or files")->capture_default_str();
+  CLI::Option* scen =
+      b->add_option("--scenarios", a->scenarios, "Scenario names or files (none by default with --crowd-worlds)")
+          ->capture_default_str();
   b->add_option("--robots", a->robots, "Robot profiles (names in config/ or profile files)")->capture_default_str();
   b->add_option("--seeds", a->seeds, "Seeds per scenario and robot")->capture_default_str()->check(CLI::Range(1, 1000));
   b->add_option("--first-seed", a->first_seed, "The first seed: runs seeds first .. first + N - 1")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000000));
+  b->add_option("--crowd-worlds", a->crowd_worlds,
+                "Generated crowd worlds (as `bench worlds --family crowd`) scored after the scenarios")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 100000));
+  b->add_option("--first-world", a->first_world, "The first crowd world's seed: worlds first .. first + N - 1")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100000000));
   b->add_option("--variant", a->variants,
                 "A further tracker: NAME:key=value[,key=value...] over the defaults (TrackerParams fields)");
   b->add_flag("--json", a->json, "Print one JSON object (pooled scores and every run's)");
-  b->callback([a] {
+  b->callback([a, scen] {
+    if (a->crowd_worlds > 0 && scen->count() == 0) a->scenarios.clear();
     const std::vector<TrackerVariant> variants = tracker_variants(a->variants);
-    if (a->scenarios.empty() || a->robots.empty()) throw CLI::ValidationError("--scenarios/--robots", "not empty");
+    if ((a->scenarios.empty() && a->crowd_worlds == 0) || a->robots.empty())
+      throw CLI::ValidationError("--scenarios/--crowd-worlds/--robots", "a scenario or a crowd world, and a robot");
     std::vector<sim::Scenario> scenarios;
     for (const auto& name : a->scenarios) scenarios.push_back(sim::load_scenario(resolve_scenario(name)));
+    for (int i = 0; i < a->crowd_worlds; ++i)
+      scenarios.push_back(
+          sim::generate_world(sim::WorldFamily::crowd, static_cast<std::uint64_t>(a->first_world + i)).scenario);
     std::vector<std::uint64_t> seeds;
     for (int i = 0; i < a->seeds; ++i) seeds.push_back(static_cast<std::uint64_t>(a->first_seed + i));
     const nlohmann::json j = bench_tracking(scenarios, a->robots, seeds, variants, !a->json);

@@ -146,7 +146,8 @@ bipednav_numeric(odometry_gicp_voxel       --gicp-voxel       2 2  odometry ${_p
 bipednav_numeric(odometry_rpe_distance     --rpe-distance     2 2  odometry ${_pair})
 # More benchmarks (BENCH:FLAG): -1, NaN and 0 are all rejected before any work (exit 2).
 foreach(_case scenarios:--seeds scenarios:--first-seed scenarios:--jobs loop:--runs worlds:--worlds
-              worlds:--first-seed worlds:--jobs tracking:--seeds tracking:--first-seed localization:--sweeps)
+              worlds:--first-seed worlds:--jobs tracking:--seeds tracking:--first-seed tracking:--first-world
+              localization:--sweeps)
   string(REPLACE ":" ";" _parts ${_case})
   list(GET _parts 0 _bench)
   list(GET _parts 1 _flag)
