@@ -277,8 +277,9 @@ Result NavigationServer::goal_valid(const Pose2& goal) const {
   const auto c = map.geometry().world_to_cell(goal.x, goal.y);
   if (!c) return {Outcome::PLAN_OUT_OF_MAP, "the goal is outside the global map"};
   const std::uint8_t cost = map.cost(*c);
-  // An inscribed goal with a free cell within the planner's goal tolerance stays valid: the path
-  // ends there (GlobalPlannerParams::goal_tolerance_m).
+  // A goal too near an obstacle for the planner (inscribed, or within its clearance allowance) with
+  // a cell it may enter within its goal tolerance stays valid: the path ends there
+  // (GlobalPlannerParams::goal_tolerance_m).
   planning::GlobalPlannerParams planner = params_.global;
   planner.cost.min_impassable_cost = plan_impassable_cost();
   if (cost == mapping::kLethal ||

@@ -49,10 +49,12 @@ struct ServerParams {
   // 0 and 0: the inscribed radius alone.
   double plan_clearance_sigmas = 2.0;
   double plan_clearance_cells = 0.5;
-  // Recoveries the planning sub-tree may run for one goal, counted over the whole navigation as
+  // Planner failures that may lead to a recovery for one goal (the planning sub-tree's recoveries,
+  // and the 5 Hz replan failing once the old path is invalid), counted over the whole navigation as
   // Nav2 counts navigate_to_pose's retries (a path found in between does not restore them): a
-  // planner that keeps failing, however often a recovery lets it find a path for a while, ends the
-  // navigation with its outcome (NO_PATH_FOUND) instead of cycling until the time limit.
+  // planner that keeps failing, however often a recovery or a flickering map lets it find a path
+  // for a while, ends the navigation with its outcome (NO_PATH_FOUND) instead of cycling until the
+  // time limit.
   int planning_recoveries_allowed = 4;
 
   void validate() const;

@@ -235,6 +235,23 @@ TEST_F(NavigateTreeTest, PlanningRecoveryBudgetSpansTheNavigation) {
   EXPECT_EQ(error_code(), code(Outcome::NO_PATH_FOUND));
 }
 
+TEST_F(NavigateTreeTest, FailedReplansOnAnInvalidPathSpendThePlanningBudget) {
+  // The first plan succeeds; then every replan fails and the path is no longer valid: each such
+  // failure spends a planning recovery (two here) before the control recoveries run, and once the
+  // budget is spent the Planning sub-tree's failure ends the navigation without recoveries of its own.
+  nav.planning_recoveries_left = 2;
+  nav.plan_results = {true};
+  nav.plan_ok = false;
+  nav.path_valid = false;
+  auto tree = load();
+  EXPECT_EQ(run(tree, 200.0), BtStatus::FAILURE);
+  const std::vector<std::string> expected = {"ClearCostmaps", "Wait", "BackUp", "RotateInPlace"};
+  EXPECT_EQ(nav.recoveries(), expected);
+  EXPECT_EQ(nav.planning_recoveries_left, 0);
+  EXPECT_EQ(error_code(), code(Outcome::NO_PATH_FOUND));
+  EXPECT_EQ(nav.log.back(), "Stop");
+}
+
 TEST_F(NavigateTreeTest, ControlFailureRecoversAndSucceeds) {
   nav.follow_failure_codes = {code(Outcome::BLOCKED_PATH)};
   auto tree = load();
