@@ -41,14 +41,16 @@ struct ServerParams {
   double blocked_goal_timeout_s = 6.0;   // exe_path gives up on a goal blocked this long
   double relaxed_cost_weight_factor = 0.3;
   // The global planner keeps the robot's centre farther from obstacles than the global map's
-  // inscribed radius (footprint + sway) by what the maps and the estimate leave uncertain: this many
-  // position standard deviations (RobotView::position_sigma_m, rounded up to whole cm) and this
-  // many global-map cells (a lethal cell stands for a surface anywhere in it, up to half a cell
-  // nearer than its centre). A gap open only to a perfect estimate on a perfect map is then closed
-  // to the planner, which reports NO_PATH_FOUND instead of sending the robot to squeeze through.
+  // inscribed radius (footprint + sway) by what the estimate leaves uncertain: this many position
+  // standard deviations (RobotView::position_sigma_m, rounded up to whole cm), plus this many
+  // global-map cells for the map's quantisation (a lethal cell stands for a surface anywhere in
+  // it). A gap open only to a perfect estimate is then closed to the planner, which reports
+  // NO_PATH_FOUND instead of sending the robot to squeeze through. The cell term is 0 by default:
+  // half a cell closed routes of generated clutter worlds that the robots pass (clutter_2, route
+  // margins 0.14 / 0.32 m), as the maps' cells already sit outside the obstacles' surfaces.
   // 0 and 0: the inscribed radius alone.
   double plan_clearance_sigmas = 2.0;
-  double plan_clearance_cells = 0.5;
+  double plan_clearance_cells = 0.0;
   // Planner failures that may lead to a recovery for one goal (the planning sub-tree's recoveries,
   // and the 5 Hz replan failing once the old path is invalid), counted over the whole navigation as
   // Nav2 counts navigate_to_pose's retries (a path found in between does not restore them): a

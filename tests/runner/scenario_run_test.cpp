@@ -33,7 +33,7 @@ TEST_P(ScenarioRun, ReachesEveryGoalWithoutCollision) {
 
 // The pairs that pass today on their scenario seed. hexagon_dynamic/digit and turtlebot3_world/digit
 // are infeasible (every route passes a 0.8 m gap between cylinders with 2 cm to spare per side
-// beyond footprint and sway, less than the global planner's clearance allowance); they end with
+// beyond footprint and sway, less than the global planner's 0.04 m clearance allowance); they end with
 // NO_PATH_FOUND (ScenarioRunOutcomes.DigitBehindTheCylinderGapEndsWithNoPathBeforeTheTimeLimit). One seed says little:
 // over seeds 1-10 (`bench scenarios --seeds 10`) every passing pair scores 10/10 today, over fresh seeds 11-20 the
 // TurtleBot3's 7/10 to 10/10 (README).
@@ -70,7 +70,7 @@ TEST(ScenarioRunOutcomes, UnreachableGoalEndsInNoPathFoundWithTheRobotStopped) {
 }
 
 // Digit's goal in hexagon_dynamic lies behind a 0.8 m gap between two cylinders that leaves it 0.019 m
-// beyond footprint + sway (`bipednav route`), less than two position sigmas and half a map cell:
+// beyond footprint + sway (`bipednav route`), less than two position sigmas (0.04 m):
 // the global planner sees the gap closed and the navigation ends, within the planning recoveries'
 // budget, long before the time limit, without touching anything.
 TEST(ScenarioRunOutcomes, DigitBehindTheCylinderGapEndsWithNoPathBeforeTheTimeLimit) {

@@ -242,7 +242,7 @@ TEST_P(Outcomes, StartEqualsGoal) {
 
 // A 0.8 m gap between two obstacle cells (0.1 m cells, inflated for a 0.38 m inscribed radius):
 // its middle cells lie 0.4 m from both, open to the inscribed radius alone and closed to a
-// clearance of 0.47 m (2 x 0.02 m sigma + half a cell): NO_PATH_FOUND, naming no goal problem.
+// clearance of 0.42 m (2 x 0.02 m sigma): NO_PATH_FOUND.
 TEST_P(Outcomes, GapNarrowerThanThePlanningClearanceIsClosed) {
   auto obstacles = make_map(30, 30, 0.1);
   for (int y = 0; y < 30; ++y)
@@ -255,8 +255,8 @@ TEST_P(Outcomes, GapNarrowerThanThePlanningClearanceIsClosed) {
   GlobalPlannerParams p;
   const PlanResult open = planner(p)->plan(map, start, goal, {});
   ASSERT_EQ(open.result.outcome, Outcome::SUCCESS) << open.result.message;
-  p.cost.min_impassable_cost = min_impassable_cost(0.38 + 2 * 0.02 + 0.05, inflation);
-  EXPECT_EQ(p.cost.min_impassable_cost, 193);
+  p.cost.min_impassable_cost = min_impassable_cost(0.38 + 2 * 0.02, inflation);
+  EXPECT_EQ(p.cost.min_impassable_cost, 224);  // 252 exp(-3 x 0.04) = 223.5
   const PlanResult closed = planner(p)->plan(map, start, goal, {});
   EXPECT_EQ(closed.result.outcome, Outcome::NO_PATH_FOUND) << closed.result.message;
 }
