@@ -57,7 +57,9 @@ struct ServerParams {
   // planner that keeps failing, however often a recovery or a flickering map lets it find a path
   // for a while, ends the navigation with its outcome (NO_PATH_FOUND) instead of cycling until the
   // time limit.
-  int planning_recoveries_allowed = 4;
+  // 6, as Nav2's navigate_to_pose tree allows (4 ended a TurtleBot3 run in hexagon_dynamic whose
+  // lanes the moving box blocks for a while).
+  int planning_recoveries_allowed = 6;
 
   void validate() const;
 };
