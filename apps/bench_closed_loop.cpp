@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
 
@@ -13,6 +14,8 @@
 #include "apps/cli_json.hpp"
 #include "apps/cmd_route.hpp"
 #include "apps/scenario_files.hpp"
+#include "bipednav/navigation/navigation_server.hpp"
+#include "bipednav/runner/footstep_runner.hpp"
 #include "bipednav/runner/scenario_runner.hpp"
 
 namespace bipednav::app {
@@ -71,6 +74,43 @@ void run_all(std::vector<BenchRun>& runs, const std::vector<sim::Scenario>& load
   });
 }
 
+// What a pair should end with. Its last goal (the one a run is judged on) is infeasible when the
+// widest route there keeps less room beyond footprint + sway (`route`) than the global planner's
+// clearance allowance (ServerParams::plan_clearance_*, at the localizer's scan sigma): the planner
+// sees the bottleneck closed, and the right end is to say so, NO_PATH_FOUND (or BLOCKED_GOAL for a
+// goal too near an obstacle), before the time limit and without touching anything.
+struct PairExpectation {
+  double last_goal_margin_m = 0.0;  // +infinity without obstacles
+  double allowance_m = 0.0;
+  bool infeasible = false;
+};
+
+PairExpectation pair_expectation(const nlohmann::json& route, const RobotProfile& robot,
+                                 const runner::RunOptions& base) {
+  PairExpectation e;
+  const auto& last = route["routes"].back();
+  e.last_goal_margin_m =
+      last["margin_m"].is_null() ? std::numeric_limits<double>::infinity() : last["margin_m"].get<double>();
+  if (runner::is_footstep_robot(robot)) return e;  // the footstep navigator plans no clearance margin
+  const navigation::NavigatorParams p = runner::navigator_params(robot, base);
+  e.allowance_m =
+      navigation::plan_clearance_allowance_m(p.server, p.localization.scan_position_sigma_m, p.global_map.resolution_m);
+  e.infeasible = !last["connected"].get<bool>() || e.last_goal_margin_m < e.allowance_m;
+  return e;
+}
+
+// Whether a run ended as its pair should: SUCCESS (judged strictly, RunResult::success), or for an
+// infeasible pair NO_PATH_FOUND / BLOCKED_GOAL (get_path's or exe_path's) within a minute of simulated time (however
+// long the scenario's time limit) with no contact.
+bool as_expected(const BenchRun& b, const PairExpectation& e) {
+  if (!b.error.empty()) return false;
+  if (!e.infeasible) return b.result.success;
+  constexpr double kGiveUpWithinS = 60.0;
+  const Outcome o = b.result.outcome.outcome;
+  const bool gave_up = o == Outcome::NO_PATH_FOUND || o == Outcome::BLOCKED_GOAL || o == Outcome::CTRL_BLOCKED_GOAL;
+  return gave_up && b.result.time_s <= kGiveUpWithinS && b.result.collisions == 0;
+}
+
 // A failed run: its outcome, or what it threw.
 nlohmann::json failure_json(const BenchRun& b) {
   return b.error.empty() ? nlohmann::json{{"seed", b.seed},
@@ -84,33 +124,43 @@ nlohmann::json failure_json(const BenchRun& b) {
 
 // The row of one scenario and robot: the --seeds runs from `first`; adds their successes to `ok_total`.
 nlohmann::json pair_row(const BenchScenarioArgs& a, const std::vector<BenchRun>& runs, std::size_t first,
-                        const std::map<std::string, RobotProfile>& profiles, std::size_t& ok_total) {
-  int ok = 0;
-  double rtf = 0.0, sim_s = 0.0;
+                        const std::map<std::string, RobotProfile>& profiles, const PairExpectation& expect,
+                        std::size_t& ok_total, std::size_t& expected_total) {
+  int ok = 0, expected = 0;
+  double rtf = 0.0, sim_s = 0.0, max_s = 0.0;
   nlohmann::json failures = nlohmann::json::array();
   for (std::size_t i = first; i < first + static_cast<std::size_t>(a.seeds); ++i) {
     const BenchRun& b = runs[i];
-    const bool success = b.error.empty() && b.result.success;
-    ok += success;
+    ok += b.error.empty() && b.result.success;
     rtf += b.result.real_time_factor / a.seeds;
     sim_s += b.result.time_s / a.seeds;
-    if (success) continue;
+    max_s = std::max(max_s, b.result.time_s);
+    if (as_expected(b, expect)) {
+      ++expected;
+      continue;
+    }
     failures.push_back(failure_json(b));
   }
   ok_total += static_cast<std::size_t>(ok);
+  expected_total += static_cast<std::size_t>(expected);
   return {{"scenario", a.scenarios[runs[first].scenario]},
           {"robot", profiles.at(runs[first].robot).name},
+          {"expected_outcome", expect.infeasible ? "NO_PATH_FOUND/BLOCKED_GOAL" : "SUCCESS"},
+          {"as_expected", expected},
           {"succeeded", ok},
           {"runs", a.seeds},
           {"mean_rtf", rtf},
           {"mean_time_s", sim_s},
+          {"max_time_s", max_s},
+          {"plan_clearance_allowance_m", expect.allowance_m},
           {"failures", failures}};
 }
 
 // The rows as a table: success count, mean real-time factor, the route's margin and the failed
 // seeds of each pair.
 void print_table(const nlohmann::json& rows) {
-  std::printf("%-20s %-12s %9s %9s %9s  %s\n", "scenario", "robot", "success", "RTF", "margin", "failed seeds");
+  std::printf("%-20s %-12s %-14s %9s %9s %9s  %s\n", "scenario", "robot", "expected", "as such", "RTF", "margin",
+              "failed seeds");
   for (const auto& r : rows) {
     std::string failed;
     for (const auto& f : r["failures"]) {
@@ -124,9 +174,10 @@ void print_table(const nlohmann::json& rows) {
     const auto& margin = r["route_margin_m"];
     char margin_text[32] = "-";
     if (!margin.is_null()) std::snprintf(margin_text, sizeof margin_text, "%+.3f m", margin.get<double>());
-    std::printf("%-20s %-12s %4d / %-3d %8.1fx %9s  %s\n", r["scenario"].get<std::string>().c_str(),
-                r["robot"].get<std::string>().c_str(), r["succeeded"].get<int>(), r["runs"].get<int>(),
-                r["mean_rtf"].get<double>(), margin_text, failed.c_str());
+    const std::string expected = r["expected_outcome"] == "SUCCESS" ? "SUCCESS" : "NO_PATH/BLOCKED";
+    std::printf("%-20s %-12s %-14s %4d / %-3d %8.1fx %9s  %s\n", r["scenario"].get<std::string>().c_str(),
+                r["robot"].get<std::string>().c_str(), expected.c_str(), r["as_expected"].get<int>(),
+                r["runs"].get<int>(), r["mean_rtf"].get<double>(), margin_text, failed.c_str());
   }
 }
 
@@ -141,18 +192,22 @@ void bench_scenarios(const BenchScenarioArgs& a) {
   std::vector<BenchRun> runs = bench_runs(a, loaded.size());
   run_all(runs, loaded, base, a.jobs);
   nlohmann::json rows = nlohmann::json::array();
-  std::size_t ok_total = 0;
+  std::size_t ok_total = 0, expected_total = 0;
   for (std::size_t first = 0; first < runs.size(); first += static_cast<std::size_t>(a.seeds)) {
-    nlohmann::json row = pair_row(a, runs, first, profiles, ok_total);
     // The room the static world leaves the robot on its way (`bipednav route`): a pair with a margin
     // near or below zero fails by geometry, whatever the navigation does.
     constexpr double kRouteResolutionM = 0.01;
-    row["route_margin_m"] =
-        route_report(loaded[runs[first].scenario], profiles.at(runs[first].robot), kRouteResolutionM)["min_margin_m"];
+    const RobotProfile& robot = profiles.at(runs[first].robot);
+    const nlohmann::json route = route_report(loaded[runs[first].scenario], robot, kRouteResolutionM);
+    nlohmann::json row =
+        pair_row(a, runs, first, profiles, pair_expectation(route, robot, base), ok_total, expected_total);
+    row["route_margin_m"] = route["min_margin_m"];
+    row["last_goal_margin_m"] = route["routes"].back()["margin_m"];
     rows.push_back(std::move(row));
   }
   if (a.json) {
     print_json({{"rows", rows},
+                {"as_expected", expected_total},
                 {"succeeded", ok_total},
                 {"runs", runs.size()},
                 {"first_seed", a.first_seed},

@@ -18,7 +18,7 @@ struct BtLeafSpec {
 };
 
 // Conditions: SensorsAlive, IsLocalizationHealthy, IsStartValid, IsGoalValid, GoalReached,
-// IsPathValid, CanRotateInPlace. Actions: ComputePathToPose, FollowPath, ClearCostmaps,
+// IsPathValid, CanRotateInPlace, PlanningRecoveryAllowed. Actions: ComputePathToPose, FollowPath, ClearCostmaps,
 // BackUp, RotateInPlace, Wait, RelaxConstraints, Stop. (GoalUpdated is built in.)
 std::vector<BtLeafSpec> navigation_leaf_specs();
 

@@ -25,6 +25,19 @@ void ServerParams::validate() const {
           "controller_goal_tolerance_fraction", "in [0, 1]");
   require(min_controller_goal_tolerance_fraction > 0.0 && min_controller_goal_tolerance_fraction <= 1.0,
           "min_controller_goal_tolerance_fraction", "in (0, 1]");
+  require(std::isfinite(plan_clearance_sigmas) && plan_clearance_sigmas >= 0.0 && plan_clearance_sigmas <= 10.0,
+          "plan_clearance_sigmas", "in [0, 10]");
+  require(planning_recoveries_allowed >= 0, "planning_recoveries_allowed", ">= 0");
+  require(std::isfinite(plan_clearance_cells) && plan_clearance_cells >= 0.0 && plan_clearance_cells <= 2.0,
+          "plan_clearance_cells", "in [0, 2]");
+}
+
+double plan_clearance_allowance_m(const ServerParams& params, double position_sigma_m, double resolution_m) {
+  // Whole centimetres: the planner starts its search afresh when the allowance changes, so a
+  // slowly growing sigma changes it in steps.
+  const double sigma_part_m =
+      std::ceil(params.plan_clearance_sigmas * std::max(0.0, position_sigma_m) * 100.0 - 1e-9) / 100.0;
+  return sigma_part_m + params.plan_clearance_cells * resolution_m;
 }
 
 void apply_controller_goal_tolerances(ServerParams& params) {
@@ -55,6 +68,7 @@ NavigationServer::NavigationServer(ServerParams params, RobotProfile robot, mapp
 void NavigationServer::make_global_planner(bool relaxed) {
   planning::GlobalPlannerParams p = params_.global;
   if (relaxed) p.cost.cost_weight *= params_.relaxed_cost_weight_factor;
+  p.cost.min_impassable_cost = impassable_cost_;
   global_planner_ = planning::make_global_planner(params_.global_planner, p);
   relaxed_ = relaxed;
   pending_changes_.clear();
@@ -69,9 +83,28 @@ void NavigationServer::on_new_goal() {
   goal_checker_.reset();
   local_planner_->reset();
   ctrl_failures_ = 0;
+  planning_recoveries_ = 0;
+}
+
+bool NavigationServer::admit_planning_recovery() {
+  if (planning_recoveries_ >= params_.planning_recoveries_allowed) return false;
+  ++planning_recoveries_;
+  return true;
+}
+
+int NavigationServer::plan_impassable_cost() const {
+  const mapping::InflationParams inflation = global_.params().inflation();
+  const double allowance_m =
+      plan_clearance_allowance_m(params_, view_.position_sigma_m, global_.geometry().resolution_m);
+  return planning::min_impassable_cost(inflation.inscribed_radius_m + allowance_m, inflation);
 }
 
 planning::PlanResult NavigationServer::get_path(const Pose2& goal) {
+  // A changed clearance changes which cells are passable everywhere: a fresh search.
+  if (const int c = plan_impassable_cost(); c != impassable_cost_) {
+    impassable_cost_ = c;
+    make_global_planner(relaxed_);
+  }
   {
     const CpuScope cpu(global_planner_cpu_ms_);
     last_plan_ = global_planner_->plan(global_.costmap(), view_.pose, goal, pending_changes_);
@@ -244,10 +277,13 @@ Result NavigationServer::goal_valid(const Pose2& goal) const {
   const auto c = map.geometry().world_to_cell(goal.x, goal.y);
   if (!c) return {Outcome::PLAN_OUT_OF_MAP, "the goal is outside the global map"};
   const std::uint8_t cost = map.cost(*c);
-  // An inscribed goal with a free cell within the planner's goal tolerance stays valid: the path
-  // ends there (GlobalPlannerParams::goal_tolerance_m).
+  // A goal too near an obstacle for the planner (inscribed, or within its clearance allowance) with
+  // a cell it may enter within its goal tolerance stays valid: the path ends there
+  // (GlobalPlannerParams::goal_tolerance_m).
+  planning::GlobalPlannerParams planner = params_.global;
+  planner.cost.min_impassable_cost = plan_impassable_cost();
   if (cost == mapping::kLethal ||
-      (cost == mapping::kInscribed && !planning::goal_search_cell(map, goal, params_.global)))
+      (cost >= planner.cost.min_impassable_cost && !planning::goal_search_cell(map, goal, planner)))
     return {Outcome::BLOCKED_GOAL, "the goal lies in or too close to an obstacle"};
   return {Outcome::SUCCESS, ""};
 }

@@ -40,9 +40,34 @@ struct ServerParams {
   double path_check_distance_m = 4.0;    // IsPathValid looks this far along the path
   double blocked_goal_timeout_s = 6.0;   // exe_path gives up on a goal blocked this long
   double relaxed_cost_weight_factor = 0.3;
+  // The global planner keeps the robot's centre farther from obstacles than the global map's
+  // inscribed radius (footprint + sway) by what the estimate leaves uncertain: this many position
+  // standard deviations (RobotView::position_sigma_m, rounded up to whole cm), plus this many
+  // global-map cells for the map's quantisation (a lethal cell stands for a surface anywhere in
+  // it). A gap open only to a perfect estimate is then closed to the planner, which reports
+  // NO_PATH_FOUND instead of sending the robot to squeeze through. The cell term is 0 by default:
+  // half a cell closed routes of generated clutter worlds that the robots pass (clutter_2, route
+  // margins 0.14 / 0.32 m), as the maps' cells already sit outside the obstacles' surfaces.
+  // 0 and 0: the inscribed radius alone.
+  double plan_clearance_sigmas = 2.0;
+  double plan_clearance_cells = 0.0;
+  // Planner failures that may lead to a recovery for one goal (the planning sub-tree's recoveries,
+  // and the 5 Hz replan failing once the old path is invalid), counted over the whole navigation as
+  // Nav2 counts navigate_to_pose's retries (a path found in between does not restore them): a
+  // planner that keeps failing, however often a recovery or a flickering map lets it find a path
+  // for a while, ends the navigation with its outcome (NO_PATH_FOUND) instead of cycling until the
+  // time limit.
+  // 6, as Nav2's navigate_to_pose tree allows (4 ended a TurtleBot3 run in hexagon_dynamic whose
+  // lanes the moving box blocks for a while).
+  int planning_recoveries_allowed = 6;
 
   void validate() const;
 };
+
+// How much farther than the inscribed radius the global planner keeps the robot's centre from
+// obstacles with a position standard deviation of `position_sigma_m` on a global map of
+// `resolution_m` cells (ServerParams::plan_clearance_sigmas, plan_clearance_cells).
+double plan_clearance_allowance_m(const ServerParams& params, double position_sigma_m, double resolution_m);
 
 // Sets the local planners' goal tolerances from the goal checker's and
 // controller_goal_tolerance_fraction (no change when it is 0).
@@ -106,6 +131,9 @@ class NavigationServer {
   Result clear_costmaps();
   Result relax_constraints();
   void stop() { cmd_ = {}; }
+  // Admits one more planning recovery while this goal's planning_recoveries_allowed last (the
+  // PlanningRecoveryAllowed condition; each admission counts).
+  bool admit_planning_recovery();
   // A running recovery was halted (preempted, or the safety gate took over): it ends
   // RECOVERY_CANCELED and the robot stops.
   void cancel_recovery();
@@ -139,6 +167,8 @@ class NavigationServer {
 
  private:
   void make_global_planner(bool relaxed);
+  // The min_impassable_cost of the global planner's cost model for this tick's position sigma.
+  int plan_impassable_cost() const;
   bool recovery_running() const { return !recovery_log_.empty() && recovery_log_.back().running(); }
   void begin_recovery(const char* name);
   Result end_recovery(Result result);  // closes the running record; returns `result`
@@ -166,6 +196,8 @@ class NavigationServer {
   int ctrl_failures_ = 0;
   double blocked_since_s_ = -1.0;
   bool relaxed_ = false;
+  int planning_recoveries_ = 0;                // admitted for this goal
+  int impassable_cost_ = mapping::kInscribed;  // the global planner's, from plan_impassable_cost()
   std::size_t plans_ = 0;
   std::size_t recoveries_ = 0;
   double global_planner_cpu_ms_ = 0.0, local_planner_cpu_ms_ = 0.0;

@@ -51,6 +51,9 @@ void register_server_conditions(BtFactory& f, NavigationServer& srv, const FailW
   f.register_simple_condition(
       "CanRotateInPlace", [&srv](BtNode&, double) { return srv.can_rotate_in_place(); },
       bt_leaf_ports("CanRotateInPlace"));
+  f.register_simple_condition(
+      "PlanningRecoveryAllowed", [&srv](BtNode&, double) { return srv.admit_planning_recovery(); },
+      bt_leaf_ports("PlanningRecoveryAllowed"));
 }
 
 // Planning a path to the goal and following it (a failure reports its outcome).

@@ -19,6 +19,8 @@ struct FakeNav {
   bool sensors_ok = true, localization_ok = true, start_ok = true, goal_ok = true;
   bool can_rotate = true, path_valid = true, goal_reached = false;
   bool plan_ok = true;
+  std::deque<bool> plan_results;         // the outcomes of the first plans, then plan_ok
+  int planning_recoveries_left = 1000;   // PlanningRecoveryAllowed admits this many
   int follow_ticks = 20;                 // FollowPath succeeds on its n-th tick
   std::deque<int> follow_failure_codes;  // each run fails on its 3rd tick with the next code
   // Record.
@@ -60,6 +62,10 @@ void bind_conditions(BtFactory& f, FakeNav& n) {
   flag("IsPathValid", &n.path_valid);
   flag("GoalReached", &n.goal_reached);
   f.register_simple_condition(
+      "PlanningRecoveryAllowed",
+      [&n](BtNode&, double) { return n.planning_recoveries_left > 0 && n.planning_recoveries_left-- > 0; },
+      bt_leaf_ports("PlanningRecoveryAllowed"));
+  f.register_simple_condition(
       "IsGoalValid",
       [&n](BtNode& self, double) {
         if (!n.goal_ok) self.set_output("error_code", static_cast<int>(code(Outcome::BLOCKED_GOAL)));
@@ -75,7 +81,9 @@ void bind_actions(BtFactory& f, FakeNav& n) {
         const Pose2 goal = self.input<Pose2>("goal");
         n.planned_goals.push_back(goal);
         n.log.push_back("plan");
-        if (!n.plan_ok) {
+        const bool ok = n.plan_results.empty() ? n.plan_ok : n.plan_results.front();
+        if (!n.plan_results.empty()) n.plan_results.pop_front();
+        if (!ok) {
           self.set_output("error_code", static_cast<int>(code(Outcome::NO_PATH_FOUND)));
           return BtStatus::FAILURE;
         }
@@ -194,6 +202,54 @@ TEST_F(NavigateTreeTest, PlanningRecoveriesRotateWhereAllowed) {
   EXPECT_EQ(run(tree, 60.0), BtStatus::FAILURE);
   const std::vector<std::string> expected = {"ClearCostmaps", "RelaxConstraints", "RotateInPlace", "BackUp"};
   EXPECT_EQ(nav.recoveries(), expected);
+}
+
+TEST_F(NavigateTreeTest, PlanningRecoveriesStopWhenTheGoalsBudgetIsSpent) {
+  nav.plan_ok = false;
+  nav.planning_recoveries_left = 2;
+  auto tree = load();
+  EXPECT_EQ(run(tree, 60.0), BtStatus::FAILURE);
+  EXPECT_EQ(nav.count("plan"), 3);
+  const std::vector<std::string> expected = {"ClearCostmaps", "RelaxConstraints"};
+  EXPECT_EQ(nav.recoveries(), expected);
+  EXPECT_EQ(error_code(), code(Outcome::NO_PATH_FOUND));
+  EXPECT_EQ(nav.log.back(), "Stop");
+}
+
+TEST_F(NavigateTreeTest, PlanningRecoveryBudgetSpansTheNavigation) {
+  // The first plan fails and a recovery lets the second succeed; the path cannot be followed
+  // (the control recoveries run out) and replanning fails from then on: the two planning
+  // recoveries left run, then the navigation ends with NO_PATH_FOUND.
+  nav.planning_recoveries_left = 3;
+  nav.follow_failure_codes = std::deque<int>(20, code(Outcome::OSCILLATION));
+  auto tree = load();
+  nav.plan_results = {false, true};
+  nav.plan_ok = false;
+  EXPECT_EQ(run(tree, 200.0), BtStatus::FAILURE);
+  // Planning (1), the four control recoveries, then Replanning's own round robin (2).
+  const std::vector<std::string> expected = {"ClearCostmaps", "ClearCostmaps",   "Wait", "BackUp", "RotateInPlace",
+                                             "ClearCostmaps", "RelaxConstraints"};
+  EXPECT_EQ(nav.recoveries(), expected);
+  EXPECT_EQ(nav.planning_recoveries_left, 0);
+  EXPECT_EQ(nav.count("follow"), 5);
+  EXPECT_EQ(error_code(), code(Outcome::NO_PATH_FOUND));
+}
+
+TEST_F(NavigateTreeTest, FailedReplansOnAnInvalidPathSpendThePlanningBudget) {
+  // The first plan succeeds; then every replan fails and the path is no longer valid: each such
+  // failure spends a planning recovery (two here) before the control recoveries run, and once the
+  // budget is spent the Planning sub-tree's failure ends the navigation without recoveries of its own.
+  nav.planning_recoveries_left = 2;
+  nav.plan_results = {true};
+  nav.plan_ok = false;
+  nav.path_valid = false;
+  auto tree = load();
+  EXPECT_EQ(run(tree, 200.0), BtStatus::FAILURE);
+  const std::vector<std::string> expected = {"ClearCostmaps", "Wait", "BackUp", "RotateInPlace"};
+  EXPECT_EQ(nav.recoveries(), expected);
+  EXPECT_EQ(nav.planning_recoveries_left, 0);
+  EXPECT_EQ(error_code(), code(Outcome::NO_PATH_FOUND));
+  EXPECT_EQ(nav.log.back(), "Stop");
 }
 
 TEST_F(NavigateTreeTest, ControlFailureRecoversAndSucceeds) {

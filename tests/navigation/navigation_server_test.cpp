@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "bipednav/common/error.hpp"
 #include "bipednav/common/outcome.hpp"
 #include "bipednav/mapping/global_costmap.hpp"
 #include "bipednav/mapping/local_costmap.hpp"
@@ -138,6 +139,44 @@ TEST_F(NavigationServerRecovery, TheLogKeepsTheLatestRecoveries) {
   EXPECT_EQ(server.recoveries(), NavigationServer::kRecoveryLogSize + 10);
   ASSERT_EQ(server.recovery_log().size(), NavigationServer::kRecoveryLogSize);
   EXPECT_DOUBLE_EQ(server.recovery_log().front().start_s, 10.0);
+}
+
+}  // namespace
+}  // namespace bipednav::navigation
+
+namespace bipednav::navigation {
+namespace {
+
+TEST(PlanClearance, AllowanceIsTwoSigmasInWholeCentimetresPlusCells) {
+  ServerParams p;
+  EXPECT_NEAR(plan_clearance_allowance_m(p, 0.02, 0.1), 0.04, 1e-12);
+  EXPECT_NEAR(plan_clearance_allowance_m(p, 0.013, 0.1), 0.03, 1e-12);  // 2.6 cm rounds up
+  EXPECT_EQ(plan_clearance_allowance_m(p, 0.0, 0.05), 0.0);
+  p.plan_clearance_cells = 0.5;
+  EXPECT_NEAR(plan_clearance_allowance_m(p, 0.02, 0.1), 0.04 + 0.05, 1e-12);
+  ServerParams none;
+  none.plan_clearance_sigmas = 0.0;
+  none.plan_clearance_cells = 0.0;
+  EXPECT_EQ(plan_clearance_allowance_m(none, 0.3, 0.1), 0.0);
+  ServerParams bad;
+  bad.plan_clearance_sigmas = -1.0;
+  EXPECT_THROW(bad.validate(), ParamError);
+  bad = {};
+  bad.planning_recoveries_allowed = -1;
+  EXPECT_THROW(bad.validate(), ParamError);
+}
+
+TEST(PlanClearance, PlanningRecoveriesAreBudgetedPerGoal) {
+  mapping::GlobalCostmap global{mapping::GridGeometry{20, 20, 0.1, -1.0, -1.0}};
+  mapping::LocalCostmap local{};
+  ServerParams p;
+  p.planning_recoveries_allowed = 2;
+  NavigationServer server{p, RobotProfile{}, global, local, nullptr};
+  EXPECT_TRUE(server.admit_planning_recovery());
+  EXPECT_TRUE(server.admit_planning_recovery());
+  EXPECT_FALSE(server.admit_planning_recovery());
+  server.on_new_goal();
+  EXPECT_TRUE(server.admit_planning_recovery());
 }
 
 }  // namespace

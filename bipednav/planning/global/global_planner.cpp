@@ -39,16 +39,23 @@ std::string fmt(const char* f, double a, double b) {
   return buf;
 }
 
+// A mapped cell closed only for its nearness to an obstacle (inscribed, or within the planning
+// clearance), not for being one.
+bool within_clearance_only(std::uint8_t cost, const GridCostParams& p) {
+  return cost <= mapping::kInscribed && static_cast<int>(cost) >= p.min_impassable_cost;
+}
+
 std::string cell_str(const mapping::Cell& c) {
   char buf[48];
   std::snprintf(buf, sizeof(buf), "(%d, %d)", c.x, c.y);
   return buf;
 }
 
-std::string cost_str(std::uint8_t c) {
+std::string cost_str(std::uint8_t c, const GridCostParams& p) {
   if (c == mapping::kLethal) return "254 (lethal)";
   if (c == mapping::kInscribed) return "253 (inscribed: the robot's centre may not stand there)";
   if (c == mapping::kUnknown) return "255 (unknown, and unknown cells are obstacles)";
+  if (within_clearance_only(c, p)) return std::to_string(c) + " (within the planning clearance of an obstacle)";
   return std::to_string(c);
 }
 
@@ -91,7 +98,7 @@ std::optional<mapping::Cell> goal_search_cell(const mapping::Costmap2D& map, con
   if (!t) return std::nullopt;
   const std::uint8_t gc = map.cost(*t);
   if (std::isfinite(cell_factor(gc, params.cost))) return t;
-  if (gc != mapping::kInscribed || params.goal_tolerance_m <= 0.0) return std::nullopt;
+  if (!within_clearance_only(gc, params.cost) || params.goal_tolerance_m <= 0.0) return std::nullopt;
   const int r = static_cast<int>(std::ceil(params.goal_tolerance_m / g.resolution_m)) + 1;
   const double tol2 = params.goal_tolerance_m * params.goal_tolerance_m;
   std::optional<mapping::Cell> best;
@@ -124,8 +131,8 @@ std::optional<Endpoints> resolve_endpoints(const mapping::Costmap2D& map, const 
   const std::uint8_t sc = map.cost(*s), gc = map.cost(*t);
   const auto goal_cell = goal_search_cell(map, goal, params);
   if (!goal_cell) {
-    std::string why = "goal cell " + cell_str(*t) + " has cost " + cost_str(gc);
-    if (gc == mapping::kInscribed && params.goal_tolerance_m > 0.0) {
+    std::string why = "goal cell " + cell_str(*t) + " has cost " + cost_str(gc, params.cost);
+    if (within_clearance_only(gc, params.cost) && params.goal_tolerance_m > 0.0) {
       char buf[96];
       std::snprintf(buf, sizeof(buf), " and no traversable cell lies within goal_tolerance_m = %.3f m",
                     params.goal_tolerance_m);
@@ -137,7 +144,7 @@ std::optional<Endpoints> resolve_endpoints(const mapping::Costmap2D& map, const 
   Endpoints e{g.index(*s), g.index(*goal_cell), false};
   if (!std::isfinite(cell_factor(sc, params.cost))) {
     if (sc == mapping::kLethal || !params.allow_start_in_inscribed) {
-      failure = {Outcome::BLOCKED_START, "start cell " + cell_str(*s) + " has cost " + cost_str(sc) +
+      failure = {Outcome::BLOCKED_START, "start cell " + cell_str(*s) + " has cost " + cost_str(sc, params.cost) +
                                              (sc == mapping::kLethal ? "" : " and allow_start_in_inscribed is false")};
       return std::nullopt;
     }

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "bipednav/mapping/costmap2d.hpp"
+#include "bipednav/mapping/inflation.hpp"
 
 namespace bipednav::planning {
 
@@ -22,13 +23,25 @@ struct GridCostParams {
   double cost_weight = 3.0;          // w in factor = 1 + w * cost / 252, in [0, 50]
   bool unknown_is_obstacle = false;  // false: unknown cells are traversable (free-space assumption)
   int unknown_cost = 0;              // cost value used for a traversable unknown cell, in [0, 252]
+  // Mapped cells of this cost or more are impassable, in [1, 253]: kInscribed (253) lets the
+  // robot's centre enter every cell outside the inscribed radius; a lower value keeps it farther
+  // from obstacles (min_impassable_cost(); the navigation server sets it from the clearance it
+  // plans with). Unknown cells keep unknown_is_obstacle / unknown_cost.
+  int min_impassable_cost = mapping::kInscribed;
 
   void validate() const;
 };
 
 // Traversal factor of one cell value: 1 + w * cost / 252, +inf when the robot's centre may not
-// enter it (inscribed, lethal, and unknown when configured so). Pure kernel.
+// enter it (min_impassable_cost or more, lethal, and unknown when configured so). Pure kernel.
 double cell_factor(std::uint8_t cost, const GridCostParams& p);
+
+// The min_impassable_cost that closes every cell whose centre lies nearer than `clearance_m` to
+// the centre of a lethal cell under the inflation `p` (inflation_cost is non-increasing in the
+// distance): kInscribed for a clearance within the inscribed radius; beyond the inflation radius,
+// whose cells all cost 0, one above the cost at the inflation radius (the cells nearer than it
+// close). Pure kernel.
+int min_impassable_cost(double clearance_m, const mapping::InflationParams& p);
 
 // Neighbour k of the 8-connected grid: 0..3 orthogonal (E, N, W, S), 4..7 diagonal.
 inline constexpr std::array<int, 8> kDx = {1, 0, -1, 0, 1, -1, -1, 1};

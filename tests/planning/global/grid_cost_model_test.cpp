@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "bipednav/common/error.hpp"
 #include "bipednav/common/rng.hpp"
 #include "bipednav/planning/global/indexed_heap.hpp"
 #include "test_grids.hpp"
@@ -27,6 +28,36 @@ TEST(CellFactor, FollowsTheCostFormula) {
   EXPECT_DOUBLE_EQ(cell_factor(mapping::kUnknown, p), 2.0);
   p.unknown_is_obstacle = true;
   EXPECT_TRUE(std::isinf(cell_factor(mapping::kUnknown, p)));
+}
+
+TEST(CellFactor, ClosesMappedCellsFromMinImpassableCost) {
+  GridCostParams p;
+  p.min_impassable_cost = 193;
+  EXPECT_DOUBLE_EQ(cell_factor(84, p), 2.0);
+  EXPECT_TRUE(std::isfinite(cell_factor(192, p)));
+  EXPECT_TRUE(std::isinf(cell_factor(193, p)));
+  EXPECT_TRUE(std::isinf(cell_factor(252, p)));
+  EXPECT_DOUBLE_EQ(cell_factor(mapping::kUnknown, p), 1.0);  // unknown cells keep their own rule
+  p.min_impassable_cost = 0;
+  EXPECT_THROW(p.validate(), ParamError);
+  p.min_impassable_cost = 254;
+  EXPECT_THROW(p.validate(), ParamError);
+}
+
+TEST(MinImpassableCost, ClosesTheCellsNearerThanTheClearance) {
+  const mapping::InflationParams inflation{0.38, 0.83, 3.0};
+  // Within the inscribed radius: the inscribed cells, as without a clearance.
+  EXPECT_EQ(min_impassable_cost(0.38, inflation), mapping::kInscribed);
+  EXPECT_EQ(min_impassable_cost(0.2, inflation), mapping::kInscribed);
+  // 0.47 m: 252 exp(-3 x 0.09) = 192.4 -> cells costing 193 or more (nearer than 0.47 m) close.
+  const int c = min_impassable_cost(0.47, inflation);
+  EXPECT_EQ(c, 193);
+  EXPECT_GE(mapping::inflation_cost(0.4, inflation), c);   // 237
+  EXPECT_GE(mapping::inflation_cost(0.46, inflation), c);  // 197
+  EXPECT_LT(mapping::inflation_cost(0.47, inflation), c);
+  EXPECT_LT(mapping::inflation_cost(0.5, inflation), c);  // 175
+  // Beyond the inflation radius (costs 0 there) every inflated cell closes: 252 exp(-1.35) = 65.3.
+  EXPECT_EQ(min_impassable_cost(1.0, inflation), 66);
 }
 
 TEST(GridCostModel, EdgeCostsAreSymmetricAndForbidCornerCutting) {

@@ -240,6 +240,27 @@ TEST_P(Outcomes, StartEqualsGoal) {
   EXPECT_DOUBLE_EQ(r.path.poses.back().theta, 2.0);
 }
 
+// A 0.8 m gap between two obstacle cells (0.1 m cells, inflated for a 0.38 m inscribed radius):
+// its middle cells lie 0.4 m from both, open to the inscribed radius alone and closed to a
+// clearance of 0.42 m (2 x 0.02 m sigma): NO_PATH_FOUND.
+TEST_P(Outcomes, GapNarrowerThanThePlanningClearanceIsClosed) {
+  auto obstacles = make_map(30, 30, 0.1);
+  for (int y = 0; y < 30; ++y)
+    if (y <= 10 || y >= 18) obstacles.set_cost(15, y, mapping::kLethal);
+  const mapping::InflationParams inflation{0.38, 0.83, 3.0};
+  mapping::Costmap2D map = obstacles;
+  mapping::Inflator(inflation, 0.1).inflate(obstacles, map);
+  ASSERT_EQ(map.cost(15, 14), mapping::inflation_cost(0.4, inflation));  // 237: 0.4 m from both sides
+  const Pose2 start = centre(map, 3, 14), goal = centre(map, 27, 14);
+  GlobalPlannerParams p;
+  const PlanResult open = planner(p)->plan(map, start, goal, {});
+  ASSERT_EQ(open.result.outcome, Outcome::SUCCESS) << open.result.message;
+  p.cost.min_impassable_cost = min_impassable_cost(0.38 + 2 * 0.02, inflation);
+  EXPECT_EQ(p.cost.min_impassable_cost, 224);  // 252 exp(-3 x 0.04) = 223.5
+  const PlanResult closed = planner(p)->plan(map, start, goal, {});
+  EXPECT_EQ(closed.result.outcome, Outcome::NO_PATH_FOUND) << closed.result.message;
+}
+
 INSTANTIATE_TEST_SUITE_P(BothPlanners, Outcomes, ::testing::Values("dstar_lite", "astar"));
 
 TEST(GlobalPlannerFactory, ExplicitTableAndUnknownName) {
