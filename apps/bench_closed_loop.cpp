@@ -93,8 +93,7 @@ PairExpectation pair_expectation(const nlohmann::json& route, const RobotProfile
       last["margin_m"].is_null() ? std::numeric_limits<double>::infinity() : last["margin_m"].get<double>();
   if (runner::is_footstep_robot(robot)) return e;  // the footstep navigator plans no clearance margin
   const navigation::NavigatorParams p = runner::navigator_params(robot, base);
-  e.allowance_m =
-      navigation::plan_clearance_allowance_m(p.server, p.localization.scan_position_sigma_m, p.global_map.resolution_m);
+  e.allowance_m = navigation::plan_clearance_allowance_m(p.server, p.localization.scan_position_sigma_m);
   e.infeasible = !last["connected"].get<bool>() || e.last_goal_margin_m < e.allowance_m;
   return e;
 }

@@ -28,16 +28,12 @@ void ServerParams::validate() const {
   require(std::isfinite(plan_clearance_sigmas) && plan_clearance_sigmas >= 0.0 && plan_clearance_sigmas <= 10.0,
           "plan_clearance_sigmas", "in [0, 10]");
   require(planning_recoveries_allowed >= 0, "planning_recoveries_allowed", ">= 0");
-  require(std::isfinite(plan_clearance_cells) && plan_clearance_cells >= 0.0 && plan_clearance_cells <= 2.0,
-          "plan_clearance_cells", "in [0, 2]");
 }
 
-double plan_clearance_allowance_m(const ServerParams& params, double position_sigma_m, double resolution_m) {
+double plan_clearance_allowance_m(const ServerParams& params, double position_sigma_m) {
   // Whole centimetres: the planner starts its search afresh when the allowance changes, so a
   // slowly growing sigma changes it in steps.
-  const double sigma_part_m =
-      std::ceil(params.plan_clearance_sigmas * std::max(0.0, position_sigma_m) * 100.0 - 1e-9) / 100.0;
-  return sigma_part_m + params.plan_clearance_cells * resolution_m;
+  return std::ceil(params.plan_clearance_sigmas * std::max(0.0, position_sigma_m) * 100.0 - 1e-9) / 100.0;
 }
 
 void apply_controller_goal_tolerances(ServerParams& params) {
@@ -94,8 +90,7 @@ bool NavigationServer::admit_planning_recovery() {
 
 int NavigationServer::plan_impassable_cost() const {
   const mapping::InflationParams inflation = global_.params().inflation();
-  const double allowance_m =
-      plan_clearance_allowance_m(params_, view_.position_sigma_m, global_.geometry().resolution_m);
+  const double allowance_m = plan_clearance_allowance_m(params_, view_.position_sigma_m);
   return planning::min_impassable_cost(inflation.inscribed_radius_m + allowance_m, inflation);
 }
 

@@ -42,15 +42,13 @@ struct ServerParams {
   double relaxed_cost_weight_factor = 0.3;
   // The global planner keeps the robot's centre farther from obstacles than the global map's
   // inscribed radius (footprint + sway) by what the estimate leaves uncertain: this many position
-  // standard deviations (RobotView::position_sigma_m, rounded up to whole cm), plus this many
-  // global-map cells for the map's quantisation (a lethal cell stands for a surface anywhere in
-  // it). A gap open only to a perfect estimate is then closed to the planner, which reports
-  // NO_PATH_FOUND instead of sending the robot to squeeze through. The cell term is 0 by default:
-  // half a cell closed routes of generated clutter worlds that the robots pass (clutter_2, route
-  // margins 0.14 / 0.32 m), as the maps' cells already sit outside the obstacles' surfaces.
-  // 0 and 0: the inscribed radius alone.
+  // standard deviations (RobotView::position_sigma_m, rounded up to whole cm). A gap open only to
+  // a perfect estimate is then closed to the planner, which reports NO_PATH_FOUND instead of
+  // sending the robot to squeeze through. No term for the map's quantisation: half a cell more
+  // closed routes of generated clutter worlds that the robots pass (clutter_2, route margins
+  // 0.14 / 0.32 m), as the maps' cells already sit outside the obstacles' surfaces. 0: the
+  // inscribed radius alone.
   double plan_clearance_sigmas = 2.0;
-  double plan_clearance_cells = 0.0;
   // Planner failures that may lead to a recovery for one goal (the planning sub-tree's recoveries,
   // and the 5 Hz replan failing once the old path is invalid), counted over the whole navigation as
   // Nav2 counts navigate_to_pose's retries (a path found in between does not restore them): a
@@ -65,9 +63,8 @@ struct ServerParams {
 };
 
 // How much farther than the inscribed radius the global planner keeps the robot's centre from
-// obstacles with a position standard deviation of `position_sigma_m` on a global map of
-// `resolution_m` cells (ServerParams::plan_clearance_sigmas, plan_clearance_cells).
-double plan_clearance_allowance_m(const ServerParams& params, double position_sigma_m, double resolution_m);
+// obstacles with a position standard deviation of `position_sigma_m` (ServerParams::plan_clearance_sigmas).
+double plan_clearance_allowance_m(const ServerParams& params, double position_sigma_m);
 
 // Sets the local planners' goal tolerances from the goal checker's and
 // controller_goal_tolerance_fraction (no change when it is 0).

@@ -211,7 +211,6 @@ void visit_fields(V& v, ServerParams& p) {
   v("blocked_goal_timeout_s", p.blocked_goal_timeout_s);
   v("relaxed_cost_weight_factor", p.relaxed_cost_weight_factor);
   v("plan_clearance_sigmas", p.plan_clearance_sigmas);
-  v("plan_clearance_cells", p.plan_clearance_cells);
   v("planning_recoveries_allowed", p.planning_recoveries_allowed);
 }
 

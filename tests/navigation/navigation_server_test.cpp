@@ -147,17 +147,14 @@ TEST_F(NavigationServerRecovery, TheLogKeepsTheLatestRecoveries) {
 namespace bipednav::navigation {
 namespace {
 
-TEST(PlanClearance, AllowanceIsTwoSigmasInWholeCentimetresPlusCells) {
+TEST(PlanClearance, AllowanceIsTwoSigmasInWholeCentimetres) {
   ServerParams p;
-  EXPECT_NEAR(plan_clearance_allowance_m(p, 0.02, 0.1), 0.04, 1e-12);
-  EXPECT_NEAR(plan_clearance_allowance_m(p, 0.013, 0.1), 0.03, 1e-12);  // 2.6 cm rounds up
-  EXPECT_EQ(plan_clearance_allowance_m(p, 0.0, 0.05), 0.0);
-  p.plan_clearance_cells = 0.5;
-  EXPECT_NEAR(plan_clearance_allowance_m(p, 0.02, 0.1), 0.04 + 0.05, 1e-12);
+  EXPECT_NEAR(plan_clearance_allowance_m(p, 0.02), 0.04, 1e-12);
+  EXPECT_NEAR(plan_clearance_allowance_m(p, 0.013), 0.03, 1e-12);  // 2.6 cm rounds up
+  EXPECT_EQ(plan_clearance_allowance_m(p, 0.0), 0.0);
   ServerParams none;
   none.plan_clearance_sigmas = 0.0;
-  none.plan_clearance_cells = 0.0;
-  EXPECT_EQ(plan_clearance_allowance_m(none, 0.3, 0.1), 0.0);
+  EXPECT_EQ(plan_clearance_allowance_m(none, 0.3), 0.0);
   ServerParams bad;
   bad.plan_clearance_sigmas = -1.0;
   EXPECT_THROW(bad.validate(), ParamError);
