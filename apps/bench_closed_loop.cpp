@@ -76,7 +76,7 @@ void run_all(std::vector<BenchRun>& runs, const std::vector<sim::Scenario>& load
 
 // What a pair should end with. Its last goal (the one a run is judged on) is infeasible when the
 // widest route there keeps less room beyond footprint + sway (`route`) than the global planner's
-// clearance allowance (ServerParams::plan_clearance_*, at the localizer's scan sigma): the planner
+// clearance allowance (ServerParams::plan_clearance_sigmas at the localizer's scan sigma): the planner
 // sees the bottleneck closed, and the right end is to say so, NO_PATH_FOUND (or BLOCKED_GOAL for a
 // goal too near an obstacle), before the time limit and without touching anything.
 struct PairExpectation {
@@ -121,7 +121,8 @@ nlohmann::json failure_json(const BenchRun& b) {
                          : nlohmann::json{{"seed", b.seed}, {"error", b.error}};
 }
 
-// The row of one scenario and robot: the --seeds runs from `first`; adds their successes to `ok_total`.
+// The row of one scenario and robot: the --seeds runs from `first`; adds their successes to `ok_total`
+// and the runs that ended as `expect` says to `expected_total`.
 nlohmann::json pair_row(const BenchScenarioArgs& a, const std::vector<BenchRun>& runs, std::size_t first,
                         const std::map<std::string, RobotProfile>& profiles, const PairExpectation& expect,
                         std::size_t& ok_total, std::size_t& expected_total) {

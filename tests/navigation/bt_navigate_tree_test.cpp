@@ -63,7 +63,11 @@ void bind_conditions(BtFactory& f, FakeNav& n) {
   flag("GoalReached", &n.goal_reached);
   f.register_simple_condition(
       "PlanningRecoveryAllowed",
-      [&n](BtNode&, double) { return n.planning_recoveries_left > 0 && n.planning_recoveries_left-- > 0; },
+      [&n](BtNode&, double) {
+        if (n.planning_recoveries_left <= 0) return false;
+        --n.planning_recoveries_left;
+        return true;
+      },
       bt_leaf_ports("PlanningRecoveryAllowed"));
   f.register_simple_condition(
       "IsGoalValid",
