@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "apps/bench_runs.hpp"
 #include "apps/cli_json.hpp"
@@ -18,6 +19,7 @@
 #include "bipednav/common/wilson_interval.hpp"
 #include "bipednav/io/world_cases.hpp"
 #include "bipednav/sim/sdf_writer.hpp"
+#include "bipednav/sim/space_time_route.hpp"
 #include "bipednav/sim/world_generator.hpp"
 
 namespace bipednav::app {
@@ -51,6 +53,9 @@ struct WorldRun {
   bool baseline = false;
   nlohmann::json margin_m;  // the static route's margin for this robot (null: no obstacles)
   bool feasible = true;     // the margin is positive: the robot fits through at all
+  // With people: whether a robot of this size and top speed that knew the people's walks could
+  // reach the goal untouched (sim/space_time_route.hpp); unset without people.
+  std::optional<sim::SpaceTimeRoute> passable;
   runner::RunResult result;
   std::string error;  // what a run that threw said (it counts as failed)
 };
@@ -117,6 +122,8 @@ void run_world(WorldRun& r, const BenchWorld& w, const RobotProfile& profile, co
     r.margin_m = route_report(w.scenario, profile, kRouteResolutionM)["min_margin_m"];
     r.feasible = r.margin_m.is_null() || r.margin_m.get<double>() > 0.0;
     if (!r.feasible) return;
+    if (!r.baseline && !w.scenario.world.actors.empty())
+      r.passable = sim::scenario_space_time_route(w.scenario, profile);
     runner::RunOptions o = base;
     o.robot = r.robot;
     r.result = runner::run_scenario(r.baseline ? sim::without_people(w.scenario) : w.scenario, o);
@@ -135,6 +142,11 @@ nlohmann::json run_row(const WorldRun& r, const BenchWorld& w, const WorldRun* b
   nlohmann::json j{{"world", w.scenario.name}, {"seed", w.scenario.seed},      {"layout", w.layout},
                    {"robot", r.robot},         {"route_margin_m", r.margin_m}, {"feasible", r.feasible}};
   if (!r.error.empty()) j["error"] = r.error;
+  if (r.passable) {
+    j["passable"] = r.passable->reachable;
+    j["passable_arrival_s"] = finite_or_null(r.passable->arrival_s);
+    j["static_arrival_s"] = finite_or_null(r.passable->static_arrival_s);
+  }
   if (!r.feasible || !r.error.empty()) return j;
   const runner::RunResult& x = r.result;
   j["success"] = x.success;
@@ -158,6 +170,7 @@ nlohmann::json run_row(const WorldRun& r, const BenchWorld& w, const WorldRun* b
 // One robot's figures over its runs with people (`rows` of that robot).
 nlohmann::json robot_summary(const std::string& robot, const std::vector<nlohmann::json>& rows) {
   std::size_t n = 0, ok = 0, moving = 0, standing = 0, people = 0, timeouts = 0, false_success = 0, infeasible = 0;
+  std::size_t passable = 0, passable_ok = 0, passable_moving = 0, passable_standing = 0;
   std::map<std::string, std::size_t> failures;
   std::map<std::string, std::pair<std::size_t, std::size_t>> layouts;  // successes, runs
   std::vector<double> ratios;
@@ -169,6 +182,11 @@ nlohmann::json robot_summary(const std::string& robot, const std::vector<nlohman
     ++n;
     const bool success = j.value("success", false);
     ok += success;
+    const bool can_pass = j.value("passable", true);  // worlds without people: the static route decides
+    passable += can_pass;
+    passable_ok += can_pass && success;
+    if (can_pass && j.contains("contact"))
+      (j["contact"]["robot_standing"].get<bool>() ? passable_standing : passable_moving) += 1;
     auto& [lk, ln] = layouts[j["layout"].get<std::string>()];
     lk += success;
     ++ln;
@@ -196,6 +214,10 @@ nlohmann::json robot_summary(const std::string& robot, const std::vector<nlohman
           {"contact_moving", rate(moving, n)},
           {"contact_standing", rate(standing, n)},
           {"contacts_with_people", people},
+          {"passable", passable},
+          {"success_passable", rate(passable_ok, passable)},
+          {"contact_moving_passable", rate(passable_moving, passable)},
+          {"contact_standing_passable", rate(passable_standing, passable)},
           {"timeout", rate(timeouts, n)},
           {"reported_success_not_true", false_success},
           {"failures", failures},
@@ -232,6 +254,10 @@ void print_table(const nlohmann::json& report) {
                 r["infeasible"].get<std::size_t>() > 0
                     ? ("; " + r["infeasible"].dump() + " worlds too narrow for it (not run)").c_str()
                     : "");
+    if (r["passable"].get<std::size_t>() < r["runs"].get<std::size_t>())
+      std::printf("    passable among its people (%zu runs): success %s, contact moving %s, standing %s\n",
+                  r["passable"].get<std::size_t>(), percent(r["success_passable"]).c_str(),
+                  percent(r["contact_moving_passable"]).c_str(), percent(r["contact_standing_passable"]).c_str());
   }
 }
 

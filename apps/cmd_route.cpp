@@ -29,9 +29,6 @@ struct RouteArgs {
   bool json = false;
 };
 
-// JSON has no infinity: an unbounded route (no obstacles) is null.
-nlohmann::json finite_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
-
 void print_report(const nlohmann::json& r) {
   std::printf("%s with %s: needs %.3f m from its centre to any obstacle (footprint + sway)\n",
               r["scenario"].get<std::string>().c_str(), r["robot"].get<std::string>().c_str(),
