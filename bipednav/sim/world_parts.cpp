@@ -129,6 +129,7 @@ double loop_to_polyline_distance(const std::vector<Eigen::Vector2d>& loop, const
   const std::size_t n = loop.size();
   for (std::size_t i = 0; i < n; ++i) {
     const Eigen::Vector2d &a = loop[i], &b = loop[(i + 1) % n];
+    if (line.size() == 1) best = std::min(best, segment_distance(line.front(), a, b));  // a point
     for (std::size_t j = 1; j < line.size(); ++j) {
       if (segments_cross(a, b, line[j - 1], line[j])) return 0.0;
       best = std::min({best, segment_distance(a, line[j - 1], line[j]), segment_distance(b, line[j - 1], line[j]),

@@ -40,7 +40,8 @@ std::vector<Eigen::Vector2d> circle_loop(const Eigen::Vector2d& center, double r
 
 // Distance from p to the polyline (open: its points in order).
 double polyline_distance(const Eigen::Vector2d& p, const std::vector<Eigen::Vector2d>& line);
-// Smallest distance between a closed loop and an open polyline (0 when they cross).
+// Smallest distance between a closed loop and an open polyline (0 when they cross); a polyline of
+// one point is that point.
 double loop_to_polyline_distance(const std::vector<Eigen::Vector2d>& loop, const std::vector<Eigen::Vector2d>& line);
 
 // The clearance of a disc walking along a closed loop from the world's static geometry (the
