@@ -192,7 +192,6 @@ void visit_fields(V& v, control::OscillationCheckerParams& p) {
   v("max_sign_flips", p.max_sign_flips);
   v("min_net_progress_m", p.min_net_progress_m);
   v("sign_deadband", p.sign_deadband);
-  v("prorate_partial_window", p.prorate_partial_window);
 }
 
 template <class V>
