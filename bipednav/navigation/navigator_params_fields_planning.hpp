@@ -90,7 +90,6 @@ void visit_fields(V& v, planning::local::TebOptimizerParams& p) {
   v("dynamic_obstacle_lead_s", p.dynamic_obstacle_lead_s);
   v("dynamic_obstacle_largest_radius", p.dynamic_obstacle_largest_radius);
   v("linear_solver", p.linear_solver);
-  v("ceres_line_search_interpolation", p.ceres_line_search_interpolation);
   v("ceres_sparse_library", p.ceres_sparse_library);
 }
 
