@@ -156,8 +156,6 @@ void visit_fields(V& v, planning::local::DynamicAvoidanceParams& p) {
   v("sim_step_s", p.sim_step_s);
   v("static_check_s", p.static_check_s);
   v("hold_step_s", p.hold_step_s);
-  v("exit_swept_corridor", p.exit_swept_corridor);
-  v("reverse_at_structure", p.reverse_at_structure);
 }
 
 template <class V>
