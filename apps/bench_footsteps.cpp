@@ -50,7 +50,7 @@ struct BenchArgs {
   int maps = 10, problems = 10, jobs = 1, only_map = -1, only_problem = -1;
   double long_limit_s = 10.0, short_limit_s = 5.0, optimal_limit_s = 120.0;
   std::string clock = "thread_cpu", log, optimal_from, heuristics = "dijkstra,euclidean";
-  bool skip_planar = false, stance_levels = false;
+  bool skip_planar = false;
 };
 
 // The optimal reference costs of a previous run (its per_problem rows, or --log lines), by
@@ -211,7 +211,6 @@ HeuristicPlanners heuristic_planners(const BenchArgs& a, const FootstepPlannerPa
   for (const std::string& h : parse_heuristics(a.heuristics)) {
     FootstepPlannerParams p = base;
     p.heuristic = h;
-    p.stance_level_heuristic = a.stance_levels;
     p.search.time_limit_s = a.long_limit_s;
     planners[h] = std::make_unique<FootstepPlanner>(p);
   }
@@ -443,8 +442,6 @@ void add_footstep_bench(CLI::App& bench) {
                  "file instead of searching them (rows must have the same start/goal)");
   bf->add_option("--heuristics", b->heuristics, "Comma-separated ARA* heuristics to run")->capture_default_str();
   bf->add_flag("--skip-planar", b->skip_planar, "Do not run the planar-footsteps-only baseline");
-  bf->add_flag("--stance-levels", b->stance_levels,
-               "Dijkstra heuristic with the (cell, stance-height level) graph (off by default)");
   accept_json_flag(bf);
   bf->callback([b] { report_task(bench_footsteps(*b)); });
 }

@@ -47,14 +47,8 @@ bool OscillationChecker::check(const Twist& cmd, const Pose2& pose, double now_s
     wz_.pop_front();
   }
   last_flips_ = std::max(count_sign_flips(vx_, params_.sign_deadband), count_sign_flips(wz_, params_.sign_deadband));
-  // With prorate_partial_window, until the window has filled the progress due is in proportion to
-  // the time seen: a robot that has just set off at full speed has not yet covered
-  // min_net_progress_m, but it is not stuck.
-  const double span_s = now_s - samples_.front().t_s;
-  const double due_m =
-      params_.min_net_progress_m * (params_.prorate_partial_window ? std::min(1.0, span_s / params_.window_s) : 1.0);
   const double progress = distance(samples_.front().pose, pose);
-  return last_flips_ >= params_.max_sign_flips && progress < due_m;
+  return last_flips_ >= params_.max_sign_flips && progress < params_.min_net_progress_m;
 }
 
 }  // namespace bipednav::control

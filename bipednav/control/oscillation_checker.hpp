@@ -16,13 +16,6 @@ struct OscillationCheckerParams {
   int max_sign_flips = 4;
   double min_net_progress_m = 0.3;
   double sign_deadband = 0.02;
-  // While less than window_s has been seen since the start (or reset), less progress is due: that
-  // share of min_net_progress_m. Without it a robot that sets off at full speed with small steering
-  // corrections of either sign is "oscillating" until it has covered min_net_progress_m (1.15 s at
-  // the TurtleBot3's 0.26 m/s), as happens in hexagon_dynamic/turtlebot3 where TEB's yaw command
-  // flips sign every few cycles. Off: it won a hexagon_dynamic run and lost a three_rooms one
-  // (docs/closed-loop-log.md, 'Parameter evidence moved from code comments').
-  bool prorate_partial_window = false;
 
   void validate() const;
 };

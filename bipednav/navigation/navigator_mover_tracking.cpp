@@ -101,7 +101,6 @@ void Navigator::track_moving_obstacles() {
   marking_points(local_obs_, moving_points_, moving_heights_);
   moving_points_stamp_s_ = now_s_;
   if (moving_points_.empty()) return;
-  moving_.set_static_structure(global_.occupancy(), now_s_);  // walls' pieces are not movers
   moving_.update(moving_points_, moving_heights_, localizer_.T_map_base(), now_s_);
   // Points on moving obstacles stay out of the global map's own LiDAR input (their trail would
   // block the lanes they crossed); the local map marks them, and merge_local carries the local

@@ -22,7 +22,6 @@ void visit_fields(V& v, footstep::FootstepPlannerParams& p) {
   v("lattice_resolution_m", p.lattice_resolution_m);
   v("theta_bins", p.theta_bins);
   v("heuristic", p.heuristic);
-  v("stance_level_heuristic", p.stance_level_heuristic);
   v("goal_tolerance_m", p.goal_tolerance_m);
   v("goal_tolerance_rad", p.goal_tolerance_rad);
   v("landing_margin_m", p.landing_margin_m);

@@ -90,7 +90,6 @@ void visit_fields(V& v, planning::local::TebOptimizerParams& p) {
   v("dynamic_obstacle_lead_s", p.dynamic_obstacle_lead_s);
   v("dynamic_obstacle_largest_radius", p.dynamic_obstacle_largest_radius);
   v("linear_solver", p.linear_solver);
-  v("ceres_line_search_interpolation", p.ceres_line_search_interpolation);
   v("ceres_sparse_library", p.ceres_sparse_library);
 }
 
@@ -157,8 +156,6 @@ void visit_fields(V& v, planning::local::DynamicAvoidanceParams& p) {
   v("sim_step_s", p.sim_step_s);
   v("static_check_s", p.static_check_s);
   v("hold_step_s", p.hold_step_s);
-  v("exit_swept_corridor", p.exit_swept_corridor);
-  v("reverse_at_structure", p.reverse_at_structure);
 }
 
 template <class V>
@@ -192,7 +189,6 @@ void visit_fields(V& v, control::OscillationCheckerParams& p) {
   v("max_sign_flips", p.max_sign_flips);
   v("min_net_progress_m", p.min_net_progress_m);
   v("sign_deadband", p.sign_deadband);
-  v("prorate_partial_window", p.prorate_partial_window);
 }
 
 template <class V>

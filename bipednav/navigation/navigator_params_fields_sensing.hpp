@@ -194,24 +194,15 @@ void visit_fields(V& v, planning::local::MovingObstacleParams& p) {
   v("min_moving_speed_mps", p.min_moving_speed_mps);
   v("min_displacement_m", p.min_displacement_m);
   v("latch_displacement_m", p.latch_displacement_m);
-  v("recent_motion", p.recent_motion);
-  v("motion_window_s", p.motion_window_s);
-  v("moving_pause_s", p.moving_pause_s);
   v("max_prediction_s", p.max_prediction_s);
   v("global_map_margin_m", p.global_map_margin_m);
   v("coast_in_blind_zone", p.coast_in_blind_zone);
   v("max_coast_s", p.max_coast_s);
   v("coast_max_growth_m", p.coast_max_growth_m);
-  v("ignore_static_structure", p.ignore_static_structure);
-  v("keep_largest_radius", p.keep_largest_radius);
   v("partial_view_noise", p.partial_view_noise);
   v("radius_floor", p.radius_floor);
   v("radius_floor_window_s", p.radius_floor_window_s);
   v("reacquire_gate_m", p.reacquire_gate_m);
-  v("reacquire_coasting", p.reacquire_coasting);
-  v("structure_age_s", p.structure_age_s);
-  v("structure_margin_m", p.structure_margin_m);
-  v("structure_min_fraction", p.structure_min_fraction);
 }
 
 }  // namespace bipednav::navigation::param_fields

@@ -177,7 +177,6 @@ TEST(FootstepNavigatorParamsYaml, DumpReadBackGivesTheSameValues) {
   got.obstacle_step_m = 0.05;
   got.planner.robot = "digit";
   got.planner.theta_bins = 16;
-  got.planner.stance_level_heuristic = true;
   got.planner.search.initial_epsilon = 8.0;
   got.planner.search.max_expansions = 1000;
   got.fusion.variance_per_m2 = 2e-4;
@@ -193,7 +192,6 @@ TEST(FootstepNavigatorParamsYaml, DumpReadBackGivesTheSameValues) {
   EXPECT_EQ(got.obstacle_step_m, want.obstacle_step_m);
   EXPECT_EQ(got.planner.robot, "nao");
   EXPECT_EQ(got.planner.theta_bins, want.planner.theta_bins);
-  EXPECT_FALSE(got.planner.stance_level_heuristic);
   EXPECT_EQ(got.planner.search.initial_epsilon, 3.0);  // default_planner(), not AraStarParams' 8
   EXPECT_EQ(got.planner.search.max_expansions, want.planner.search.max_expansions);
   EXPECT_EQ(got.fusion.variance_per_m2, want.fusion.variance_per_m2);

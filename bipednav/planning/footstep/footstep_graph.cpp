@@ -299,7 +299,7 @@ void FootstepGraph::successors(std::int32_t s, std::vector<Edge>& out) {
 
 double FootstepGraph::heuristic(std::int32_t s) {
   const Pose2 c = body_centre(s);
-  const double h = heuristic_.seconds_to_goal_at(c.x, c.y, states_[s].z);
+  const double h = heuristic_.seconds_to_goal(c.x, c.y);
   if (max_turn_bins_ == 0) return h;
   // Each action turns the (discrete) heading by at most max_turn_bins_ bins, so reaching the
   // goal's heading tolerance takes at least this many actions.

@@ -36,7 +36,7 @@ std::unique_ptr<Heuristic> make_heuristic(const FootstepPlannerParams& p, const 
                                           const Pose2& goal) {
   if (p.heuristic == "euclidean")
     return std::make_unique<EuclideanHeuristic>(goal, p.goal_tolerance_m, a.fastest_speed_mps());
-  return std::make_unique<DijkstraHeuristic>(t, a, goal, p.goal_tolerance_m, p.stance_level_heuristic);
+  return std::make_unique<DijkstraHeuristic>(t, a, goal, p.goal_tolerance_m);
 }
 
 // Whether a safe stance exists at the goal for either foot (else BLOCKED_GOAL).

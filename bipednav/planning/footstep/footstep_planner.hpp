@@ -18,9 +18,6 @@ struct FootstepPlannerParams {
   double lattice_resolution_m = 0.01;  // x/y discretisation of states
   int theta_bins = 32;                 // 11.25 deg, finer than the smallest turning step
   std::string heuristic = "dijkstra";  // dijkstra | euclidean
-  // Dijkstra heuristic: also the (cell, stance-height level) graph (heuristics.hpp). Off: on 55
-  // Table I problems it raised the 5 s suboptimality from 1.070 to 1.127 (bench/results).
-  bool stance_level_heuristic = false;
   double goal_tolerance_m = 0.05;
   double goal_tolerance_rad = 0.3;
   // A landed sole keeps this far from rising edges (footstep_graph.hpp): the walker's landing

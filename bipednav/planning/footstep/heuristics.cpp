@@ -1,7 +1,6 @@
 #include "bipednav/planning/footstep/heuristics.hpp"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -79,7 +78,7 @@ EdgeClass classify_edge(const TerrainGrid& t, int x0, int y0, int x1, int y1, co
 //    their open neighbours, they only do not pass it on. The last state c_n is exempt: cells
 //    within the goal tolerance are never closed.
 DijkstraHeuristic::DijkstraHeuristic(const TerrainGrid& terrain, const ActionSet& actions, const Pose2& goal,
-                                     double tolerance_m, bool stance_levels)
+                                     double tolerance_m)
     : terrain_(&terrain), goal_(goal), tolerance_m_(tolerance_m), v_max_(actions.fastest_speed_mps()) {
   const auto& g = terrain.geometry();
   elevation_penalty_m_ = elevation_penalty(actions);
@@ -113,7 +112,6 @@ DijkstraHeuristic::DijkstraHeuristic(const TerrainGrid& terrain, const ActionSet
       }
     }
   }
-  if (stance_levels) build_level_graph(actions, *goal_cell);
 }
 
 // Body clearance. Every action's inverse heightmap holds the torso at the first instant of the
@@ -207,20 +205,6 @@ double DijkstraHeuristic::seconds_to_goal(double x, double y) const {
   // the straight line in the open; the straight line is a lower bound too, so take the larger.
   const double straight = std::hypot(x - goal_.x, y - goal_.y);
   return std::max(0.0, std::max(d - slack, straight) - tolerance_m_) / v_max_;
-}
-
-double DijkstraHeuristic::seconds_to_goal_at(double x, double y, double stance_z) const {
-  const double base = seconds_to_goal(x, y);
-  if (level_dist_.empty()) return base;
-  const auto c = terrain_->geometry().world_to_cell(x, y);
-  if (!c) return base;
-  const double straight = std::hypot(x - goal_.x, y - goal_.y);
-  if (straight <= tolerance_m_) return base;
-  const auto d = level_distance_m(c->x, c->y, stance_z);
-  if (!d) return base;  // not a standable level here (the start state): the 8-connected bound
-  if (!std::isfinite(*d)) return std::numeric_limits<double>::infinity();
-  const double slack = terrain_->geometry().resolution_m * std::numbers::sqrt2;
-  return std::max(base, std::max(0.0, std::max(*d - slack, straight) - tolerance_m_) / v_max_);
 }
 
 }  // namespace bipednav::footstep

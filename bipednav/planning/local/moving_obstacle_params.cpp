@@ -29,8 +29,6 @@ void MovingObstacleParams::validate() const {
           ">= 0");
   require(std::isfinite(latch_displacement_m) && latch_displacement_m >= 0.0, "moving_obstacles.latch_displacement_m",
           ">= 0");
-  require(positive(motion_window_s), "moving_obstacles.motion_window_s", "> 0");
-  require(std::isfinite(moving_pause_s) && moving_pause_s >= 0.0, "moving_obstacles.moving_pause_s", ">= 0");
   require(positive(max_prediction_s), "moving_obstacles.max_prediction_s", "> 0");
   require(std::isfinite(global_map_margin_m) && global_map_margin_m >= 0.0, "moving_obstacles.global_map_margin_m",
           ">= 0");
@@ -40,11 +38,6 @@ void MovingObstacleParams::validate() const {
   require(std::isfinite(reacquire_gate_m) && reacquire_gate_m >= 0.0, "moving_obstacles.reacquire_gate_m", ">= 0");
   require(std::isfinite(coast_max_growth_m) && coast_max_growth_m >= 0.0, "moving_obstacles.coast_max_growth_m",
           ">= 0");
-  require(std::isfinite(structure_age_s) && structure_age_s >= 0.0, "moving_obstacles.structure_age_s", ">= 0");
-  require(std::isfinite(structure_margin_m) && structure_margin_m >= 0.0, "moving_obstacles.structure_margin_m",
-          ">= 0");
-  require(positive(structure_min_fraction) && structure_min_fraction <= 1.0, "moving_obstacles.structure_min_fraction",
-          "in (0, 1]");
 }
 
 }  // namespace bipednav::planning::local

@@ -24,25 +24,14 @@ struct MovingObstacleParams {
   // ... and so do tracks whose centroid has not travelled this far from where it was first seen
   // (a static object's centroid wanders while the robot sees more or less of it).
   double min_displacement_m = 0.25;
-  // Without recent_motion: a confirmed fast track (min_hits, min_moving_speed_mps) that has once been
-  // at least this far from its first centroid counts as displaced from then on, so it stays moving
-  // while it passes where its track began (0: off, only the current distance counts): a box on a
-  // looping path was classed static one lap later and TEB backed into its lane. Larger than
-  // min_displacement_m: at 0.25 m the phantom tracks of walls (pieces whose centroids slide along
-  // them) latch too. On for every robot (evidence: docs/closed-loop-log.md,
-  // 'Parameter evidence moved from code comments', MovingObstacleParams).
+  // A confirmed fast track (min_hits, min_moving_speed_mps) that has once been at least this far
+  // from its first centroid counts as displaced from then on, so it stays moving while it passes
+  // where its track began (0: off, only the current distance counts): a box on a looping path was
+  // classed static one lap later and TEB backed into its lane. Larger than min_displacement_m: at
+  // 0.25 m the phantom tracks of walls (pieces whose centroids slide along them) latch too. On for
+  // every robot (evidence: docs/closed-loop-log.md, 'Parameter evidence moved from code comments',
+  // MovingObstacleParams).
   double latch_displacement_m = 1.0;
-  // Recent motion instead of the distance from the first centroid, with which someone walking to and
-  // fro loses "moving" for ~1.5 s each time they pass where their track began: a track is moving
-  // when it is faster than min_moving_speed_mps and its centroid is at least min_displacement_m from
-  // one of its centroids of the last motion_window_s (or the one before the window: the first one
-  // while the track is younger, the last one before a longer gap), and stays moving through a
-  // slowdown of at most moving_pause_s (a walker turning round: the speed estimate passes through
-  // zero for a cycle or two). Off: it lost hexagon_dynamic runs in the closed loops (evidence in
-  // docs/closed-loop-log.md, as above).
-  bool recent_motion = false;
-  double motion_window_s = 4.0;
-  double moving_pause_s = 0.5;
   double max_prediction_s = 4.0;  // predictions are never extrapolated further
   // Obstacle points within a moving track's radius plus this margin are kept out of the global map
   // (the navigator's use: a moving obstacle's trail would block the lanes it crossed).
@@ -58,29 +47,11 @@ struct MovingObstacleParams {
   bool coast_in_blind_zone = true;
   double max_coast_s = 10.0;
   double coast_max_growth_m = 0.3;
-  // Static structure (set_static_structure: the global map's occupancy): a blob of which at least
-  // structure_min_fraction of the binning cells lie within structure_margin_m of a cell lethal
-  // without interruption for structure_age_s is a piece of a wall and is left out, as larger blobs
-  // are. Why: a wall seen at grazing incidence (sparse returns) or cut by the range limit breaks into
-  // pieces whose centroids slide along it as the robot walks and turns (0.5-2 m/s), and they set off
-  // yielding in doorways. A mover's cells are lethal only while it is on them (the maps clear them
-  // behind it), so its blob stays. Not caught: pieces of obstacles lower than Digit's LiDAR (1 m
-  // prisms cut by its rings), whose cells the LiDAR's rays passing over them clear every few
-  // updates. Off: a moving cube seen side-on was taken for structure (evidence in
-  // docs/closed-loop-log.md, as above).
-  bool ignore_static_structure = false;
-  // A track's radius is the largest of its blobs' bounding radii (at most max_blob_radius_m), not
-  // the latest one's: an object does not shrink, but the part of it the sensors see does, at the
-  // edge of a camera's view or below the LiDAR's rings. Off: with coasting it lost the TurtleBot3's
-  // hexagon_dynamic runs; walkers use radius_floor instead (evidence in docs/closed-loop-log.md, as
-  // above).
-  bool keep_largest_radius = false;
   // A blob smaller than the largest its track has had is a partial view, its centroid off the
   // object's centre by up to the difference: its measurement noise grows by that much (so a track's
   // velocity does not follow the centroid of an object's far side receding as the object passes
-  // under the LiDAR's lowest ring). Uses the largest radius whether or not keep_largest_radius is
-  // set. Off here; on for walkers together with radius_floor (NavigatorParams::for_robot; evidence in
-  // docs/closed-loop-log.md, as above).
+  // under the LiDAR's lowest ring). Off here; on for walkers together with radius_floor
+  // (NavigatorParams::for_robot; evidence in docs/closed-loop-log.md, as above).
   bool partial_view_noise = false;
   // Radius floor for a shrinking, coasting or re-found track: a track's radius is the largest of
   // its blobs' bounding radii over the last radius_floor_window_s of its updates (it stays so while
@@ -95,17 +66,6 @@ struct MovingObstacleParams {
   bool radius_floor = false;
   double radius_floor_window_s = 5.0;
   double reacquire_gate_m = 1.0;
-  // With radius_floor: a blob left over after association that lies within reacquire_gate_m of a
-  // coasting track (of the segment from where it was last seen to its prediction now) continues it as
-  // a lost track is continued: the blob's position, the track's id, origin, hits, radius floor and
-  // velocity (its variance a new track's). Off, a coasting track is only associated within gate_m
-  // plus its growth (at most 0.75 m). Why: a track coasting on a partial view's velocity was 0.79 m
-  // off when its cube was seen again, and the new track became moving too late. Off: it moved the
-  // failures to other seeds without fewer of them (evidence in docs/closed-loop-log.md, as above).
-  bool reacquire_coasting = false;
-  double structure_age_s = 4.0;
-  double structure_margin_m = 0.2;
-  double structure_min_fraction = 0.5;
 
   void validate() const;
 };

@@ -53,21 +53,13 @@ void step(Rollout& r, const Twist& target, const VelocityLimits& lim, double dt)
 struct RolloutCheck {
   double ttc_s = kUnbounded;
   double min_gap_m = kUnbounded;
-  // The time after which the rollout is in no swept corridor (0: never in one, infinity: still in
-  // one at the horizon); only computed on request.
-  double corridor_exit_s = 0.0;
 };
 
 RolloutCheck rollout_check(const Pose2& pose, const Twist& current, const Twist& target,
                            const std::vector<TrackedObstacle>& moving, const VelocityLimits& lim, double now_s,
-                           const DynamicAvoidanceParams& p, std::vector<Pose2>* arc, bool corridors = false,
-                           const std::vector<double>* turns = nullptr, double hold_s = kUnbounded) {
-  // The prediction of obstacle i at now_s + dt: constant velocity, turned back at its turn time.
-  const auto at = [&](std::size_t i, double dt) -> Eigen::Vector2d {
-    const double tt = turns ? (*turns)[i] : kUnbounded;
-    if (dt <= tt) return moving[i].predict(now_s + dt);
-    return moving[i].predict(now_s + tt) - moving[i].velocity * (dt - tt);
-  };
+                           const DynamicAvoidanceParams& p, std::vector<Pose2>* arc, double hold_s = kUnbounded) {
+  // The prediction of obstacle i at now_s + dt: constant velocity.
+  const auto at = [&](std::size_t i, double dt) -> Eigen::Vector2d { return moving[i].predict(now_s + dt); };
   Rollout r{pose, current};
   std::vector<double> prev(moving.size());
   for (std::size_t i = 0; i < moving.size(); ++i) prev[i] = (at(i, 0.0) - pose.position()).norm();
@@ -84,9 +76,6 @@ RolloutCheck rollout_check(const Pose2& pose, const Twist& current, const Twist&
       out.min_gap_m = std::min(out.min_gap_m, d - reach);
       if (!std::isfinite(out.ttc_s) && d < reach && d < prev[i] - 1e-6) out.ttc_s = t;
       prev[i] = d;
-      // Inside the obstacle's corridor: within reach of its predicted path over the next horizon.
-      if (corridors && point_segment_distance(r.pose.position(), at(i, t), at(i, t + p.horizon_s)) < reach)
-        out.corridor_exit_s = k == n ? kUnbounded : t + p.sim_step_s;
     }
   }
   return out;
@@ -106,31 +95,6 @@ double time_to_collision(const Pose2& pose, const Twist& cmd, const std::vector<
 }
 
 namespace {
-
-// reverse_at_structure: when each obstacle's leading edge would reach a lethal cell.
-std::vector<double> turn_times(const std::vector<TrackedObstacle>& moving, const mapping::Costmap2D& costmap,
-                               double now_s, const DynamicAvoidanceParams& p) {
-  std::vector<double> turn_s;
-  const double res = costmap.resolution_m();
-  for (const auto& m : moving) {
-    double tt = kUnbounded;
-    const double speed = m.velocity.norm();
-    if (speed > 1e-3) {
-      const Eigen::Vector2d dir = m.velocity / speed, c = m.predict(now_s);
-      const double reach_m = speed * (p.horizon_s + 1e-9) + m.radius_m;
-      for (double s = m.radius_m + 2.0 * res; s <= reach_m; s += 0.5 * res) {
-        const Eigen::Vector2d q = c + dir * s;
-        const auto cell = costmap.geometry().world_to_cell(q.x(), q.y());
-        if (cell && costmap.cost(*cell) == mapping::kLethal) {
-          tt = std::max(0.0, (s - m.radius_m) / speed);
-          break;
-        }
-      }
-    }
-    turn_s.push_back(tt);
-  }
-  return turn_s;
-}
 
 // Candidates: the command slowed along its arc, then a coarse grid of forward, turning and
 // backing commands, each held over the horizon; with hold_step_s, when none of those is free, the
@@ -168,8 +132,7 @@ struct Choice {
 
 Choice choose_candidate(const std::vector<Candidate>& cand, const Twist& cmd, const Pose2& pose, const Twist& cur,
                         const std::vector<TrackedObstacle>& moving, const mapping::Costmap2D& costmap,
-                        const VelocityLimits& lim, double now_s, const DynamicAvoidanceParams& p,
-                        const std::vector<double>* turns) {
+                        const VelocityLimits& lim, double now_s, const DynamicAvoidanceParams& p) {
   const double vf = lim.max_vel_x_mps, wm = lim.max_vel_theta_radps;
   const auto deviation = [&](const Twist& c) {
     return std::abs(c.linear_x - cmd.linear_x) / std::max(vf, 1e-3) +
@@ -177,27 +140,20 @@ Choice choose_candidate(const std::vector<Candidate>& cand, const Twist& cmd, co
   };
   // A collision-free candidate (against the predictions and the costmap) closest to the command;
   // when there is none, the one that keeps the largest gap to the moving obstacles.
-  // With exit_swept_corridor, among the ones run into, the one leaving the corridors soonest first.
   const Candidate* best = nullptr;
   bool best_free = false;
-  double best_dev = kUnbounded, best_gap = -kUnbounded, best_exit = kUnbounded, best_ttc = kUnbounded;
+  double best_dev = kUnbounded, best_gap = -kUnbounded, best_ttc = kUnbounded;
   std::vector<Pose2> arc;
   for (const auto& c : cand) {
     if (std::isfinite(c.hold_s) && best_free) break;  // the held commands come first and one is free
-    const RolloutCheck rc =
-        rollout_check(pose, cur, c.cmd, moving, lim, now_s, p, &arc, p.exit_swept_corridor, turns, c.hold_s);
+    const RolloutCheck rc = rollout_check(pose, cur, c.cmd, moving, lim, now_s, p, &arc, c.hold_s);
     if (!poses_feasible(arc, costmap)) continue;
     const bool free = !std::isfinite(rc.ttc_s);
     const double dev = deviation(c.cmd);
-    const bool sooner = rc.corridor_exit_s < best_exit - 1e-9;
-    const bool as_soon = !sooner && !(rc.corridor_exit_s > best_exit + 1e-9);
-    const bool better_blocked =
-        p.exit_swept_corridor ? sooner || (as_soon && rc.min_gap_m > best_gap) : rc.min_gap_m > best_gap;
     const bool better = best == nullptr || (free && !best_free) || (free && best_free && dev < best_dev) ||
-                        (!free && !best_free && better_blocked);
+                        (!free && !best_free && rc.min_gap_m > best_gap);
     if (!better) continue;
-    best = &c, best_free = free, best_dev = dev, best_gap = rc.min_gap_m, best_exit = rc.corridor_exit_s;
-    best_ttc = rc.ttc_s;
+    best = &c, best_free = free, best_dev = dev, best_gap = rc.min_gap_m, best_ttc = rc.ttc_s;
   }
   return {best, best_ttc};
 }
@@ -213,27 +169,21 @@ YieldDecision yield_to_moving_obstacles(const Twist& cmd, const Pose2& pose, con
   out.ttc_s = kUnbounded;
   if (moving.empty() || !pose.is_finite() || !cmd.is_finite()) return out;
   const Twist cur = current.is_finite() ? current : Twist{};
-  std::vector<double> turn_s;
-  const std::vector<double>* turns = nullptr;
-  if (p.reverse_at_structure) {
-    turn_s = turn_times(moving, costmap, now_s, p);
-    turns = &turn_s;
-  }
-  out.ttc_s = rollout_check(pose, cur, cmd, moving, lim, now_s, p, nullptr, false, turns).ttc_s;
+  out.ttc_s = rollout_check(pose, cur, cmd, moving, lim, now_s, p, nullptr).ttc_s;
   if (!std::isfinite(out.ttc_s)) return out;
 
   const std::vector<Candidate> cand = yield_candidates(cmd, lim, p);
-  const Choice choice = choose_candidate(cand, cmd, pose, cur, moving, costmap, lim, now_s, p, turns);
+  const Choice choice = choose_candidate(cand, cmd, pose, cur, moving, costmap, lim, now_s, p);
   out.modified = true;
   if (choice.best == nullptr) {
     out.target = {};
     out.cmd = limit_velocity({}, cur, period_s, lim);
-    out.ttc_s = rollout_check(pose, cur, Twist{}, moving, lim, now_s, p, nullptr, false, turns).ttc_s;
+    out.ttc_s = rollout_check(pose, cur, Twist{}, moving, lim, now_s, p, nullptr).ttc_s;
     return out;
   }
   out.target = choice.best->cmd;
   out.cmd = limit_velocity(choice.best->cmd, cur, period_s, lim);
-  out.ttc_s = choice.ttc_s;  // the corridors and the arc the loop also asked for do not change it
+  out.ttc_s = choice.ttc_s;  // the arc the loop also asked for does not change it
   return out;
 }
 

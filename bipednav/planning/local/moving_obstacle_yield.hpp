@@ -36,25 +36,6 @@ struct DynamicAvoidanceParams {
   // 45.4 s with the box 0.3 m away and was run into. 0: off (only held commands); else at least
   // sim_step_s. On for wheeled robots (NavigatorParams::for_robot, 0.25 s).
   double hold_step_s = 0.0;
-  // When every candidate is run into: the one whose rollout leaves the obstacles' swept corridors
-  // soonest (a corridor: the points within reach of where the obstacle is predicted over the next
-  // horizon_s, from each rollout step on; left: never inside one again within the horizon), the
-  // largest gap among those leaving equally soon or not at all. Off: the largest gap alone, which
-  // may back off down the obstacle's lane ahead of it instead of stepping out of it
-  // (InAMoversLaneExitSweptCorridorLeavesTheLane).
-  // Off: it did not gain on three_rooms/digit (evidence in docs/closed-loop-log.md, 'Parameter
-  // evidence moved from code comments', DynamicAvoidanceParams).
-  bool exit_swept_corridor = false;
-  // An obstacle's prediction turns back (the velocity reversed) where its leading edge, moving on
-  // at constant velocity, would reach a lethal cell of the costmap (searched along the velocity from
-  // its radius plus two cells on, within the horizon): movers do not pass through walls, and one
-  // walking to and fro comes back. Cause addressed: three_rooms/digit seeds 15 and 18, cube_1 turns
-  // at the end of its lane (y = -2.3, 0.35 m from the wall's face) at 92 s while Digit crosses the
-  // lane 1 m in front of it; predicted on into the wall, it left the robot's path free until the
-  // turn, and yielding began 0.7 s after it, too late for the walker to leave the lane.
-  // Off: it moved Digit's three_rooms failures to other seeds without fewer of them (evidence as
-  // above).
-  bool reverse_at_structure = false;
 
   void validate() const;
 };

@@ -44,27 +44,22 @@ MovingObstacleTracker::MovingObstacleTracker(MovingObstacleParams params) : para
   params_.validate();
 }
 
-void MovingObstacleTracker::set_static_structure(const mapping::Costmap2D& occupancy, double stamp_s) {
-  if (params_.enabled && params_.ignore_static_structure) structure_.update(occupancy, stamp_s);
-}
-
 void MovingObstacleTracker::clear() {
   tracks_.clear();
   lost_.clear();
-  structure_.clear();
   last_stamp_s_ = -1e300;
 }
 
 void MovingObstacleTracker::update(const std::vector<Eigen::Vector2d>& points, const Eigen::Vector2d& robot,
                                    double stamp_s) {
   if (!params_.enabled || !std::isfinite(stamp_s) || !robot.allFinite()) return;
-  update_blobs(cluster_blobs(points, robot, params_, {}, &structure_, &blob_scratch_), stamp_s);
+  update_blobs(cluster_blobs(points, robot, params_, {}, &blob_scratch_), stamp_s);
 }
 
 void MovingObstacleTracker::update(const std::vector<Eigen::Vector2d>& points, const std::vector<double>& heights,
                                    const Pose2& robot, double stamp_s) {
   if (!params_.enabled || !std::isfinite(stamp_s) || !robot.is_finite()) return;
-  update_blobs(cluster_blobs(points, robot.position(), params_, heights, &structure_, &blob_scratch_), stamp_s, robot);
+  update_blobs(cluster_blobs(points, robot.position(), params_, heights, &blob_scratch_), stamp_s, robot);
 }
 
 namespace {
@@ -102,35 +97,15 @@ double floor_radius(TrackedObstacle& t, double radius_m, double stamp_s, double 
 }  // namespace
 
 bool MovingObstacleTracker::is_moving(const TrackedObstacle& t) const {
-  if (params_.recent_motion) return t.moving;
   return t.hits >= params_.min_hits && t.velocity.norm() >= params_.min_moving_speed_mps &&
          (t.displaced || (t.position - t.origin).norm() >= params_.min_displacement_m);
 }
 
-void MovingObstacleTracker::update_motion(TrackedObstacle& t, double stamp_s) const {
-  if (!params_.recent_motion) {
-    const double latch = params_.latch_displacement_m;
-    if (latch > 0.0 && !t.displaced && t.hits >= params_.min_hits &&
-        t.velocity.norm() >= params_.min_moving_speed_mps && (t.position - t.origin).squaredNorm() >= latch * latch)
-      t.displaced = true;
-    return;
-  }
-  // The window's samples and the latest one before it (where the track was motion_window_s ago, or
-  // when last seen before a longer gap).
-  auto& recent = t.recent;
-  recent.push_back({stamp_s, t.position});
-  auto first_in = std::find_if(recent.begin(), recent.end(), [&](const TrackedObstacle::Sample& s) {
-    return s.stamp_s >= stamp_s - params_.motion_window_s;
-  });
-  if (first_in != recent.begin()) recent.erase(recent.begin(), first_in - 1);
-  // The farthest of them from the latest centroid: the recent travel.
-  double travel2 = 0.0;
-  for (const auto& s : recent) travel2 = std::max(travel2, (t.position - s.position).squaredNorm());
-  const double d_min = params_.min_displacement_m;
-  const bool fast = t.velocity.norm() >= params_.min_moving_speed_mps;
-  if (fast || !t.moving) t.last_fast_s = stamp_s;
-  const bool pausing = t.moving && stamp_s - t.last_fast_s <= params_.moving_pause_s;
-  t.moving = t.hits >= params_.min_hits && travel2 >= d_min * d_min && (fast || pausing);
+void MovingObstacleTracker::latch_displaced(TrackedObstacle& t) const {
+  const double latch = params_.latch_displacement_m;
+  if (latch > 0.0 && !t.displaced && t.hits >= params_.min_hits && t.velocity.norm() >= params_.min_moving_speed_mps &&
+      (t.position - t.origin).squaredNorm() >= latch * latch)
+    t.displaced = true;
 }
 
 void MovingObstacleTracker::update_blobs(const std::vector<Blob>& blobs, double stamp_s,
@@ -190,12 +165,12 @@ void MovingObstacleTracker::update_track(TrackedObstacle& t, const Blob& blob, d
   const double speed = t.velocity.norm();
   if (speed > params_.max_speed_mps) t.velocity *= params_.max_speed_mps / speed;
   t.max_radius_m = std::max(t.max_radius_m, blob.radius_m);
-  t.radius_m = params_.keep_largest_radius ? t.max_radius_m : blob.radius_m;
+  t.radius_m = blob.radius_m;
   if (params_.radius_floor)
     t.radius_m = std::max(t.radius_m, floor_radius(t, blob.radius_m, stamp_s, params_.radius_floor_window_s));
   t.top_m = std::max(t.top_m, blob.top_m);
   ++t.hits;
-  update_motion(t, stamp_s);
+  latch_displaced(t);
 }
 
 void MovingObstacleTracker::keep_unseen(double stamp_s, const std::optional<Pose2>& robot,
@@ -241,7 +216,6 @@ void MovingObstacleTracker::start_track(const Blob& blob, double stamp_s) {
   TrackedObstacle t;
   t.id = next_id_++;
   t.position = t.origin = blob.centroid;
-  if (params_.recent_motion) t.recent.push_back({stamp_s, t.position});
   t.radius_m = t.max_radius_m = blob.radius_m;
   t.top_m = blob.top_m;
   t.stamp_s = t.last_seen_s = stamp_s;
@@ -250,42 +224,8 @@ void MovingObstacleTracker::start_track(const Blob& blob, double stamp_s) {
   t.cov_x << r2, 0.0, 0.0, v0 * v0;
   t.cov_y = t.cov_x;
   t.seen_sigma_m = position_sigma(t);
-  if (params_.radius_floor && params_.reacquire_coasting && continue_coasting(blob, t, stamp_s)) return;
   if (params_.radius_floor) continue_lost(t, blob, stamp_s);
   tracks_.push_back(t);
-}
-
-bool MovingObstacleTracker::continue_coasting(const Blob& blob, const TrackedObstacle& t, double stamp_s) {
-  // The nearest coasting track whose last seen or predicted position is within the gate
-  // continues (as a lost one does, below), unless a lost track is nearer.
-  std::size_t best = tracks_.size();
-  double best_d = kInf;
-  for (std::size_t k = 0; k < tracks_.size(); ++k) {
-    const TrackedObstacle& c = tracks_[k];
-    if (!c.coasting) continue;
-    const double d = point_segment_distance(blob.centroid, c.predict(c.last_seen_s), c.position);
-    if (d <= params_.reacquire_gate_m && d < best_d) best = k, best_d = d;
-  }
-  for (const auto& lost : lost_) {
-    if (lost_track_distance(lost.first, blob.centroid, stamp_s, params_.max_prediction_s) < best_d)
-      best = tracks_.size();
-  }
-  if (best >= tracks_.size()) return false;
-  TrackedObstacle& c = tracks_[best];
-  c.position = blob.centroid;
-  c.cov_x = t.cov_x;
-  c.cov_y = t.cov_y;
-  ++c.hits;
-  c.max_radius_m = std::max(c.max_radius_m, blob.radius_m);
-  c.top_m = std::max(c.top_m, blob.top_m);
-  for (auto& r : c.radii) r.stamp_s = stamp_s;  // the floor restarts its window now
-  c.radius_m = std::max(params_.keep_largest_radius ? c.max_radius_m : blob.radius_m,
-                        floor_radius(c, blob.radius_m, stamp_s, params_.radius_floor_window_s));
-  c.coasting = false;
-  c.last_seen_s = stamp_s;
-  c.seen_sigma_m = position_sigma(c);
-  update_motion(c, stamp_s);
-  return true;
 }
 
 void MovingObstacleTracker::continue_lost(TrackedObstacle& t, const Blob& blob, double stamp_s) {
@@ -309,12 +249,6 @@ void MovingObstacleTracker::continue_lost(TrackedObstacle& t, const Blob& blob, 
     t.radii = l.radii;
     for (auto& r : t.radii) r.stamp_s = stamp_s;  // the floor restarts its window now
     t.radius_m = std::max(t.radius_m, floor_radius(t, blob.radius_m, stamp_s, params_.radius_floor_window_s));
-    if (params_.recent_motion) {
-      t.recent = l.recent;
-      t.recent.push_back({stamp_s, t.position});
-      t.moving = false;
-      t.last_fast_s = stamp_s;
-    }
     lost_.erase(lost_.begin() + static_cast<std::ptrdiff_t>(best));
   } else {
     t.radii.push_back({stamp_s, t.radius_m});

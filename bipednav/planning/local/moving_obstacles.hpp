@@ -6,11 +6,9 @@
 #include <vector>
 
 #include "bipednav/common/pose2.hpp"
-#include "bipednav/mapping/costmap2d.hpp"
 #include "bipednav/planning/local/moving_obstacle_params.hpp"
 #include "bipednav/planning/local/obstacle_blobs.hpp"
 #include "bipednav/tracking/sensor_visibility.hpp"
-#include "bipednav/tracking/static_structure.hpp"
 
 namespace bipednav::planning::local {
 
@@ -20,7 +18,7 @@ struct TrackedObstacle {
   Eigen::Vector2d position = Eigen::Vector2d::Zero();  // filtered centroid at stamp_s
   Eigen::Vector2d velocity = Eigen::Vector2d::Zero();
   Eigen::Vector2d origin = Eigen::Vector2d::Zero();  // the first centroid
-  double radius_m = 0.0;      // bounding circle of the latest blob (the largest: keep_largest_radius)
+  double radius_m = 0.0;      // bounding circle of the latest blob (radius_floor: of its recent ones)
   double max_radius_m = 0.0;  // the largest of its blobs' bounding circles
   double top_m = 0.0;         // highest point of the blobs seen (0: unknown)
   bool coasting = false;      // unseen, predicted through a blind zone
@@ -28,20 +26,9 @@ struct TrackedObstacle {
   double stamp_s = 0.0;       // time of position / velocity (the latest cycle)
   double last_seen_s = 0.0;   // time of the latest associated blob
   int hits = 0;
-  // With MovingObstacleParams::recent_motion: whether it is moving as of the latest update, the
-  // latest update at which it was fast enough (or not moving), and the filtered centroids after the
-  // updates of the last motion_window_s and the latest one before (oldest first; the first is the
-  // blob the track began with until the track is older).
-  bool moving = false;
-  double last_fast_s = 0.0;
   // With MovingObstacleParams::latch_displacement_m: it has been that far from its origin while
   // confirmed and fast.
   bool displaced = false;
-  struct Sample {
-    double stamp_s = 0.0;
-    Eigen::Vector2d position = Eigen::Vector2d::Zero();
-  };
-  std::vector<Sample> recent;
   // With MovingObstacleParams::radius_floor: its blobs' radii of the last radius_floor_window_s.
   struct RadiusSample {
     double stamp_s = 0.0;
@@ -71,44 +58,36 @@ class MovingObstacleTracker {
   // Blobs instead of points (for tests and other sources); `robot` enables coasting.
   void update_blobs(const std::vector<Blob>& blobs, double stamp_s, const std::optional<Pose2>& robot = std::nullopt);
   void clear();
-  // The static structure blobs are checked against (ignore_static_structure): the global map's
-  // occupancy, given before the cycle's update(). Without it no blob counts as structure.
-  void set_static_structure(const mapping::Costmap2D& occupancy, double stamp_s);
-  const tracking::StaticStructure& static_structure() const { return structure_; }
   // The robot's sensors, for coasting (default: none, no coasting).
   void set_visibility(tracking::SensorVisibility visibility) { visibility_ = std::move(visibility); }
   const tracking::SensorVisibility& visibility() const { return visibility_; }
 
   const std::vector<TrackedObstacle>& tracks() const { return tracks_; }
   // Tracks that are confirmed (min_hits), moving (min_moving_speed_mps, min_displacement_m,
-  // recent_motion) and fresh at now_s (or coasting). A coasting track's radius is grown by its
+  // latch_displacement_m) and fresh at now_s (or coasting). A coasting track's radius is grown by its
   // position uncertainty.
   std::vector<TrackedObstacle> moving(double now_s) const;
   const MovingObstacleParams& params() const { return params_; }
 
  private:
   bool is_moving(const TrackedObstacle& t) const;
-  // After an update of t at stamp_s: its recent centroids and whether it is moving (recent_motion),
-  // else whether it is latched displaced (latch_displacement_m).
-  void update_motion(TrackedObstacle& t, double stamp_s) const;
+  // After an update of t: whether it is latched displaced (latch_displacement_m).
+  void latch_displaced(TrackedObstacle& t) const;
   // update_blobs' steps, in order: the Kalman prediction of every track to stamp_s; the gated
   // nearest-neighbour association (marking the tracks and blobs used) and update_track for each pair;
   // keeping, coasting or dropping the unseen tracks; a track for every blob left (start_track, which
-  // may continue a coasting track or a lost one instead).
+  // may continue a lost one instead).
   void predict_tracks(double stamp_s);
   void associate(const std::vector<Blob>& blobs, double stamp_s, std::vector<char>& track_used,
                  std::vector<char>& blob_used);
   void update_track(TrackedObstacle& t, const Blob& blob, double stamp_s) const;
   void keep_unseen(double stamp_s, const std::optional<Pose2>& robot, const std::vector<char>& track_used);
   void start_track(const Blob& blob, double stamp_s);
-  // reacquire_coasting: whether the new track t of `blob` continued a coasting track.
-  bool continue_coasting(const Blob& blob, const TrackedObstacle& t, double stamp_s);
   // radius_floor: the new track t continues the nearest lost track within reacquire_gate_m, if any.
   void continue_lost(TrackedObstacle& t, const Blob& blob, double stamp_s);
 
   MovingObstacleParams params_;
   tracking::SensorVisibility visibility_;
-  tracking::StaticStructure structure_;
   std::vector<TrackedObstacle> tracks_;
   // With radius_floor: confirmed moving tracks dropped within the last max_coast_s and when.
   std::vector<std::pair<TrackedObstacle, double>> lost_;

@@ -230,27 +230,11 @@ Blob blob_of(const std::vector<Eigen::Vector2d>& points, const std::vector<doubl
   return b;
 }
 
-// Whether the blob of BlobScratch::members lies on static structure (structure_min_fraction).
-bool on_structure(const BlobScratch& w, const MovingObstacleParams& params,
-                  const tracking::StaticStructure& structure) {
-  const double cell = params.cluster_cell_m;
-  const auto& cell_xy = w.cell_xy;
-  // The share of the blob's binning cells (at their centres) on long-standing structure.
-  std::size_t on = 0;
-  for (const std::size_t c : w.members) {
-    const Eigen::Vector2d q((static_cast<double>(cell_xy[c].first) + 0.5) * cell,
-                            (static_cast<double>(cell_xy[c].second) + 0.5) * cell);
-    if (structure.near(q, params.structure_margin_m, params.structure_age_s)) ++on;
-  }
-  return static_cast<double>(on) >= params.structure_min_fraction * static_cast<double>(w.members.size());
-}
-
 }  // namespace
 
 std::vector<Blob> cluster_blobs(const std::vector<Eigen::Vector2d>& points, const Eigen::Vector2d& center,
                                 const MovingObstacleParams& params, const std::vector<double>& heights,
-                                const tracking::StaticStructure* structure, BlobScratch* scratch) {
-  const bool check_structure = params.ignore_static_structure && structure != nullptr && !structure->empty();
+                                BlobScratch* scratch) {
   require(heights.empty() || heights.size() == points.size(), "cluster_blobs heights",
           "empty or one per point (" + std::to_string(points.size()) + "), got " + std::to_string(heights.size()));
   std::vector<Blob> out;
@@ -268,7 +252,6 @@ std::vector<Blob> cluster_blobs(const std::vector<Eigen::Vector2d>& points, cons
     collect_cells(c0, index, w);
     const Blob b = blob_of(points, heights, w);
     if (b.points < params.min_points || b.radius_m > params.max_blob_radius_m) continue;
-    if (check_structure && on_structure(w, params, *structure)) continue;
     out.push_back(b);
   }
   return out;

@@ -7,7 +7,6 @@
 #include <vector>
 
 #include "bipednav/planning/local/moving_obstacle_params.hpp"
-#include "bipednav/tracking/static_structure.hpp"
 
 namespace bipednav::planning::local {
 
@@ -33,11 +32,10 @@ struct BlobScratch {
 
 // Clusters 2D points (map frame) within max_range_m of `center` into blobs; blobs larger than
 // max_blob_radius_m or with fewer than min_points points are left out. Deterministic order.
-// `heights` (empty, or one per point: height above the floor) gives the blobs' tops. With a
-// non-empty `structure` and ignore_static_structure, blobs on static structure are left out too
-// (MovingObstacleParams::structure_*). Without `scratch` the call allocates its own buffers.
+// `heights` (empty, or one per point: height above the floor) gives the blobs' tops. Without
+// `scratch` the call allocates its own buffers.
 std::vector<Blob> cluster_blobs(const std::vector<Eigen::Vector2d>& points, const Eigen::Vector2d& center,
                                 const MovingObstacleParams& params, const std::vector<double>& heights = {},
-                                const tracking::StaticStructure* structure = nullptr, BlobScratch* scratch = nullptr);
+                                BlobScratch* scratch = nullptr);
 
 }  // namespace bipednav::planning::local

@@ -50,9 +50,6 @@ void TebOptimizerParams::validate() const {
   require(linear_solver == "banded_lm" || linear_solver == "sparse_normal_cholesky" ||
               linear_solver == "dense_normal_cholesky" || linear_solver == "dense_qr" || linear_solver == "dense_schur",
           "linear_solver", "banded_lm, sparse_normal_cholesky, dense_normal_cholesky, dense_qr or dense_schur");
-  require(ceres_line_search_interpolation == "cubic" || ceres_line_search_interpolation == "quadratic" ||
-              ceres_line_search_interpolation == "bisection",
-          "ceres_line_search_interpolation", "cubic, quadratic or bisection");
   require(ceres_sparse_library == "suite_sparse" || ceres_sparse_library == "eigen_sparse", "ceres_sparse_library",
           "suite_sparse or eigen_sparse");
 }

@@ -81,16 +81,9 @@ struct TebOptimizerParams {
   double dynamic_obstacle_lead_s = 0.0;         // > 0: the bound from the segment swept over the next lead_s
   bool dynamic_obstacle_largest_radius = true;  // the track's largest blob radius, not its latest
   std::string linear_solver = "sparse_normal_cholesky";
-  // Ceres-only solver settings (the Ceres linear solvers above; banded_lm ignores them); the defaults are Ceres'
-  // own and give today's bands. With the dT lower bounds Ceres runs a projected Armijo line search along every
-  // trust-region step. ceres_line_search_interpolation is its line_search_interpolation_type: "cubic" evaluates
-  // the gradient (every Jacobian) at each trial point, "bisection" halves the step and "quadratic" interpolates,
-  // both from costs alone. ceres_sparse_library is sparse_normal_cholesky's factorisation: "suite_sparse"
-  // (CHOLMOD) or "eigen_sparse" (Eigen's simplicial LDLT: the same bands to rounding, less set-up per solve).
-  // Cubic and CHOLMOD stay the defaults; wheeled robots use eigen_sparse (NavigatorParams::for_robot).
-  // Bisection cost less CPU but lost closed-loop runs; "quadratic" and no line search gave far worse bands
-  // (docs/closed-loop-log.md, 'Parameter evidence moved from code comments').
-  std::string ceres_line_search_interpolation = "cubic";
+  // Ceres-only solver setting (the Ceres linear solvers above; banded_lm ignores it): sparse_normal_cholesky's
+  // factorisation, "suite_sparse" (CHOLMOD, Ceres' own default) or "eigen_sparse" (Eigen's simplicial LDLT: the
+  // same bands to rounding, less set-up per solve). Wheeled robots use eigen_sparse (NavigatorParams::for_robot).
   std::string ceres_sparse_library = "suite_sparse";
 
   void validate() const;

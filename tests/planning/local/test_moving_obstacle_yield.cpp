@@ -126,12 +126,11 @@ Pose2 roll_out(Pose2 pose, const Twist& target, const VelocityLimits& lim, doubl
 
 }  // namespace
 
-TEST(MovingObstacles, InAMoversLaneExitSweptCorridorLeavesTheLane) {
+TEST(MovingObstacles, InAMoversLaneWithNothingFreeTheLargestGapIsKept) {
   // Digit (radius 0.35 m, Digit's limits) standing in a 0.5 m cube's lane (x = 0), turned 0.6 rad
   // towards it, the cube 0.9 m away coming down the lane at 0.25 m/s (three_rooms/digit, cube_2
-  // just after the robot crossed ahead of it): every candidate is run into. The largest gap is
-  // backing off down the lane ahead of the cube; leaving the corridor soonest is walking on
-  // forward, turning away from the cube, out of the lane.
+  // just after the robot crossed ahead of it): every candidate is run into. The one keeping the
+  // largest gap backs off down the lane ahead of the cube, inside its corridor.
   const auto map = test::empty_costmap(0.0, 0.0, 8.0);
   const VelocityLimits lim = bipednav::test::forward_yaw_limits(0.5, 0.25, 0.6, 0.5, 1.0);
   TrackedObstacle cube;
@@ -144,50 +143,11 @@ TEST(MovingObstacles, InAMoversLaneExitSweptCorridorLeavesTheLane) {
   const double reach = p.robot_radius_m + cube.radius_m + p.safety_margin_m + p.prediction_growth_mps * p.horizon_s;
   const Pose2 pose{0.0, 0.0, 0.6};
   const Twist cmd{0.1, 0.0, -0.3};
-  ASSERT_FALSE(p.exit_swept_corridor);
   const auto gap = yield_to_moving_obstacles(cmd, pose, {}, {cube}, map, lim, 0.1, 0.0, p);
   ASSERT_TRUE(gap.modified);
   EXPECT_LT(gap.ttc_s, 0.5);  // nothing is free
   EXPECT_LT(gap.target.linear_x, 0.0);
   EXPECT_LT(std::abs(roll_out(pose, gap.target, lim, p.horizon_s).x), reach);
-  p.exit_swept_corridor = true;
-  const auto exit = yield_to_moving_obstacles(cmd, pose, {}, {cube}, map, lim, 0.1, 0.0, p);
-  ASSERT_TRUE(exit.modified);
-  EXPECT_LT(exit.ttc_s, 0.5);
-  EXPECT_GT(exit.target.linear_x, 0.0);
-  EXPECT_LT(exit.target.angular_z, 0.0);
-  EXPECT_GT(roll_out(pose, exit.target, lim, p.horizon_s).x, reach);
-}
-
-TEST(MovingObstacles, ReverseAtStructureTurnsAMoverBackAtTheWall) {
-  // A cube (radius 0.35 m) 0.8 m from a wall (lethal from y = -2.0 down) walks towards it at
-  // 0.3 m/s; the robot (radius 0.38 m) crosses its lane 0.6 m in front of it at 0.3 m/s. Constant
-  // velocity takes the cube through the wall and away from the robot's path: nothing to yield to.
-  // Turned back where its leading edge reaches the wall (after ~1.6 s), it meets the robot in its
-  // lane (three_rooms: cube_1 turns at the end of its lane as Digit crosses it).
-  auto map = test::empty_costmap(0.0, 0.0, 8.0);
-  test::add_box(map, -3.0, -2.2, 3.0, -2.0);
-  TrackedObstacle cube;
-  cube.id = 1;
-  cube.position = {1.0, -1.2};
-  cube.velocity = {0.0, -0.3};
-  cube.radius_m = 0.35;
-  const std::vector<TrackedObstacle> moving{cube};
-  const VelocityLimits lim = bipednav::test::forward_yaw_limits(0.5, 0.25, 0.6, 0.5, 1.0);
-  DynamicAvoidanceParams p;
-  p.robot_radius_m = 0.38;
-  const Pose2 pose{0.2, -0.6, 0.0};
-  const Twist cmd{0.3, 0.0, 0.0};
-  const auto straight = yield_to_moving_obstacles(cmd, pose, cmd, moving, map, lim, 0.1, 0.0, p);
-  EXPECT_FALSE(straight.modified);
-  EXPECT_FALSE(std::isfinite(straight.ttc_s));
-  p.reverse_at_structure = true;
-  const auto turned = yield_to_moving_obstacles(cmd, pose, cmd, moving, map, lim, 0.1, 0.0, p);
-  EXPECT_TRUE(turned.modified);
-  // Without a wall in its way the prediction is the straight one.
-  const auto open =
-      yield_to_moving_obstacles(cmd, pose, cmd, moving, test::empty_costmap(0.0, 0.0, 8.0), lim, 0.1, 0.0, p);
-  EXPECT_FALSE(open.modified);
 }
 
 TEST(MovingObstacles, OfSeveralSafeCommandsTheClosestToThePlannersIsKept) {

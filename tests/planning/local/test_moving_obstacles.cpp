@@ -73,18 +73,6 @@ TEST(MovingObstacles, BadParametersAreRejected) {
   DynamicAvoidanceParams g;
   g.prediction_growth_mps = -0.05;
   EXPECT_ANY_THROW(g.validate());
-  MovingObstacleParams s;
-  s.structure_min_fraction = 0.0;
-  EXPECT_ANY_THROW(s.validate());
-  s.structure_min_fraction = 0.5;
-  s.structure_age_s = -1.0;
-  EXPECT_ANY_THROW(s.validate());
-  MovingObstacleParams w;
-  w.motion_window_s = 0.0;
-  EXPECT_ANY_THROW(w.validate());
-  w.motion_window_s = 4.0;
-  w.moving_pause_s = -0.1;
-  EXPECT_ANY_THROW(w.validate());
   MovingObstacleParams l;
   l.latch_displacement_m = -1.0;
   EXPECT_ANY_THROW(l.validate());
@@ -191,25 +179,6 @@ TEST(MovingObstacles, UnseenTrackInViewIsDroppedAndCoastingIsBounded) {
   EXPECT_DOUBLE_EQ(last_moving(off, {0.2, 2.0}, {0.2, 0.0}, 14.0, true), 2.5);
 }
 
-TEST(MovingObstacles, KeepLargestRadiusRemembersTheWholeObject) {
-  // A 0.5 m cube (bounding radius 0.35 m) seen whole, then only a corner of it (radius 0.1 m) as it
-  // crosses the edge of the sensors' view: with keep_largest_radius the track keeps 0.35 m.
-  const auto radius_after = [](bool keep) {
-    MovingObstacleParams p;
-    p.keep_largest_radius = keep;
-    MovingObstacleTracker tracker(p);
-    for (int k = 0; k <= 20; ++k) {
-      const double t = 0.1 * k;
-      const Eigen::Vector2d c(0.3 * t, 2.0);
-      tracker.update_blobs({Blob{c, k < 10 ? 0.35 : 0.1, 0.5, 20}}, t);
-    }
-    const auto m = tracker.moving(2.0);
-    return m.size() == 1 ? m[0].radius_m : -1.0;
-  };
-  EXPECT_DOUBLE_EQ(radius_after(false), 0.1);
-  EXPECT_DOUBLE_EQ(radius_after(true), 0.35);
-}
-
 TEST(MovingObstacles, RadiusFloorKeepsTheRadiusOfAShrinkingBlob) {
   // A 0.5 m cube (bounding radius 0.35 m) moving at 0.3 m/s, seen whole for 1 s, then shrinking to
   // 0.06 m over 1 s as it passes under the LiDAR's lowest ring: with radius_floor the track keeps
@@ -256,50 +225,6 @@ TEST(MovingObstacles, RadiusFloorContinuesALostTrackFoundAgain) {
   EXPECT_EQ(on[0].id, 1);
   EXPECT_DOUBLE_EQ(on[0].radius_m, 0.35);
   EXPECT_NEAR(on[0].velocity.x(), 0.3, 0.05);
-}
-
-TEST(MovingObstacles, ReacquireCoastingContinuesACoastingTrackFoundFarFromItsPrediction) {
-  // A cube 2.5 m beside the robot (below the LiDAR's lowest ring, outside both cameras) moves at
-  // 0.5 m/s in +x, seen for 2 s, then turns back unseen: its track coasts on in +x. At 3.4 s it is
-  // seen again at x = 0.5, 1.4 m from the prediction (x = 1.9), beyond gate_m plus the coasting
-  // growth (0.75 m) but within reacquire_gate_m of the segment from where it was last seen
-  // (x = 1.2). With reacquire_coasting the blob continues the coasting track (same id, moving at
-  // once, at the blob); without it a new unconfirmed track starts and the stale prediction stays.
-  const Pose2 robot{0.0, 0.0, 0.0};
-  const auto cube_x = [](double t) { return t <= 2.0 ? 0.2 + 0.5 * t : 1.2 - 0.5 * (t - 2.0); };
-  const auto run = [&](bool reacquire, double until_s) {
-    MovingObstacleParams p = coasting_tracking();
-    p.radius_floor = true;
-    p.reacquire_coasting = reacquire;
-    MovingObstacleTracker tracker(p);
-    tracker.set_visibility(digit_visibility());
-    for (int k = 0; 0.1 * k <= until_s + 1e-9; ++k) {
-      const double t = 0.1 * k;
-      std::vector<Blob> blobs;
-      if (t <= 2.0 + 1e-9 || t >= 3.4 - 1e-9) blobs.push_back(cube_blob({cube_x(t), 2.5}));
-      tracker.update_blobs(blobs, t, robot);
-    }
-    return tracker;
-  };
-  const double t_seen = 3.4;
-  const auto on = run(true, t_seen), off = run(false, t_seen);
-  const auto m_on = on.moving(t_seen), m_off = off.moving(t_seen);
-  ASSERT_EQ(m_on.size(), 1u);
-  EXPECT_EQ(m_on[0].id, 1);
-  EXPECT_FALSE(m_on[0].coasting);
-  EXPECT_NEAR(m_on[0].position.x(), cube_x(t_seen), 1e-9);
-  EXPECT_DOUBLE_EQ(m_on[0].radius_m, 0.35);
-  EXPECT_EQ(on.tracks().size(), 1u);  // no stale coasting copy left behind
-  ASSERT_EQ(m_off.size(), 1u);
-  EXPECT_EQ(m_off[0].id, 1);
-  EXPECT_TRUE(m_off[0].coasting);
-  EXPECT_GT(std::abs(m_off[0].position.x() - cube_x(t_seen)), 1.3);
-  EXPECT_EQ(off.tracks().size(), 2u);
-  // Its velocity follows the blobs from there on (a new track's variance): -0.5 m/s after 1 s.
-  const auto later = run(true, t_seen + 1.0);
-  ASSERT_EQ(later.tracks().size(), 1u);
-  EXPECT_EQ(later.tracks()[0].id, 1);
-  EXPECT_NEAR(later.tracks()[0].velocity.x(), -0.5, 0.05);
 }
 
 TEST(MovingObstacles, PartialViewNoiseKeepsTheVelocityOfAShrinkingBlob) {

@@ -12,7 +12,6 @@
 
 #include "bipednav/common/error.hpp"
 #include "bipednav/planning/local/obstacle_blobs.hpp"
-#include "bipednav/tracking/static_structure.hpp"
 #include "moving_obstacle_test_utils.hpp"
 
 namespace bipednav::planning::local {
@@ -99,9 +98,7 @@ std::uint64_t reference_cell_key(long x, long y) {
 // bitwise reference of ClusterBlobsBinningMatchesTheScalarCode.
 std::vector<Blob> cluster_blobs_scalar_binning(const std::vector<Eigen::Vector2d>& points,
                                                const Eigen::Vector2d& center, const MovingObstacleParams& params,
-                                               const std::vector<double>& heights,
-                                               const tracking::StaticStructure* structure) {
-  const bool check_structure = params.ignore_static_structure && structure != nullptr && !structure->empty();
+                                               const std::vector<double>& heights) {
   require(heights.empty() || heights.size() == points.size(), "cluster_blobs heights",
           "empty or one per point (" + std::to_string(points.size()) + "), got " + std::to_string(heights.size()));
   std::vector<Blob> out;
@@ -218,16 +215,6 @@ std::vector<Blob> cluster_blobs_scalar_binning(const std::vector<Eigen::Vector2d
     }
     b.radius_m = std::max(b.radius_m, std::sqrt(r2));
     if (b.points < params.min_points || b.radius_m > params.max_blob_radius_m) continue;
-    if (check_structure) {
-      // The share of the blob's binning cells (at their centres) on long-standing structure.
-      std::size_t on = 0;
-      for (const std::size_t c : members) {
-        const Eigen::Vector2d q((static_cast<double>(cell_xy[c].first) + 0.5) * cell,
-                                (static_cast<double>(cell_xy[c].second) + 0.5) * cell);
-        if (structure->near(q, params.structure_margin_m, params.structure_age_s)) ++on;
-      }
-      if (static_cast<double>(on) >= params.structure_min_fraction * static_cast<double>(members.size())) continue;
-    }
     out.push_back(b);
   }
   return out;
@@ -279,8 +266,7 @@ TEST(MovingObstacles, ClusterBlobsBinningMatchesTheScalarCode) {
     if (trial % 5 == 4)
       for (int i = 0; i < n; i += 7) pts[static_cast<std::size_t>(i)] *= 1e10;
     const auto got = cluster_blobs(pts, center, q, trial % 2 ? heights : std::vector<double>{});
-    const auto want =
-        cluster_blobs_scalar_binning(pts, center, q, trial % 2 ? heights : std::vector<double>{}, nullptr);
+    const auto want = cluster_blobs_scalar_binning(pts, center, q, trial % 2 ? heights : std::vector<double>{});
     ASSERT_EQ(got.size(), want.size()) << "trial " << trial;
     for (std::size_t b = 0; b < got.size(); ++b) {
       EXPECT_EQ(got[b].points, want[b].points);

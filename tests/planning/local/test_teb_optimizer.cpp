@@ -113,25 +113,10 @@ TEST(TebOptimizer, EigenSparseCholeskyGivesTheSameBands) {
   CeresOptionScene().compare(op, 1e-6);
 }
 
-// The projected line search backtracking by bisection (no gradients at its trial points) takes other step
-// sizes than the cubic default: valid bands of about the default's objective (one cold solve each: over the
-// twelve 11 % lower, the worst trial 35 % higher).
-TEST(TebOptimizer, BisectionLineSearchGivesValidBands) {
-  TebOptimizerParams op;
-  op.ceres_line_search_interpolation = "bisection";
-  op.ceres_sparse_library = "eigen_sparse";
-  CeresOptionScene().compare(op, 0.40);
-}
-
 TEST(TebOptimizer, RejectsUnknownCeresOptions) {
   TebOptimizerParams op;
   op.ceres_sparse_library = "cholmod";
   EXPECT_ANY_THROW(op.validate());
-  op = {};
-  op.ceres_line_search_interpolation = "cubic_spline";
-  EXPECT_ANY_THROW(op.validate());
-  op = {};
-  op.ceres_line_search_interpolation = "bisection";
   op.ceres_sparse_library = "eigen_sparse";
   EXPECT_NO_THROW(op.validate());
 }
