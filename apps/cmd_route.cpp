@@ -16,6 +16,7 @@
 #include "bipednav/runner/scenario_runner.hpp"
 #include "bipednav/sim/placement_check.hpp"
 #include "bipednav/sim/route_clearance.hpp"
+#include "bipednav/sim/space_time_route.hpp"
 
 namespace bipednav::app {
 
@@ -49,6 +50,16 @@ void print_report(const nlohmann::json& r) {
   }
 }
 
+// The space-time answer among the scenario's people (sim/space_time_route.hpp).
+void print_people(const nlohmann::json& p) {
+  if (p["passable"].get<bool>())
+    std::printf("  among its people: passable for a robot that knew their walks, at %.1f s (%.1f s without them)\n",
+                p["arrival_s"].get<double>(), p["static_arrival_s"].get<double>());
+  else
+    std::printf("  among its people: not passable within %.1f s, even for a robot that knew their walks\n",
+                p["time_limit_s"].get<double>());
+}
+
 // Whether every goal has a route with room for the robot (the exit status: 0, else 1).
 bool every_route_has_room(const nlohmann::json& r) {
   for (const auto& g : r["routes"])
@@ -61,9 +72,17 @@ bool run_route(const RouteArgs& a) {
   const sim::Scenario s = a.world.empty() ? sim::load_scenario(resolve_scenario(a.scenario))
                                           : scenario_from_world(a.world, a.robot, a.start, a.goal);
   const RobotProfile robot = runner::load_robot(a.robot.empty() ? s.robot : a.robot);
-  const nlohmann::json r = route_report(s, robot, a.resolution_m);
+  nlohmann::json r = route_report(s, robot, a.resolution_m);
+  if (!s.world.actors.empty()) {
+    const sim::SpaceTimeRoute p = sim::scenario_space_time_route(s, robot);
+    r["people"] = {{"passable", p.reachable},
+                   {"arrival_s", finite_or_null(p.arrival_s)},
+                   {"static_arrival_s", finite_or_null(p.static_arrival_s)},
+                   {"time_limit_s", s.time_limit_s}};
+  }
   print_figures(a.json, r, [&] {
     print_report(r);
+    if (r.contains("people")) print_people(r["people"]);
     try {  // why a route is missing: a start or goal in an obstacle or off the map
       sim::check_placements(s, robot, !runner::is_footstep_robot(robot));
     } catch (const Error& e) {
