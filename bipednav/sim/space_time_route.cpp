@@ -81,19 +81,17 @@ void mark_people(const Grid& g, const World& world, double t0, double dt, double
   std::fill(marks.begin(), marks.end(), 0);
   const int samples = std::max(1, static_cast<int>(std::ceil(dt / p.sample_step_s)));
   const double z_lo = p.collision.ground_clearance_m, z_hi = p.height_m;
+  std::vector<SE3> poses(static_cast<std::size_t>(samples) + 1);
   for (const Actor& a : world.actors) {
-    for (int j = 0; j <= samples; ++j) {
-      const double t = t0 + dt * j / samples;
-      const SE3 T = a.pose_at(t);
-      double half_move = 0.0;
-      for (const int side : {-1, 1}) {
-        const int n = j + side;
-        if (n < 0 || n > samples) continue;
-        const SE3 U = a.pose_at(t0 + dt * n / samples);
-        half_move = std::max(half_move, 0.5 * (U.translation() - T.translation()).head<2>().norm());
-      }
+    for (int j = 0; j <= samples; ++j) poses[static_cast<std::size_t>(j)] = a.pose_at(t0 + dt * j / samples);
+    for (std::size_t j = 0; j < poses.size(); ++j) {
+      const auto moved = [&](std::size_t n) {
+        return (poses[n].translation() - poses[j].translation()).head<2>().norm();
+      };
+      const double half_move = 0.5 * std::max(j > 0 ? moved(j - 1) : 0.0, j + 1 < poses.size() ? moved(j + 1) : 0.0);
       for (const Geometry& part : a.parts)
-        for (const Footprint2D& f : slab_footprints(part, T, z_lo, z_hi)) mark_near(g, f, reach + half_move, marks);
+        for (const Footprint2D& f : slab_footprints(part, poses[j], z_lo, z_hi))
+          mark_near(g, f, reach + half_move, marks);
     }
   }
 }
@@ -101,40 +99,39 @@ void mark_people(const Grid& g, const World& world, double t0, double dt, double
 // The earliest step at which a goal cell is reachable, propagating `reach` (the reachable cells)
 // through `steps` steps; with_people also masks each step's people. Returns -1 when never, and
 // leaves in `reach` the cells reachable at the last step.
-long propagate(const Grid& g, const World& world, const std::vector<std::uint8_t>& free, const std::vector<bool>& goal,
-               double dt, long steps, double reach_m, bool with_people, bool stop_at_goal,
-               const SpaceTimeRouteParams& p, std::vector<std::uint8_t>& reach) {
-  const auto at_goal = [&]() {
-    for (std::size_t i = 0; i < reach.size(); ++i)
-      if (reach[i] && goal[i]) return true;
-    return false;
-  };
-  long arrival = at_goal() ? 0 : -1;
+long propagate(const Grid& g, const World& world, const std::vector<std::uint8_t>& blocked,
+               const std::vector<bool>& goal, double dt, long steps, double reach_m, bool with_people,
+               bool stop_at_goal, const SpaceTimeRouteParams& p, std::vector<std::uint8_t>& reach) {
+  long arrival = -1;
+  for (std::size_t i = 0; i < reach.size() && arrival < 0; ++i)
+    if (reach[i] && goal[i]) arrival = 0;
   if (arrival == 0 && stop_at_goal) return 0;
   std::vector<std::uint8_t> people(g.size(), 0), next(g.size(), 0);
   const auto open = [&](long x, long y) {
     if (!g.contains(x, y)) return false;
     const std::size_t i = g.index(x, y);
-    return free[i] != 0 && people[i] == 0;
+    return blocked[i] == 0 && people[i] == 0;
   };
   for (long k = 0; k < steps; ++k) {
     if (with_people) mark_people(g, world, static_cast<double>(k) * dt, dt, reach_m, p, people);
     std::fill(next.begin(), next.end(), 0);
-    bool any = false;
+    bool any = false, at_goal = false;
     for (long y = 0; y < g.ny; ++y) {
       for (long x = 0; x < g.nx; ++x) {
         if (!reach[g.index(x, y)] || !open(x, y)) continue;
         for (const Move& m : kMoves) {
           const long tx = x + m.dx, ty = y + m.dy;
           if (!open(tx, ty) || (m.through_middle && !open(x + m.dx / 2, y + m.dy / 2))) continue;
-          next[g.index(tx, ty)] = 1;
+          const std::size_t i = g.index(tx, ty);
+          next[i] = 1;
           any = true;
+          at_goal = at_goal || goal[i];
         }
       }
     }
     reach.swap(next);
     if (!any) return arrival;
-    if (arrival < 0 && at_goal()) {
+    if (arrival < 0 && at_goal) {
       arrival = k + 1;
       if (stop_at_goal) return arrival;
     }
@@ -173,8 +170,6 @@ SpaceTimeRoute space_time_route(const World& world, const RouteArea& area, const
     for (const Footprint2D& f :
          slab_footprints(s, SE3::Identity(), params.collision.ground_clearance_m, params.height_m))
       mark_near(g, f, reach_m, blocked);
-  std::vector<std::uint8_t> free(g.size());
-  std::transform(blocked.begin(), blocked.end(), free.begin(), [](std::uint8_t b) { return b == 0 ? 1 : 0; });
   std::vector<bool> at_goal(g.size(), false);
   const Eigen::Vector2d tol = Eigen::Vector2d::Constant(goal_tolerance_m);
   g.for_cells_in(goal - tol, goal + tol, [&](long x, long y) {
@@ -182,18 +177,18 @@ SpaceTimeRoute space_time_route(const World& world, const RouteArea& area, const
   });
 
   const long sx = std::lround((start.x() - g.min.x()) / g.res), sy = std::lround((start.y() - g.min.y()) / g.res);
-  if (!g.contains(sx, sy) || !free[g.index(sx, sy)]) return out;
+  if (!g.contains(sx, sy) || blocked[g.index(sx, sy)] != 0) return out;
   const long steps = static_cast<long>(std::floor(time_limit_s / out.step_s));
   std::vector<std::uint8_t> reach(g.size(), 0);
   reach[g.index(sx, sy)] = 1;
   const long static_arrival =
-      propagate(g, world, free, at_goal, out.step_s, steps, reach_m, false, true, params, reach);
+      propagate(g, world, blocked, at_goal, out.step_s, steps, reach_m, false, true, params, reach);
   if (static_arrival < 0) return out;
   out.static_arrival_s = static_cast<double>(static_arrival) * out.step_s;
 
   std::fill(reach.begin(), reach.end(), 0);
   reach[g.index(sx, sy)] = 1;
-  const long arrival = propagate(g, world, free, at_goal, out.step_s, steps, reach_m, true, false, params, reach);
+  const long arrival = propagate(g, world, blocked, at_goal, out.step_s, steps, reach_m, true, false, params, reach);
   if (arrival >= 0) out.arrival_s = static_cast<double>(arrival) * out.step_s;
   for (std::size_t i = 0; i < reach.size() && !out.reachable; ++i) out.reachable = reach[i] && at_goal[i];
   return out;
