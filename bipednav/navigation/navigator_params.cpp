@@ -57,7 +57,7 @@ void set_diff_drive_settings(NavigatorParams& p) {
   // test) and factor TEB's Ceres solves with Eigen's sparse Cholesky instead of CHOLMOD (the same bands
   // to rounding; alone its CPU effect is within noise, it is here as half of the screened pair): less CPU
   // with no runs lost on the TurtleBot3; Digit lost runs with the LOAM setting, so walkers keep both off
-  // (docs/closed-loop-log.md, 'Session 16: TurtleBot3 CPU settings, and the switches left opt-in').
+  // (docs/closed-loop-log.md, 'TurtleBot3 CPU settings, and the switches left opt-in').
   for (auto* r : {&p.localization.loam.odometry.round_converged_translation_m,
                   &p.localization.loam.mapping.round_converged_translation_m})
     *r = 1e-3;
