@@ -22,7 +22,7 @@ bool height_aware_maps_for(const RobotProfile& robot) {
   // cubes the LiDAR passes over are kept for the lifetime. Off for walkers: Digit touched more cubes
   // with it (15 s decay). On together with LoamParams::reference_from_prior_change (NavigatorParams::for_robot),
   // without which a fault run ends outside the goal's heading tolerance (docs/closed-loop-log.md,
-  // 'Height-aware clearing and mark decay', 'Parameter evidence moved from code comments').
+  // 'Height-aware clearing and mark decay', 'Parameter evidence').
   return robot.kind == "diff_drive";
 }
 

@@ -50,7 +50,7 @@ struct NavigatorParams {
   // and a 10 Hz map one frame in three is skipped (perception and the local map's rays and marks).
   // On for wheeled robots (for_robot, the fast profile: less perception and local map CPU, screened with
   // its other two switches; alone it lost runs); off here and for walkers. Test NewestDepthOnly.*
-  // (evidence: docs/closed-loop-log.md, 'Parameter evidence moved from code comments').
+  // (evidence: docs/closed-loop-log.md, 'Parameter evidence').
   bool newest_depth_only = false;
 
   // Defaults with footprint-dependent values (inscribed radius, velocity limits) from the robot.
@@ -102,7 +102,7 @@ struct SourceRuns {
   std::vector<std::size_t> fill;
 };
 
-// The navigation pipeline of ARCHITECTURE.md. Each tick reads one step of sensor data and runs
+// The navigation pipeline (docs/architecture.md, section 2). Each tick reads one step of sensor data and runs
 // perceive -> localize -> map -> plan -> control, every stage at its own rate on the frames'
 // clock. Planning and control are driven by the behavior tree (move_base) through the
 // NavigationServer's get_path / exe_path / recovery actions.

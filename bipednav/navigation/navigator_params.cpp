@@ -75,7 +75,7 @@ void set_diff_drive_settings(NavigatorParams& p) {
   p.perception.ransac.max_points = 4000;
   // Wheeled robots yield with held-then-braked candidates too (DynamicAvoidanceParams::hold_step_s):
   // stepping aside in a mover's lane between posts instead of standing in it, fewer box contacts.
-  // Off for walkers: no gain for a lagging walker (docs/closed-loop-log.md, 'Session 20: held-then-braked ...').
+  // Off for walkers: no gain for a lagging walker (docs/closed-loop-log.md, 'Held-then-braked yield candidates').
   p.server.local.avoidance.hold_step_s = 0.25;
 }
 

@@ -24,7 +24,7 @@ struct RansacParams {
   // inliers and inlier_std_m are still counted on all points. A fused frame of the TurtleBot3
   // (two depth clouds and a VLP-16 sweep) has 20k-40k points; the ground's plane needs far fewer.
   // Wheeled robots use 4000 (NavigatorParams::for_robot) for less perception CPU; the refit plane
-  // can move slightly (docs/closed-loop-log.md, 'Parameter evidence moved from code comments').
+  // can move slightly (docs/closed-loop-log.md, 'Parameter evidence').
   std::size_t max_points = 0;
 
   void validate() const;

@@ -32,8 +32,8 @@ struct PerceptionParams {
   // Motion-compensate the LiDAR sweep (deskew.hpp) with the base's measured twist before it is placed
   // with the pose of the frame it completes in. Off: geometrically right (tests/sim/lidar_deskew_test:
   // a spinning TurtleBot3's sweep within 1 cm of the wall, up to 0.1-0.5 m off without), but the
-  // closed loops, tuned on skewed sweeps, lost runs with it (docs/closed-loop-log.md, 'Session 21:
-  // LiDAR de-skewing for the maps').
+  // closed loops, tuned on skewed sweeps, lose runs with it (docs/closed-loop-log.md, 'LiDAR
+  // de-skewing for the maps').
   bool deskew_lidar = false;
   RansacParams ransac = default_ransac();
   Plane prior_ground = ground_plane_z0();  // fallback ground in the base frame (base_link on the floor)

@@ -29,7 +29,7 @@ struct MovingObstacleParams {
   // where its track began (0: off, only the current distance counts): a box on a looping path was
   // classed static one lap later and TEB backed into its lane. Larger than min_displacement_m: at
   // 0.25 m the phantom tracks of walls (pieces whose centroids slide along them) latch too. On for
-  // every robot (evidence: docs/closed-loop-log.md, 'Parameter evidence moved from code comments',
+  // every robot (evidence: docs/closed-loop-log.md, 'Parameter evidence',
   // MovingObstacleParams).
   double latch_displacement_m = 1.0;
   double max_prediction_s = 4.0;  // predictions are never extrapolated further
