@@ -199,7 +199,7 @@ PointCloud read_binary(const PlyHeader& h, std::string_view bytes, const std::st
     std::vector<double> vals(e.props.size());
     const bool is_vertex = e.name == "vertex";
     const VertexMap m = is_vertex ? map_vertex(e, name) : VertexMap{};
-    if (e.props.empty()) continue;  // no bytes per item: a huge count used to spin (found by fuzz/fuzz_ply)
+    if (e.props.empty()) continue;  // no bytes per item: a huge count would spin (fuzz/fuzz_ply)
     for (std::size_t i = 0; i < e.count; ++i) {
       cur.item(e, i, vals);
       if (is_vertex) store_vertex(c, m, vals.data());

@@ -53,7 +53,7 @@ TEST(MovingAiMapReader, MalformedInputNamesFileLineAndField) {
   expect_file_error("type octile\nheight 2\nwidth 2\nmap\n..\n.\n", "line 6: map row 1: expected 2 tiles, got 1");
   expect_file_error("type octile\nheight 2\nwidth 2\nmap\n..\n", "map row 1: expected 2 rows, got end of file");
   expect_file_error("type octile\nheight 1\nwidth 2\nmap\n..\n..\n", "line 6: unexpected text");
-  // Found by fuzz/fuzz_movingai_map: a huge header used to size the tile buffer (out of memory).
+  // From fuzz/fuzz_movingai_map: a huge header must not size the tile buffer (out of memory).
   expect_file_error("type octile\nheight 2147483647\nwidth 2147483647\nmap\n..\n",
                     "map row 0: expected 2147483647 tiles");
   EXPECT_THROW(read_movingai_map("/nonexistent/x.map"), FileError);

@@ -154,8 +154,8 @@ TEST(Pcd, MalformedFilesNameFileAndField) {
   EXPECT_THROW(read_pcd("/nonexistent/file.pcd"), FileError);
 }
 
-// Found by fuzz/fuzz_pcd: header sizes alone used to size the cloud (out of memory, or
-// std::length_error) and WIDTH x HEIGHT or POINTS x point size could wrap around.
+// From fuzz/fuzz_pcd: header sizes alone must not size the cloud (out of memory, or
+// std::length_error), and WIDTH x HEIGHT or POINTS x point size must not wrap around.
 TEST(Pcd, HeaderSizesBeyondTheDataAreRejectedBeforeAllocating) {
   const std::string xyz = "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n";
   EXPECT_NE(expect_error(xyz + "WIDTH 100000000000\nDATA binary\n").find("bad.pcd:DATA: truncated: expected"),

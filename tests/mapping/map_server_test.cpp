@@ -142,7 +142,7 @@ TEST(MapServer, MalformedFilesNameFileAndField) {
   EXPECT_NE(msg.find("s.yaml"), std::string::npos);
 }
 
-// Found by fuzz/fuzz_map_server: a header of 20000 x 20000 pixels in a 30-byte file used to
+// From fuzz/fuzz_map_server: a header of 20000 x 20000 pixels in a 30-byte file must not
 // allocate the pixel buffers (800 MB) before finding the data missing.
 TEST(MapServer, PgmSizeIsCheckedAgainstTheFileBeforeAllocating) {
   const fs::path dir = temp_dir("huge");

@@ -67,7 +67,7 @@ TEST(NavigatorParams, TheLocalPlannerReadsTheNavigatorsMovingObstacleTracker) {
 }
 
 // Bad parameters are reported by name before any stage is built from them (an empty tree path
-// used to reach the XML loader first and come back as an unreadable file).
+// must not reach the XML loader and come back as an unreadable file).
 TEST(NavigatorParams, TheNavigatorNamesABadParameterBeforeBuildingItsStages) {
   RobotProfile robot;
   navigation::NavigatorParams p = navigation::NavigatorParams::for_robot(robot);

@@ -147,8 +147,8 @@ double clearance_change(const Pose2& start, const Twist& cmd, const mapping::Cos
 }  // namespace
 
 // A robot whose estimate is already in inscribed space (0.275 m from the wall's lethal cells,
-// inscribed radius 0.38 m) facing the wall, with a plan straight through it: the tracker's arc
-// used to pass (only lethal cells counted there); now no command brings the robot closer.
+// inscribed radius 0.38 m) facing the wall, with a plan straight through it: an arc check that
+// counts only lethal cells passes it; no command may bring the robot closer.
 TEST(PathTracker, InInscribedSpaceFacingTheObstacleNoCommandClosesIn) {
   auto map = test::empty_costmap(0.0, 0.0);
   test::add_box(map, 0.5, -1.0, 1.5, 1.0, 0.38);
