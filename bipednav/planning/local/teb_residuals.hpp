@@ -3,7 +3,7 @@
 // The residual blocks of the TEB objective (eq. 5.21) with the weights applied, in two forms: templated on
 // the scalar (ceres::Jet for the Ceres solver and for checking derivatives, double for evaluation) and in
 // double precision with analytic Jacobians, for the banded Levenberg-Marquardt solver (teb_lm). Both
-// compute the same functions; tests/planning/local/test_teb_residuals.cpp checks the analytic Jacobians
+// compute the same functions; tests/planning/local/teb_residuals_test.cpp checks the analytic Jacobians
 // against automatic differentiation.
 
 #include <Eigen/Core>

@@ -215,7 +215,7 @@ inline JetPolygonNearest jet_polygon_nearest(double px, double py, const std::ve
 
 // Signed distance from (px, py) to a convex polygon (vertices counter-clockwise): negative inside
 // (minus the depth), so the gradient keeps pushing out of an obstacle. Bitwise the least of every edge's
-// distance_to_segment in T (the reference in test_teb_residuals.cpp), with the work of one edge in T: for
+// distance_to_segment in T (the reference in teb_residuals_test.cpp), with the work of one edge in T: for
 // doubles one square root (the nearest edge's), for Jets the edges compared on their scalar parts
 // (jet_polygon_nearest) and the derivatives of the nearest one only.
 template <typename T>
