@@ -39,11 +39,4 @@ inline F4 shuffle(F4 a, F4 b) {
 #endif
 }
 
-// Stores four points (x[i], y[i], z[i]) as 12 consecutive floats x0 y0 z0 x1 ... z3.
-inline void store_xyz(float* p, F4 x, F4 y, F4 z) {
-  store(p, shuffle<0, 1, 4, 2>(shuffle<0, 4, 1, 5>(x, y), z));      // x0 y0 z0 x1
-  store(p + 4, shuffle<0, 1, 6, 2>(shuffle<1, 5, 2, 6>(y, z), x));  // y1 z1 x2 y2
-  store(p + 8, shuffle<2, 4, 5, 3>(z, shuffle<3, 7, 3, 7>(x, y)));  // z2 x3 y3 z3
-}
-
 }  // namespace bipednav::simd4

@@ -303,20 +303,6 @@ void CollisionMonitorParams::validate() const {
   require(scale_steps >= 1, "scale_steps", ">= 1");
 }
 
-const char* action_name(MonitorDecision::Action a) {
-  switch (a) {
-    case MonitorDecision::Action::kPass:
-      return "pass";
-    case MonitorDecision::Action::kSlow:
-      return "slow";
-    case MonitorDecision::Action::kStop:
-      return "stop";
-    case MonitorDecision::Action::kEvade:
-      return "evade";
-  }
-  return "?";
-}
-
 CollisionMonitor::CollisionMonitor(const CollisionMonitorParams& params, double footprint_radius_m,
                                    const VelocityLimits& limits, double time_constant_s)
     : params_(params), radius_m_(footprint_radius_m), limits_(limits), tau_s_(time_constant_s) {

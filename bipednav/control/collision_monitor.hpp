@@ -82,7 +82,6 @@ struct MonitorDecision {
   double min_clearance_m = std::numeric_limits<double>::infinity();
   std::string reason;  // what limited the command, and ignored input; empty for a plain kPass
 };
-const char* action_name(MonitorDecision::Action a);
 
 class CollisionMonitor {
  public:

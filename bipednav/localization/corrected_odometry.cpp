@@ -52,10 +52,6 @@ Eigen::Matrix3d planar_information(const GicpCloud& source, const GicpCloud& tar
   return H;
 }
 
-SE3 kinematic_pose(const Odometry& odom, double z_m) {
-  return make_se3(odom.T_odom_base.x, odom.T_odom_base.y, z_m, odom.roll_rad, odom.pitch_rad, odom.T_odom_base.theta);
-}
-
 CorrectedOdometry::CorrectedOdometry(CorrectedOdometryParams p, const SE3& T_base_sensor)
     : p_(std::move(p)), T_base_sensor_(T_base_sensor) {
   p_.validate();

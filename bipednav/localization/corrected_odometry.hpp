@@ -27,11 +27,6 @@ struct CorrectedOdometryParams {
   void validate() const;
 };
 
-// The kinematic odometry pose as a 6D transform: x, y, yaw from the leg odometry, height z from
-// the kinematics, roll and pitch from the IMU (the reference rotates the estimate about the stance
-// foot so the IMU frame agrees with the IMU reading).
-SE3 kinematic_pose(const Odometry& odom, double z_m = 0.0);
-
 // The GICP information (Gauss-Newton Hessian of the Mahalanobis cost) of source matched into
 // target at T_target_source, over a planar motion (x, y, yaw about `pivot`) of the target frame.
 // The correspondences are each source point's nearest target point within max_correspondence_m.

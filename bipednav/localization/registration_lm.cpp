@@ -164,19 +164,6 @@ Constraint line_constraint(const Eigen::Vector3d& point, double s, const Eigen::
   return c;
 }
 
-bool plane_constraint(const Eigen::Vector3d& point, double s, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                      const Eigen::Vector3d& c, Constraint& out) {
-  const Eigen::Vector3d ab = b - a, ac = c - a;
-  const Eigen::Vector3d n = ab.cross(ac);
-  if (n.norm() < 1e-3 * ab.norm() * ac.norm() || n.norm() < 1e-12) return false;
-  out.point = point;
-  out.s = s;
-  out.anchor = a;
-  out.axis = n.normalized();
-  out.is_line = false;
-  return true;
-}
-
 double bisquare_weight(double r, double c) {
   const double u = r / c;
   if (std::abs(u) >= 1.0) return 0.0;

@@ -32,9 +32,6 @@ struct Constraint {
 double constraint_distance(const Constraint& c, const Eigen::Vector3d& q);
 // Line through a and b (eq. 4.6 uses the two points of the edge correspondence).
 Constraint line_constraint(const Eigen::Vector3d& point, double s, const Eigen::Vector3d& a, const Eigen::Vector3d& b);
-// Plane through a, b, c (eq. 4.7); returns false when the three points are (nearly) collinear.
-bool plane_constraint(const Eigen::Vector3d& point, double s, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                      const Eigen::Vector3d& c, Constraint& out);
 
 // Tukey bisquare weight and loss with cut-off c (Algorithm 1, line 10).
 double bisquare_weight(double r, double c);

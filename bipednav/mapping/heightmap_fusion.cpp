@@ -117,18 +117,6 @@ HeightmapUpdateStats HeightmapFusion::update(const std::vector<Eigen::Vector3f>&
   return stats;
 }
 
-std::optional<float> height_at(const Heightmap& map, double x_m, double y_m) {
-  const auto c = map.geometry().world_to_cell(x_m, y_m);
-  if (!c || !map.known(c->x, c->y)) return std::nullopt;
-  return map.height(c->x, c->y);
-}
-
-std::optional<float> variance_at(const Heightmap& map, double x_m, double y_m) {
-  const auto c = map.geometry().world_to_cell(x_m, y_m);
-  if (!c || !map.known(c->x, c->y)) return std::nullopt;
-  return map.variance(c->x, c->y);
-}
-
 FootprintHeights footprint_heights(const Heightmap& map, const Pose2& center, double length_m, double width_m) {
   if (!center.is_finite() || !(length_m >= 0.0) || !(width_m >= 0.0))
     throw Error("footprint_heights: non-finite pose or negative footprint size");

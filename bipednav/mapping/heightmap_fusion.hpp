@@ -66,10 +66,6 @@ class HeightmapFusion {
   std::vector<Bin> bins_;
 };
 
-// Height / variance at a world point (nullopt outside the map or when the cell is unobserved).
-std::optional<float> height_at(const Heightmap& map, double x_m, double y_m);
-std::optional<float> variance_at(const Heightmap& map, double x_m, double y_m);
-
 // Heights under a rotated rectangle (centre pose, length along its heading, width across):
 // min/max over observed cells whose centre lies inside (NaN when none).
 struct FootprintHeights {

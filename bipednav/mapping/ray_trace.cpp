@@ -121,13 +121,6 @@ void point_cells(const GridGeometry& g, const Eigen::Vector3f* points, std::size
   });
 }
 
-std::vector<Cell> line_cells(Cell a, Cell b, bool include_end) {
-  std::vector<Cell> out;
-  out.reserve(static_cast<std::size_t>(std::max(std::abs(b.x - a.x), std::abs(b.y - a.y))) + 1);
-  for_each_line_cell(a, b, include_end, [&](int x, int y) { out.push_back({x, y}); });
-  return out;
-}
-
 bool clip_segment(Eigen::Vector2d& a, Eigen::Vector2d& b, const Eigen::Vector2d& lo, const Eigen::Vector2d& hi) {
   const Eigen::Vector2d d = b - a;
   double t0 = 0.0, t1 = 1.0;

@@ -50,9 +50,6 @@ void for_each_line_cell(Cell a, Cell b, bool include_end, Visit&& visit) {
   for_each_line_index(a, b, include_end, 0, [&](std::size_t, int x, int y) { visit(x, y); });
 }
 
-// The cells of the Bresenham line from `a` to `b` (see for_each_line_cell).
-std::vector<Cell> line_cells(Cell a, Cell b, bool include_end = true);
-
 // Clips the segment a-b to the axis-aligned box [lo, hi] (Liang-Barsky). Returns false when the
 // segment misses the box; otherwise moves a and/or b onto the box boundary.
 bool clip_segment(Eigen::Vector2d& a, Eigen::Vector2d& b, const Eigen::Vector2d& lo, const Eigen::Vector2d& hi);

@@ -165,10 +165,4 @@ void Blackboard::erase(const std::string& key) {
 
 void Blackboard::remap(const std::string& key, const std::string& parent_key) { remap_[key] = parent_key; }
 
-std::vector<std::string> Blackboard::local_keys() const {
-  std::vector<std::string> keys;
-  for (const auto& [k, v] : entries_) keys.push_back(k);
-  return keys;
-}
-
 }  // namespace bipednav::navigation

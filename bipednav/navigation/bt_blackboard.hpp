@@ -87,9 +87,6 @@ class Blackboard {
   void set_autoremap(bool on) { autoremap_ = on; }
   const std::shared_ptr<Blackboard>& parent() const { return parent_; }
 
-  // Keys stored in this blackboard itself (not the parent's).
-  std::vector<std::string> local_keys() const;
-
  private:
   explicit Blackboard(std::shared_ptr<Blackboard> parent) : parent_(std::move(parent)) {}
   // The blackboard and key an access to `key` lands on after remapping.

@@ -35,10 +35,6 @@ struct BtPortSpec {
     std::string def = "{" + n + "}";
     return {std::move(n), BtPortDir::Output, t, std::move(def)};
   }
-  static BtPortSpec inout(std::string n, BtType t) {
-    std::string def = "{" + n + "}";
-    return {std::move(n), BtPortDir::InOut, t, std::move(def)};
-  }
 };
 using BtPorts = std::vector<BtPortSpec>;
 

@@ -109,7 +109,6 @@ void Localizer::add_sweep(const PointCloud& sweep) {
                                       rpy_to_matrix(imu.roll_rad, imu.pitch_rad, 0.0).transpose() *
                                       Eigen::Vector3d::UnitZ();
   const localization::LoamOutput out = loam_->process(sweep, prior, up_in_lidar);
-  last_loam_ms_ = out.odometry_ms + out.mapping_ms;
   const Pose2 predicted = correction_ * *odom_end;
   const Pose2 measured = pose2_from_se3(out.T_world_lidar * T_lidar_base);
   bool jump = distance(predicted, measured) > params_.max_correction_jump_m ||

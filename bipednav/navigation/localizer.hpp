@@ -49,8 +49,6 @@ class Localizer {
   Twist velocity() const { return velocity_; }
   bool healthy(double now_s) const;
   const std::string& reason() const { return reason_; }
-  double last_odometry_s() const { return last_odom_s_; }
-  double last_loam_ms() const { return last_loam_ms_; }
   std::size_t odometry_jumps() const { return odometry_jumps_; }  // absorbed by re-anchoring on LOAM
   // The position estimate's standard deviation along a map direction (normalised here), in m.
   // Directions the map matches observe stay at scan_position_sigma_m; a direction LOAM leaves to
@@ -82,7 +80,6 @@ class Localizer {
   int bad_sweeps_ = 0;
   std::string reason_;
   double last_odom_s_ = -1.0;
-  double last_loam_ms_ = 0.0;
   bool anchored_ = false;
 };
 

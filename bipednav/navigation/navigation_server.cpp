@@ -140,7 +140,6 @@ ActionStep NavigationServer::exe_path(const Path& path, bool first) {
     const CpuScope cpu(local_planner_cpu_ms_);
     r = local_planner_->compute(view_.pose, view_.velocity, path, local_.costmap(), view_.now_s);
   }
-  last_ctrl_ = r.result;
   trajectory_ = r.trajectory;
   cmd_ = r.result.ok() ? r.cmd : Twist{};
   if (!r.result.ok()) {

@@ -157,7 +157,6 @@ class NavigationServer {
   // The latest recoveries (at most kRecoveryLogSize, oldest first) with their outcomes.
   static constexpr std::size_t kRecoveryLogSize = 256;
   const std::vector<RecoveryRecord>& recovery_log() const { return recovery_log_; }
-  const Result& last_controller_result() const { return last_ctrl_; }
   // Process CPU time spent in the global planner (get_path) and the local planner (exe_path).
   double global_planner_cpu_ms() const { return global_planner_cpu_ms_; }
   double local_planner_cpu_ms() const { return local_planner_cpu_ms_; }
@@ -189,7 +188,6 @@ class NavigationServer {
   Twist cmd_;
   Path trajectory_;
   planning::PlanResult last_plan_;
-  Result last_ctrl_;
   int ctrl_failures_ = 0;
   double blocked_since_s_ = -1.0;
   bool relaxed_ = false;

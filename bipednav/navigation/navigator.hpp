@@ -139,7 +139,6 @@ class Navigator {
   const NavigatorCpu& cpu() const { return cpu_; }
   const BehaviorTree& tree() const { return tree_; }
   const NavigationServer& server() const { return server_; }
-  bool localization_healthy() const { return localizer_.healthy(now_s_); }
   const SensorGate& sensor_gate() const { return gate_; }
   const RobotProfile& robot() const { return robot_; }
   const planning::local::MovingObstacleTracker& moving_obstacles() const { return moving_; }

@@ -195,21 +195,4 @@ PlaneFit fit_plane_ransac(const std::vector<Eigen::Vector3f>& points, const Rans
   return best;
 }
 
-GroundSegmentation segment_ground(const PointCloud& cloud, const RansacParams& params, Rng& rng) {
-  GroundSegmentation g;
-  g.fit = fit_plane_ransac(cloud.points, params, rng);
-  g.ground = cloud.empty_copy();
-  g.obstacles = cloud.empty_copy();
-  const Eigen::Vector4f pl = g.fit.plane.cast<float>();
-  const float t = static_cast<float>(params.distance_threshold_m);
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
-    const Eigen::Vector3f& p = cloud.points[i];
-    if (!p.allFinite()) continue;
-    const bool ground = g.fit.found && std::fabs(signed_distance(pl, p)) < t;
-    (ground ? g.ground_indices : g.obstacle_indices).push_back(i);
-    (ground ? g.ground : g.obstacles).push_back_from(cloud, i);
-  }
-  return g;
-}
-
 }  // namespace bipednav::perception

@@ -70,15 +70,4 @@ PlaneFit fit_plane_ransac(const std::vector<Eigen::Vector3f>& points, const Rans
 // normalised (unit normal, c >= 0). Needs at least 3 non-collinear points; otherwise returns z = 0.
 Plane fit_plane_least_squares(const std::vector<Eigen::Vector3f>& points, const std::vector<std::size_t>& indices);
 
-struct GroundSegmentation {
-  PlaneFit fit;
-  PointCloud ground;                                          // inliers of fit.plane
-  PointCloud obstacles;                                       // every other finite point
-  std::vector<std::size_t> ground_indices, obstacle_indices;  // into the input cloud
-};
-
-// Fits the ground plane and splits the cloud into ground (inliers) and obstacle (outliers) clouds
-// (section 4.3). When no plane is found, ground is empty and every finite point is an obstacle.
-GroundSegmentation segment_ground(const PointCloud& cloud, const RansacParams& params, Rng& rng);
-
 }  // namespace bipednav::perception

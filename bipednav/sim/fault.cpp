@@ -39,12 +39,6 @@ std::vector<double> split_numbers(const std::string& text, char sep, const std::
 
 }  // namespace
 
-const char* fault_type_name(FaultType t) {
-  for (const auto& [type, name] : kNames)
-    if (type == t) return name;
-  return "unknown";
-}
-
 FaultType fault_type_from_name(const std::string& name) {
   std::string known;
   for (const auto& [type, n] : kNames) {

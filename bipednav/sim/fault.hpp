@@ -23,7 +23,6 @@ enum class FaultType {
   COMMAND_DROPOUT,          // the walking controller receives no velocity commands during the fault
 };
 
-const char* fault_type_name(FaultType t);
 // Throws Error for an unknown name (the message lists the known ones).
 FaultType fault_type_from_name(const std::string& name);
 

@@ -45,10 +45,6 @@ const Fault* FaultInjector::find(FaultType type, double t_s) const {
 
 bool FaultInjector::active(FaultType type, double t_s) const { return find(type, t_s) != nullptr; }
 
-bool FaultInjector::any_active(double t_s) const {
-  return std::any_of(faults_.begin(), faults_.end(), [&](const Fault& f) { return f.active_at(t_s); });
-}
-
 bool FaultInjector::has_sensor_faults() const {
   return std::any_of(faults_.begin(), faults_.end(), [](const Fault& f) {
     return f.type != FaultType::COMMAND_DROPOUT && f.type != FaultType::GOAL_FLOOD;

@@ -36,7 +36,6 @@ class FaultInjector {
   // (COMMAND_DROPOUT); counts the lost ones.
   bool drops_command(double t_s);
   const FaultCounters& counters() const { return counters_; }
-  bool any_active(double t_s) const;
 
  private:
   bool active(FaultType type, double t_s) const;

@@ -99,7 +99,6 @@ struct RayCaster::Impl {
     }
     return t0 <= t1;
   }
-  std::size_t static_triangles = 0;
 
   // Conservative: false only if no segment [0, tfar] of the packet's rays can meet an actor.
   // A box around all segments is tested first; if it overlaps the actors' bounds, every ray
@@ -180,7 +179,6 @@ RayCaster::RayCaster(const World& world, const RayCasterParams& params) : impl_(
     }
   }
   d.raster.plane_z = d.plane_z;
-  d.static_triangles = soup.size();
   attach_triangles(d.device, d.statics, soup);
   rtcCommitScene(d.statics);
   check_device(d.device, "static scene");
@@ -237,8 +235,6 @@ void RayCaster::set_time(double t_s) {
 
 double RayCaster::time_s() const { return impl_->time_s; }
 const RasterScene& RayCaster::raster_scene() const { return impl_->raster; }
-std::size_t RayCaster::static_triangle_count() const { return impl_->static_triangles; }
-std::size_t RayCaster::actor_count() const { return impl_->actors.size(); }
 
 float RayCaster::cast(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir, float max_range_m) const {
   const double n = dir.norm();

@@ -74,9 +74,6 @@ class RayCaster {
   // The same triangles, planes and actor poses (at time_s()) for rasterising depth images.
   const RasterScene& raster_scene() const;
 
-  std::size_t static_triangle_count() const;
-  std::size_t actor_count() const;
-
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;

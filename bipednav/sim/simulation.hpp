@@ -97,7 +97,6 @@ class Simulation {
   double now_s() const { return clock_.now_s(); }
   Pose2 true_pose() const { return robot_.state().pose; }
   Twist true_velocity() const { return robot_.state().velocity; }
-  const RobotState& true_state() const { return robot_.state(); }
   const std::optional<CollisionEvent>& first_collision() const { return first_collision_; }
   // Every contact so far, oldest first: one event per step at which the footprint, clear of every
   // obstacle at the step before, penetrates one (a long scrape is one contact).

@@ -117,13 +117,6 @@ std::vector<Eigen::Vector2d> circle_loop(const Eigen::Vector2d& center, double r
   return pts;
 }
 
-double polyline_distance(const Eigen::Vector2d& p, const std::vector<Eigen::Vector2d>& line) {
-  if (line.size() == 1) return (p - line.front()).norm();
-  double best = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 1; i < line.size(); ++i) best = std::min(best, segment_distance(p, line[i - 1], line[i]));
-  return best;
-}
-
 double loop_to_polyline_distance(const std::vector<Eigen::Vector2d>& loop, const std::vector<Eigen::Vector2d>& line) {
   double best = std::numeric_limits<double>::infinity();
   const std::size_t n = loop.size();

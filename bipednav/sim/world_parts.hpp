@@ -38,8 +38,6 @@ inline std::vector<Eigen::Vector2d> back_and_forth(const Eigen::Vector2d& a, con
 // A regular polygon with n corners approximating a circle.
 std::vector<Eigen::Vector2d> circle_loop(const Eigen::Vector2d& center, double radius_m, int n = 12);
 
-// Distance from p to the polyline (open: its points in order).
-double polyline_distance(const Eigen::Vector2d& p, const std::vector<Eigen::Vector2d>& line);
 // Smallest distance between a closed loop and an open polyline (0 when they cross); a polyline of
 // one point is that point.
 double loop_to_polyline_distance(const std::vector<Eigen::Vector2d>& loop, const std::vector<Eigen::Vector2d>& line);

@@ -15,18 +15,6 @@ double major_sigma(const Eigen::Matrix2d& C) {
   return std::sqrt(largest < 0.0 ? 0.0 : largest);  // NaN stays NaN
 }
 
-const char* track_status_name(TrackStatus s) {
-  switch (s) {
-    case TrackStatus::kTentative:
-      return "tentative";
-    case TrackStatus::kConfirmed:
-      return "confirmed";
-    case TrackStatus::kCoasting:
-      return "coasting";
-  }
-  return "?";
-}
-
 MultiObjectTracker::MultiObjectTracker(TrackerParams params, SensorVisibility visibility)
     : params_((params.validate(), std::move(params))),
       visibility_(std::move(visibility)),

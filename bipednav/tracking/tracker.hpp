@@ -20,7 +20,6 @@ namespace bipednav::tracking {
 // A track's life cycle: tentative until confirm_hits of its first confirm_window updates hit;
 // then confirmed while seen, coasting while unseen (deleted tracks are removed).
 enum class TrackStatus { kTentative, kConfirmed, kCoasting };
-const char* track_status_name(TrackStatus s);
 
 struct Track {
   int id = 0;
@@ -92,7 +91,6 @@ class MultiObjectTracker {
 
   const std::vector<Track>& tracks() const { return tracks_; }              // tentative ones included
   const std::vector<Detection>& detections() const { return detections_; }  // of the latest cycle
-  const StaticStructure& static_map() const { return static_; }
   const PersistentCells& persistent_cells() const { return persistent_; }
   // The confirmed movers (coasting included) over the horizon.
   std::vector<TrackPrediction> predictions() const;

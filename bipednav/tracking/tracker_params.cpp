@@ -19,8 +19,6 @@ MotionModel parse_motion_model(const std::string& name) {
   throw ParamError("tracking.motion_model", "cv or imm, got '" + name + "'");
 }
 
-const char* motion_model_name(MotionModel m) { return m == MotionModel::kImmCvCt ? "imm" : "cv"; }
-
 void TrackerParams::validate() const {
   require(tracker_non_negative(static_margin_m), "tracking.static_margin_m", ">= 0");
   require(tracker_non_negative(static_age_s), "tracking.static_age_s", ">= 0");

@@ -10,7 +10,6 @@ enum class MotionModel {
   kImmCvCt,           // "imm": an IMM of that and a coordinated turn (x, y, vx, vy, omega) EKF
 };
 MotionModel parse_motion_model(const std::string& name);  // "cv" | "imm"
-const char* motion_model_name(MotionModel m);
 
 // Every parameter of the multi-object tracker (detections, clustering, filters, association, life
 // cycle, predictions). SI units; a track's noise figures are standard deviations unless named psd.

@@ -1,6 +1,5 @@
 #include "bipednav/viz/canvas.hpp"
 
-#include <cairo-svg.h>
 #include <cairo.h>
 
 #include <algorithm>
@@ -243,18 +242,6 @@ void Canvas::write_png(const std::filesystem::path& file) const {
   cairo_surface_destroy(img);
   if (st != CAIRO_STATUS_SUCCESS)
     throw FileError(file.string(), "", std::string("cannot write PNG: ") + cairo_status_to_string(st));
-}
-
-void Canvas::write_svg(const std::filesystem::path& file) const {
-  cairo_surface_flush(recording_);
-  cairo_surface_t* svg = cairo_svg_surface_create(file.string().c_str(), width_px_, height_px_);
-  cairo_status_t st = cairo_surface_status(svg);
-  if (st == CAIRO_STATUS_SUCCESS) st = replay(recording_, svg);
-  cairo_surface_finish(svg);
-  if (st == CAIRO_STATUS_SUCCESS) st = cairo_surface_status(svg);
-  cairo_surface_destroy(svg);
-  if (st != CAIRO_STATUS_SUCCESS)
-    throw FileError(file.string(), "", std::string("cannot write SVG: ") + cairo_status_to_string(st));
 }
 
 }  // namespace bipednav::viz

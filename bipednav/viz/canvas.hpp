@@ -62,7 +62,7 @@ struct PixelRect {
 };
 
 // A top-view drawing in world coordinates (metres, y up, x right). Everything is recorded and
-// rendered when written, to PNG or SVG. Line widths and text sizes are in pixels.
+// rendered when written, to PNG. Line widths and text sizes are in pixels.
 class Canvas {
  public:
   explicit Canvas(const CanvasParams& params);
@@ -107,7 +107,6 @@ class Canvas {
 
   // Throws FileError when the file cannot be written.
   void write_png(const std::filesystem::path& file) const;
-  void write_svg(const std::filesystem::path& file) const;
 
  private:
   void set_color(Color c);

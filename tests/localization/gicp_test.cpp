@@ -126,18 +126,6 @@ TEST(CorrectedOdometry, RemovesTheOdometryErrorBetweenTwoClouds) {
   EXPECT_LT(angle_of(err), deg2rad(0.5));
 }
 
-TEST(CorrectedOdometry, KinematicPoseUsesImuRollAndPitch) {
-  Odometry o;
-  o.T_odom_base = {1.0, 2.0, 0.5};
-  o.roll_rad = 0.02;
-  o.pitch_rad = -0.01;
-  const Eigen::Vector3d rpy = matrix_to_rpy(kinematic_pose(o, 0.9).rotation());
-  EXPECT_NEAR(rpy.x(), 0.02, 1e-12);
-  EXPECT_NEAR(rpy.y(), -0.01, 1e-12);
-  EXPECT_NEAR(rpy.z(), 0.5, 1e-12);
-  EXPECT_NEAR(kinematic_pose(o, 0.9).translation().z(), 0.9, 1e-12);
-}
-
 TEST(DriftMetrics, ReportsEndPointErrorsPerDistance) {
   std::vector<SE3> truth, est;
   for (int i = 0; i <= 10; ++i) {

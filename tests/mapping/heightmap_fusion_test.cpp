@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <optional>
 
 #include "bipednav/common/error.hpp"
 #include "bipednav/common/rng.hpp"
@@ -10,6 +11,13 @@
 using namespace bipednav::mapping;
 
 namespace {
+
+// Height at a world point (nullopt outside the map or when the cell is unobserved).
+std::optional<float> height_at(const Heightmap& map, double x_m, double y_m) {
+  const auto c = map.geometry().world_to_cell(x_m, y_m);
+  if (!c || !map.known(c->x, c->y)) return std::nullopt;
+  return map.height(c->x, c->y);
+}
 
 const GridGeometry kGeom{50, 50, 0.05, 0.0, 0.0};  // 2.5 x 2.5 m
 const Eigen::Vector3d kSensor(1.25, -0.5, 1.5);

@@ -12,6 +12,17 @@
 
 using namespace bipednav::mapping;
 
+namespace {
+
+// The cells of the Bresenham line from `a` to `b`, as for_each_line_cell visits them.
+std::vector<Cell> line_cells(Cell a, Cell b, bool include_end = true) {
+  std::vector<Cell> out;
+  for_each_line_cell(a, b, include_end, [&](int x, int y) { out.push_back({x, y}); });
+  return out;
+}
+
+}  // namespace
+
 TEST(RayTrace, BresenhamLinesAreConnectedAndEndExact) {
   for (int bx = -7; bx <= 7; ++bx)
     for (int by = -7; by <= 7; ++by) {

@@ -121,17 +121,6 @@ TEST(Ransac, LeastSquaresPlane) {
   expect_plane_near(fit_plane_least_squares(pts, {0, 1}), Plane(0, 0, 1, 0), 0.0);  // too few: z = 0
 }
 
-TEST(GroundSegmentation, SplitsGroundAndObstacles) {
-  PointCloud c = noisy_plane(Plane(0, 0, 1, 0), 2000, 0, 0.002, 6);
-  for (int i = 0; i < 300; ++i) c.points.emplace_back(0.5f, 0.5f, 0.1f + 0.001f * i);  // a pole
-  c.points.emplace_back(std::numeric_limits<float>::quiet_NaN(), 0.0f, 0.0f);
-  Rng rng(3);
-  const GroundSegmentation g = segment_ground(c, RansacParams{}, rng);
-  EXPECT_EQ(g.ground.size(), 2000u);
-  EXPECT_EQ(g.obstacles.size(), 300u);
-  EXPECT_EQ(g.obstacle_indices.front(), 2000u);
-}
-
 TEST(GroundSegmentation, PclTableScene) {
   BIPEDNAV_REQUIRE_DATA(path, "pcl/table_scene_mug_stereo_textured.pcd");
   PassThroughParams band;

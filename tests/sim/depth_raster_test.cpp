@@ -190,13 +190,6 @@ TEST(DepthRaster, ActorsAreDrawnWhereTheyAreNowAndPlanesAnalytically) {
   EXPECT_NEAR(c.points[bottom].x(), r.x() / -r.z(), 1e-5);
 }
 
-TEST(Simd4, StoreXyzInterleavesFourPoints) {
-  using namespace simd4;
-  float out[12];
-  store_xyz(out, F4{0, 3, 6, 9}, F4{1, 4, 7, 10}, F4{2, 5, 8, 11});
-  for (int i = 0; i < 12; ++i) EXPECT_EQ(out[i], static_cast<float>(i));
-}
-
 TEST(DepthRaster, RejectsAnEmptyImageAndAnUnknownRenderer) {
   EXPECT_THROW(DepthRasterizer({}, {1.0f}, 10.0f), Error);
   DepthCameraParams p;

@@ -278,7 +278,6 @@ bool FootstepGraph::action_safe(std::int32_t s, int a, std::int32_t* to) {
   if (!landing_height(nk.ix, nk.iy, nk.itheta, st.z, &z)) return false;
   const double dz = z - st.z;  // eq. 4
   if (dz < act.dz_min_m || dz > act.dz_max_m) return false;
-  ++ihm_checks_;
   // The start's inverse heightmap has no cell lower than the lattice's (its swing foot is
   // lifted, its lift-off sweeps fewer cells): it is built and checked only when that one fails.
   if (!whole_body_free(st.key, st.z, lattice_.ihm(st.key.stance, a, st.key.itheta)) &&

@@ -87,7 +87,6 @@ class FootstepGraph : public SearchGraph {
   const StateKey& key(std::int32_t s) const { return states_[s].key; }
   Footstep footstep(std::int32_t s) const;
   Pose2 body_centre(std::int32_t s) const;
-  std::size_t collision_checks() const { return ihm_checks_; }
   // Whether action `a` from state `s` is safe (for validating a plan against a newer map).
   bool action_safe(std::int32_t s, int a, std::int32_t* to = nullptr);
 
@@ -163,7 +162,6 @@ class FootstepGraph : public SearchGraph {
   double start_lift_m_ = 0.0;  // > kMinSwingLiftM, or 0
   std::vector<InverseHeightmap> start_ihm_;
   std::vector<bool> start_ihm_built_;
-  std::size_t ihm_checks_ = 0;
   // Heading term of the heuristic: the most heading bins one action turns, the shortest action.
   int max_turn_bins_ = 0;
   double min_duration_s_ = 0.0;

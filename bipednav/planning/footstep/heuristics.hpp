@@ -39,7 +39,6 @@ class DijkstraHeuristic : public Heuristic {
   DijkstraHeuristic(const TerrainGrid& terrain, const ActionSet& actions, const Pose2& goal, double tolerance_m);
   double seconds_to_goal(double x, double y) const override;
   double distance_m(int x, int y) const { return dist_[terrain_->geometry().index(x, y)]; }
-  double elevation_penalty_m() const { return elevation_penalty_m_; }
   // Whether no state can have its body centre in cell (x, y) and take an action (body clearance).
   bool body_blocked(int x, int y) const { return !blocked_.empty() && blocked_[terrain_->geometry().index(x, y)] != 0; }
   // The radius around a body centre within which a solid obstacle taller than the robot's feet

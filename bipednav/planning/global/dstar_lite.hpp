@@ -45,7 +45,6 @@ class DStarLite {
   Cost g(std::size_t s) const { return g_[s]; }
   Cost rhs(std::size_t s) const { return rhs_[s]; }
   Cost km() const { return km_; }
-  std::size_t queue_size() const { return open_.size(); }
   // Vertices breaking the invariants (rhs(s) = min over s' of c(s, s') + g(s') for s != goal, and
   // s is queued exactly when g(s) != rhs(s)); O(n), for tests.
   std::size_t invariant_violations() const;
