@@ -1,3 +1,5 @@
+#include "bipednav/tracking/hungarian.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -6,7 +8,6 @@
 
 #include "bipednav/common/error.hpp"
 #include "bipednav/common/rng.hpp"
-#include "bipednav/tracking/hungarian.hpp"
 
 namespace bipednav::tracking {
 

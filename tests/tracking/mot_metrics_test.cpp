@@ -1,6 +1,6 @@
-#include <gtest/gtest.h>
-
 #include "bipednav/tracking/mot_metrics.hpp"
+
+#include <gtest/gtest.h>
 
 namespace bipednav::tracking {
 

@@ -1,9 +1,10 @@
+#include "bipednav/tracking/motion_test.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <vector>
 
-#include "bipednav/tracking/motion_test.hpp"
 #include "bipednav/tracking/persistent_cells.hpp"
 
 namespace bipednav::tracking {

@@ -1,9 +1,10 @@
+#include "bipednav/tracking/sensor_visibility.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "bipednav/common/error.hpp"
-#include "bipednav/tracking/sensor_visibility.hpp"
 #include "tracking/tracking_test_utils.hpp"
 
 namespace bipednav::tracking {

@@ -1,6 +1,7 @@
+#include "bipednav/tracking/static_structure.hpp"
+
 #include <gtest/gtest.h>
 
-#include "bipednav/tracking/static_structure.hpp"
 #include "tracking/tracking_test_utils.hpp"
 
 namespace bipednav::tracking {

@@ -1,3 +1,5 @@
+#include "bipednav/tracking/tracker.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -6,7 +8,6 @@
 #include <map>
 
 #include "bipednav/common/error.hpp"
-#include "bipednav/tracking/tracker.hpp"
 #include "tracking/tracking_test_utils.hpp"
 
 namespace bipednav::tracking {

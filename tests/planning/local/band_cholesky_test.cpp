@@ -1,3 +1,5 @@
+#include "bipednav/planning/local/band_cholesky.hpp"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Cholesky>
@@ -6,7 +8,6 @@
 #include <vector>
 
 #include "bipednav/common/rng.hpp"
-#include "bipednav/planning/local/band_cholesky.hpp"
 
 namespace bipednav::planning::local {
 namespace {

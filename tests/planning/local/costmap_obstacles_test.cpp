@@ -1,9 +1,10 @@
+#include "bipednav/planning/local/costmap_obstacles.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <random>
 
-#include "bipednav/planning/local/costmap_obstacles.hpp"
 #include "local_test_utils.hpp"
 
 namespace bipednav::planning::local {

@@ -1,9 +1,9 @@
+#include "bipednav/planning/local/homotopy.hpp"
+
 #include <gtest/gtest.h>
 
 #include <atomic>
 #include <cmath>
-
-#include "bipednav/planning/local/homotopy.hpp"
 
 namespace bipednav::planning::local {
 

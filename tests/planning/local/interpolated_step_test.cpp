@@ -1,6 +1,6 @@
-#include <gtest/gtest.h>
-
 #include "bipednav/planning/local/interpolated_step.hpp"
+
+#include <gtest/gtest.h>
 
 namespace bipednav::planning::local {
 namespace {

@@ -1,3 +1,5 @@
+#include "bipednav/planning/local/moving_obstacle_yield.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -6,7 +8,6 @@
 #include <vector>
 
 #include "bipednav/planning/local/local_planner.hpp"
-#include "bipednav/planning/local/moving_obstacle_yield.hpp"
 #include "bipednav/planning/local/moving_obstacles.hpp"
 #include "local_test_utils.hpp"
 #include "moving_obstacle_test_utils.hpp"

@@ -1,3 +1,5 @@
+#include "bipednav/planning/local/moving_obstacles.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -5,7 +7,6 @@
 #include <vector>
 
 #include "bipednav/planning/local/moving_obstacle_yield.hpp"
-#include "bipednav/planning/local/moving_obstacles.hpp"
 #include "moving_obstacle_test_utils.hpp"
 
 namespace bipednav::planning::local {

@@ -1,3 +1,5 @@
+#include "bipednav/planning/local/obstacle_blobs.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,7 +13,6 @@
 #include <vector>
 
 #include "bipednav/common/error.hpp"
-#include "bipednav/planning/local/obstacle_blobs.hpp"
 #include "moving_obstacle_test_utils.hpp"
 
 namespace bipednav::planning::local {

@@ -1,8 +1,9 @@
+#include "bipednav/planning/local/plan_utils.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "bipednav/planning/local/plan_utils.hpp"
 #include "bipednav/planning/local/tracker.hpp"
 #include "local_test_utils.hpp"
 

@@ -1,8 +1,8 @@
+#include "bipednav/planning/local/teb_band.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
-
-#include "bipednav/planning/local/teb_band.hpp"
 
 namespace bipednav::planning::local {
 

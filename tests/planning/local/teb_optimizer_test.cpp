@@ -1,8 +1,9 @@
+#include "bipednav/planning/local/teb_optimizer.hpp"
+
 #include <gtest/gtest.h>
 
 #include <random>
 
-#include "bipednav/planning/local/teb_optimizer.hpp"
 #include "bipednav/planning/local/teb_planner.hpp"
 #include "teb_trials.hpp"
 

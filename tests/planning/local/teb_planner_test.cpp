@@ -1,9 +1,10 @@
+#include "bipednav/planning/local/teb_planner.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 
-#include "bipednav/planning/local/teb_planner.hpp"
 #include "local_test_utils.hpp"
 
 namespace bipednav::planning::local {

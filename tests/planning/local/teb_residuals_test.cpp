@@ -1,3 +1,5 @@
+#include "bipednav/planning/local/teb_residuals.hpp"
+
 #include <ceres/jet.h>
 #include <gtest/gtest.h>
 
@@ -7,7 +9,6 @@
 
 #include "bipednav/planning/local/teb_lm.hpp"
 #include "bipednav/planning/local/teb_optimizer.hpp"
-#include "bipednav/planning/local/teb_residuals.hpp"
 #include "teb_trials.hpp"
 
 namespace bipednav::planning::local {

@@ -1,3 +1,5 @@
+#include "bipednav/planning/local/teb_terms.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -5,8 +7,6 @@
 #include <numbers>
 #include <random>
 #include <vector>
-
-#include "bipednav/planning/local/teb_terms.hpp"
 
 namespace bipednav::planning::local {
 
