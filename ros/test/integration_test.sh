@@ -20,34 +20,8 @@ command -v rostopic >/dev/null || skip "rostopic not found"
   skip "Debian's ROS Python modules (rospy, actionlib, move_base_msgs) not found"
 for exe in bipednav_sim_node bipednav_nav_node; do [ -x "$BIN/$exe" ] || { echo "FAIL: $BIN/$exe missing"; exit 1; }; done
 
-WORK=$(mktemp -d /tmp/bipednav-ros-test.XXXXXX)
-PORT=$("$PY" -c 'import socket; s=socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
-export ROS_MASTER_URI=http://127.0.0.1:$PORT ROS_IP=127.0.0.1 ROS_HOME=$WORK ROS_LOG_DIR=$WORK/log
-export BIPEDNAV_CONFIG_DIR=$SRC/config
-PIDS=()
-cleanup() {
-  local rc=$?
-  for ((i = ${#PIDS[@]} - 1; i >= 0; i--)); do kill -TERM "${PIDS[i]}" 2>/dev/null; done
-  sleep 1
-  for pid in "${PIDS[@]}"; do kill -KILL "$pid" 2>/dev/null; wait "$pid" 2>/dev/null; done
-  if [ $rc -ne 0 ]; then
-    for f in "$WORK"/*.log; do echo "----- $f (last 25 lines)"; tail -n 25 "$f"; done
-  fi
-  rm -rf "$WORK"
-  exit $rc
-}
-trap cleanup EXIT INT TERM
-fail() { echo "FAIL: $*"; exit 1; }
-
-echo "master on $ROS_MASTER_URI, logs in $WORK"
-rosmaster --core -p "$PORT" >"$WORK/master.log" 2>&1 &
-PIDS+=($!)
-for _ in $(seq 50); do
-  "$PY" -c "import rosgraph; rosgraph.Master('/probe').getPid()" 2>/dev/null && break
-  sleep 0.2
-done
-"$PY" -c "import rosgraph; m = rosgraph.Master('/probe'); m.setParam('/use_sim_time', True)" ||
-  fail "master did not come up on port $PORT"
+# A master of its own, the work directory, fail() and the cleanup of every process in PIDS.
+. "$HERE/ros_master.sh"
 
 SCENARIO=$SRC/scenarios/hexagon_static.yaml
 stdbuf -oL "$BIN/bipednav_sim_node" _scenario:="$SCENARIO" _real_time_factor:="$RTF" >"$WORK/sim.log" 2>&1 &
