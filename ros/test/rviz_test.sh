@@ -13,8 +13,8 @@ set -uo pipefail
 PY=/usr/bin/python3
 HERE=$(cd "$(dirname "$0")" && pwd)
 
-# The X session, run by xvfb-run below: RViz, the bag played into it, the checks, the screenshot.
-if [ "${1:-}" = "--x-session" ]; then
+# Under Xvfb (xvfb-run below): RViz, the bag played into it, the checks, the screenshot.
+if [ "${1:-}" = "--in-xvfb" ]; then
   config=$2 work=$3 shot=${4:-}
   rviz -d "$config" >"$work/rviz.log" 2>&1 &
   rviz_pid=$!
@@ -52,7 +52,7 @@ export XDG_RUNTIME_DIR=$WORK
 "$BIN/bipednav_record" "$SRC/scenarios/hexagon_dynamic.yaml" --bag "$WORK/run.bag" --time-limit 12 >"$WORK/record.log" 2>&1
 grep -q "messages written" "$WORK/record.log" && [ -s "$WORK/run.bag" ] || fail "bipednav_record wrote no bag"
 
-xvfb-run -a -s "-screen 0 1280x800x24" "$0" --x-session "$SRC/ros/bipednav.rviz" "$WORK" "$SHOT" &
+xvfb-run -a -s "-screen 0 1280x800x24" "$0" --in-xvfb "$SRC/ros/bipednav.rviz" "$WORK" "$SHOT" &
 PIDS+=($!)
-wait "${PIDS[-1]}" || fail "RViz session (its log above)"
+wait "${PIDS[-1]}" || fail "RViz under Xvfb (its log above)"
 echo "PASS: RViz loads ros/bipednav.rviz${SHOT:+ (screenshot: $SHOT)}"
