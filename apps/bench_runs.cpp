@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "bipednav/common/progress.hpp"
+#include "bipednav/navigation/robot_loading.hpp"
 
 namespace bipednav::app {
 
@@ -38,7 +39,7 @@ std::map<std::string, RobotProfile> robot_profiles(const std::vector<std::string
                                                    const runner::RunOptions& base) {
   std::map<std::string, RobotProfile> profiles;
   for (const auto& robot : robots) {
-    const RobotProfile profile = runner::load_robot(robot);
+    const RobotProfile profile = navigation::load_robot(robot);
     runner::navigator_params(profile, base);
     profiles[robot] = profile;
   }

@@ -16,6 +16,7 @@
 #include "bipednav/common/error.hpp"
 #include "bipednav/mapping/global_costmap.hpp"
 #include "bipednav/mapping/map_io.hpp"
+#include "bipednav/navigation/robot_loading.hpp"
 #include "bipednav/planning/global/global_planner.hpp"
 #include "bipednav/planning/local/bench_scene.hpp"
 #include "bipednav/planning/local/local_planner.hpp"
@@ -168,7 +169,7 @@ bool bench_local(const BenchLocalArgs& a) {
   // settings with the file overlaid, as `run --params` would use them.
   TebParams base;
   if (!a.params.empty()) {
-    const RobotProfile robot = runner::load_robot(a.robot);
+    const RobotProfile robot = navigation::load_robot(a.robot);
     if (robot.kind == "humanoid")
       throw Error("bench local --robot " + a.robot + ": a humanoid walks by footsteps, no TEB");
     runner::RunOptions o;

@@ -12,6 +12,7 @@
 #include "apps/cli_json.hpp"
 #include "apps/scenario_files.hpp"
 #include "bipednav/common/error.hpp"
+#include "bipednav/navigation/robot_loading.hpp"
 #include "bipednav/runner/footstep_runner.hpp"
 #include "bipednav/runner/scenario_runner.hpp"
 #include "bipednav/sim/placement_check.hpp"
@@ -71,7 +72,7 @@ bool run_route(const RouteArgs& a) {
   if (a.world.empty() && a.scenario.empty()) throw Error("route needs a SCENARIO or --world FILE");
   const sim::Scenario s = a.world.empty() ? sim::load_scenario(resolve_scenario(a.scenario))
                                           : scenario_from_world(a.world, a.robot, a.start, a.goal);
-  const RobotProfile robot = runner::load_robot(a.robot.empty() ? s.robot : a.robot);
+  const RobotProfile robot = navigation::load_robot(a.robot.empty() ? s.robot : a.robot);
   nlohmann::json r = route_report(s, robot, a.resolution_m);
   if (!s.world.actors.empty()) {
     const sim::SpaceTimeRoute p = sim::scenario_space_time_route(s, robot);

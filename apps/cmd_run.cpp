@@ -18,6 +18,7 @@
 #include "apps/scenario_files.hpp"
 #include "bipednav/io/number_list.hpp"
 #include "bipednav/navigation/navigator_params_yaml.hpp"
+#include "bipednav/navigation/robot_loading.hpp"
 #include "bipednav/runner/footstep_runner.hpp"
 #include "bipednav/runner/replay_recorder.hpp"
 #include "bipednav/runner/run_figure.hpp"
@@ -121,7 +122,7 @@ RobotProfile check_before_run(const RunArgs& a, const sim::Scenario& s, bool foo
   if (!a.trace.empty()) prepare_output_file(a.trace, "--trace");
   if (!a.replay.empty()) prepare_output_file(a.replay, "--replay");
   if (!a.bag.empty()) prepare_output_file(a.bag, "--bag");
-  const RobotProfile robot = runner::load_robot(a.options.robot.empty() ? s.robot : a.options.robot);
+  const RobotProfile robot = navigation::load_robot(a.options.robot.empty() ? s.robot : a.options.robot);
   sim::check_placements(s, robot, !footsteps);
   return robot;
 }
@@ -182,7 +183,7 @@ bool run_command(const RunArgs& a) {
 #ifdef BIPEDNAV_WITH_ROSBAG
   std::shared_ptr<ros1::BagRecorder> bag;
   if (!a.bag.empty()) {
-    bag = std::make_shared<ros1::BagRecorder>(a.bag, runner::load_robot(o.robot.empty() ? s.robot : o.robot));
+    bag = std::make_shared<ros1::BagRecorder>(a.bag, navigation::load_robot(o.robot.empty() ? s.robot : o.robot));
     o.render_unused_depth = true;  // the bag keeps every depth image
     o.on_step = [bag](const sim::Simulation& sim, const SensorFrame& f, const navigation::Navigator& n,
                       const Twist& c) { bag->record(sim, f, n, c); };
@@ -252,7 +253,7 @@ std::string without_default_tree(std::string yaml, const std::string& default_tr
 void print_params(const ParamsArgs& a) {
   runner::RunOptions o;
   o.params_file = a.params;
-  const RobotProfile robot = runner::load_robot(a.robot);
+  const RobotProfile robot = navigation::load_robot(a.robot);
   const bool footsteps = runner::is_footstep_robot(robot);
   const std::string yaml =
       footsteps ? navigation::navigator_params_yaml(footstep_params_for_cli(o.params_file))

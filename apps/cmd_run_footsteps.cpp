@@ -9,13 +9,14 @@
 
 #include "apps/cli_json.hpp"
 #include "apps/run_json.hpp"
+#include "bipednav/navigation/robot_loading.hpp"
 #include "bipednav/runner/footstep_replay.hpp"
 #include "bipednav/runner/footstep_runner.hpp"
 
 namespace bipednav::app {
 
 bool runs_by_footsteps(const sim::Scenario& scenario, const std::string& robot_override) {
-  return runner::is_footstep_robot(runner::load_robot(robot_override.empty() ? scenario.robot : robot_override));
+  return runner::is_footstep_robot(navigation::load_robot(robot_override.empty() ? scenario.robot : robot_override));
 }
 
 navigation::FootstepNavigatorParams footstep_params_for_cli(const std::filesystem::path& params_file) {

@@ -4,6 +4,7 @@
 #include <exception>
 
 #include "bipednav/common/cpu_time.hpp"
+#include "bipednav/navigation/robot_loading.hpp"
 #include "bipednav/runner/scenario_runner.hpp"
 #include "bipednav/sim/footprint2d.hpp"
 #include "bipednav/tracking/tracker.hpp"
@@ -184,7 +185,7 @@ TrackingRun run_tracking(const sim::Scenario& scenario, const std::string& robot
   runner::RunOptions o;
   o.robot = robot;
   o.seed = seed;
-  const RobotProfile profile = runner::load_robot(robot);
+  const RobotProfile profile = navigation::load_robot(robot);
   RunScorer scorer(variants, eval, profile, runner::navigator_params(profile, o).perception);
   o.on_step = [&](const sim::Simulation& sim, const SensorFrame&, const navigation::Navigator& nav, const Twist&) {
     scorer.observe(sim, nav);

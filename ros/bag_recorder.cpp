@@ -4,6 +4,7 @@
 #include <rosgraph_msgs/Clock.h>
 #include <tf2_msgs/TFMessage.h>
 
+#include "bipednav/navigation/robot_loading.hpp"
 #include "ros/conversions.hpp"
 
 namespace bipednav::ros1 {
@@ -93,7 +94,7 @@ void BagRecorder::record(const sim::Simulation& sim, const SensorFrame& frame, c
 // per-step hook yet. With one (RunOptions::on_step), this becomes a call to run_scenario.
 BagRunSummary run_scenario_to_bag(const sim::Scenario& scenario, const runner::RunOptions& o,
                                   const std::filesystem::path& bag_file, const BagRecorderParams& bag_params) {
-  const RobotProfile robot = runner::load_robot(o.robot.empty() ? scenario.robot : o.robot, o.config_dir);
+  const RobotProfile robot = navigation::load_robot(o.robot.empty() ? scenario.robot : o.robot, o.config_dir);
   sim::SimulationParams sp;
   sp.seed = o.seed.value_or(scenario.seed);
   sim::Simulation sim(scenario.world, robot, scenario.start, sp);

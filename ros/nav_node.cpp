@@ -7,13 +7,16 @@
 #include <tf2_ros/transform_broadcaster.h>
 #include <tf2_ros/transform_listener.h>
 
+#include <cstdio>
+#include <map>
 #include <memory>
 #include <optional>
 
+#include "bipednav/navigation/map_area.hpp"
 #include "bipednav/navigation/navigator.hpp"
-#include "bipednav/navigation/navigator_params_yaml.hpp"
-#include "bipednav/runner/scenario_runner.hpp"
+#include "bipednav/navigation/robot_loading.hpp"
 #include "ros/conversions.hpp"
+#include "ros/map_params.hpp"
 
 namespace bipednav::ros1 {
 namespace {
@@ -21,11 +24,14 @@ namespace {
 struct NodeParams {
   std::string robot = "turtlebot3";
   std::string config_dir;  // empty: the compiled-in config/
-  std::string scenario;    // optional: world bounds and start pose for the global map
+  // A dictionary parameter holding the map parameters (the simulator node's ~map_area for its
+  // scenario, e.g. /bipednav_sim/map_area), waited for up to map_area_wait_s of wall time since the
+  // nodes start together; the single map parameters win over it. Empty: those alone.
+  std::string map_area_param;
+  double map_area_wait_s = 30.0;
   std::string map_frame = "map", odom_frame = "odom", base_frame = "base_link";
   double tick_rate_hz = 50.0;
-  double map_min_x_m = -10.0, map_min_y_m = -10.0, map_max_x_m = 10.0, map_max_y_m = 10.0;
-  double initial_x_m = 0.0, initial_y_m = 0.0, initial_theta_rad = 0.0;
+  MapParams map;                   // the global map's area and the initial pose
   double footstep_length_m = 0.0;  // > 0 draws footstep markers (walkers)
 };
 
@@ -78,22 +84,41 @@ T param(ros::NodeHandle& pnh, const std::string& name, T def) {
   return def;
 }
 
+// The value of the dictionary parameter `name`, once some node has set it (within wait_s of wall time).
+std::map<std::string, double> published_param(const std::string& name, double wait_s) {
+  std::map<std::string, double> values;
+  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(wait_s);
+  while (!ros::param::get(name, values)) {
+    if (!ros::ok() || ros::WallTime::now() > deadline) {
+      char waited[32];
+      std::snprintf(waited, sizeof waited, "%g s", wait_s);
+      throw Error("parameter " + name + " (~map_area_param) not set within " + waited +
+                  ": is the simulator node running? (or give the map parameters ~map_min_x_m ...)");
+    }
+    ros::WallDuration(0.1).sleep();
+  }
+  return values;
+}
+
 void NavNode::load(ros::NodeHandle& pnh) {
+  if (pnh.hasParam("scenario"))
+    throw Error(
+        "~scenario: the navigation node reads no scenario files; set ~map_area_param (the simulator node "
+        "publishes its scenario's map area as /bipednav_sim/map_area) or ~map_min_x_m .. ~map_max_y_m");
   p_.robot = param(pnh, "robot", p_.robot);
   p_.config_dir = param(pnh, "config_dir", p_.config_dir);
-  p_.scenario = param(pnh, "scenario", p_.scenario);
+  p_.map_area_param = param(pnh, "map_area_param", p_.map_area_param);
+  p_.map_area_wait_s = param(pnh, "map_area_wait_s", p_.map_area_wait_s);
   p_.map_frame = param(pnh, "map_frame", p_.map_frame);
   p_.odom_frame = param(pnh, "odom_frame", p_.odom_frame);
   p_.base_frame = param(pnh, "base_frame", p_.base_frame);
   p_.tick_rate_hz = param(pnh, "tick_rate_hz", p_.tick_rate_hz);
   p_.footstep_length_m = param(pnh, "footstep_length_m", p_.footstep_length_m);
-  robot_ = runner::load_robot(p_.robot, p_.config_dir);
-  nav_params_ = navigation::NavigatorParams::for_robot(robot_);
+  robot_ = navigation::load_robot(p_.robot, p_.config_dir);
+  // The robot's defaults, then a navigation parameters file (`bipednav params --robot R` prints
+  // one); the single ROS params below still override it.
+  nav_params_ = navigation::navigator_params_for(robot_, param(pnh, "params_file", std::string()));
   auto& n = nav_params_;
-  // A navigation parameters file (`bipednav params --robot R` prints one); the single ROS params
-  // below still override it.
-  const std::string params_file = param(pnh, "params_file", std::string());
-  if (!params_file.empty()) navigation::apply_navigator_params_file(params_file, n);
   n.server.global_planner = param(pnh, "global_planner", n.server.global_planner);
   n.server.local_planner = param(pnh, "local_planner", n.server.local_planner);
   n.localization.method = param(pnh, "localization", n.localization.method);
@@ -104,19 +129,12 @@ void NavNode::load(ros::NodeHandle& pnh) {
   n.behavior_tree = param(pnh, "behavior_tree", n.behavior_tree);
   n.validate();
   require(p_.tick_rate_hz > 0.0, "tick_rate_hz", "> 0");
-  if (!p_.scenario.empty()) {
-    const sim::Scenario sc = sim::load_scenario(p_.scenario);
-    geometry_ = runner::global_geometry_for(sc, n.global_map.resolution_m);
-    initial_ = sc.start;
-  } else {
-    sim::Scenario bounds_only;
-    bounds_only.bounds = {param(pnh, "map_min_x_m", p_.map_min_x_m), param(pnh, "map_min_y_m", p_.map_min_y_m),
-                          param(pnh, "map_max_x_m", p_.map_max_x_m), param(pnh, "map_max_y_m", p_.map_max_y_m)};
-    geometry_ = runner::global_geometry_for(bounds_only, n.global_map.resolution_m, 0.0);
-  }
-  initial_.x = param(pnh, "initial_x_m", initial_.x);
-  initial_.y = param(pnh, "initial_y_m", initial_.y);
-  initial_.theta = param(pnh, "initial_theta_rad", initial_.theta);
+  require(p_.map_area_wait_s >= 0.0, "map_area_wait_s", ">= 0");
+  if (!p_.map_area_param.empty())
+    apply_param(published_param(p_.map_area_param, p_.map_area_wait_s), p_.map_area_param, p_.map);
+  p_.map.fields([&](const char* name, double& v) { v = param(pnh, name, v); });
+  geometry_ = navigation::global_grid_for(p_.map.area, n.global_map.resolution_m);
+  initial_ = p_.map.initial;
 }
 
 NavNode::NavNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) : server_(nh, "move_base", false) {

@@ -11,9 +11,11 @@
 #include <memory>
 
 #include "bipednav/control/gait_command.hpp"
+#include "bipednav/navigation/robot_loading.hpp"
 #include "bipednav/runner/scenario_runner.hpp"
 #include "bipednav/sim/simulation.hpp"
 #include "ros/conversions.hpp"
+#include "ros/map_params.hpp"
 
 namespace bipednav::ros1 {
 namespace {
@@ -64,10 +66,16 @@ SimNode::SimNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) {
   require(p_.real_time_factor >= 0.0, "real_time_factor", ">= 0");
   watchdog_ = std::make_unique<control::StopOnSilence>(gait_, control::StopOnSilenceParams{p_.cmd_timeout_s});
   scenario_ = sim::load_scenario(p_.scenario);
-  const RobotProfile robot = runner::load_robot(p_.robot.empty() ? scenario_.robot : p_.robot, p_.config_dir);
+  const RobotProfile robot = navigation::load_robot(p_.robot.empty() ? scenario_.robot : p_.robot, p_.config_dir);
   sim::SimulationParams sp;
   sp.seed = p_.seed >= 0 ? static_cast<std::uint64_t>(p_.seed) : scenario_.seed;
   sim_ = std::make_unique<sim::Simulation>(scenario_.world, robot, scenario_.start, sp);
+  // The scenario's map area and start for the navigation node (its ~map_area_param names this), which
+  // then sizes its global map as a closed-loop run does (runner::global_geometry_for).
+  MapParams map;
+  map.area = runner::map_area_for(scenario_);
+  map.initial = scenario_.start;
+  pnh.setParam("map_area", to_param(map));
   clock_pub_ = nh.advertise<rosgraph_msgs::Clock>("/clock", 10);
   odom_pub_ = nh.advertise<nav_msgs::Odometry>("odom", 50);
   truth_pub_ = nh.advertise<nav_msgs::Odometry>("ground_truth", 10);

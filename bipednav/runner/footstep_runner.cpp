@@ -7,6 +7,7 @@
 #include "bipednav/common/clock.hpp"
 #include "bipednav/common/progress.hpp"
 #include "bipednav/navigation/navigator_params_yaml.hpp"
+#include "bipednav/navigation/robot_loading.hpp"
 #include "bipednav/runner/footstep_drawing.hpp"
 #include "bipednav/sim/raycaster.hpp"
 #include "bipednav/sim/terrain_truth.hpp"
@@ -144,7 +145,7 @@ FootstepRunResult run_footstep_scenario(const sim::Scenario& scenario, const Foo
   options.validate();
   scenario.validate();
   if (scenario.goals.empty()) throw Error("scenario '" + scenario.name + "' has no goal");
-  const RobotProfile robot = load_robot(scenario.robot, options.config_dir);
+  const RobotProfile robot = navigation::load_robot(scenario.robot, options.config_dir);
   if (!is_footstep_robot(robot)) throw Error("robot '" + robot.name + "' does not walk by footsteps");
   const SensorMount* mount = robot.sensor("depth_head");
   if (!mount) throw Error("robot '" + robot.name + "' has no depth_head camera");

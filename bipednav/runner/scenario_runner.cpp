@@ -7,49 +7,20 @@
 #include "bipednav/common/clock.hpp"
 #include "bipednav/common/cpu_time.hpp"
 #include "bipednav/common/progress.hpp"
-#include "bipednav/io/robot_profile_yaml.hpp"
-#include "bipednav/navigation/navigator_params_yaml.hpp"
+#include "bipednav/navigation/robot_loading.hpp"
 
 namespace bipednav::runner {
 
-RobotProfile load_robot(const std::string& name_or_file, const std::filesystem::path& config_dir) {
-  namespace fs = std::filesystem;
-  const fs::path given(name_or_file);
-  const std::string ext = given.extension().string();
-  if (ext == ".yaml" || ext == ".yml" || name_or_file.find('/') != std::string::npos) {
-    if (!fs::is_regular_file(given)) throw Error("robot profile file " + name_or_file + " not found");
-    return io::load_robot_profile(given);
-  }
-  const fs::path dir = config_dir.empty() ? fs::path(navigation::config_dir()) : config_dir;
-  const fs::path file = dir / (name_or_file + ".yaml");
-  if (name_or_file.empty() || !fs::exists(file)) {
-    std::vector<std::string> known;
-    std::error_code ec;
-    for (const auto& e : fs::directory_iterator(dir, ec))
-      if (e.path().extension() == ".yaml") known.push_back(e.path().stem().string());
-    std::sort(known.begin(), known.end());
-    std::string list;
-    for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
-    throw Error(
-        "unknown robot '" + name_or_file + "': no profile " + file.string() +
-        (list.empty() ? "" : " (profiles in " + dir.string() + ": " + list + "; or give a profile file FILE.yaml)"));
-  }
-  return io::load_robot_profile(file);
+navigation::MapArea map_area_for(const sim::Scenario& s, double margin_m) {
+  return {s.bounds.min_x_m, s.bounds.min_y_m, s.bounds.max_x_m, s.bounds.max_y_m, margin_m};
 }
 
 mapping::GridGeometry global_geometry_for(const sim::Scenario& s, double res, double margin_m) {
-  mapping::GridGeometry g;
-  g.resolution_m = res;
-  g.origin_x_m = std::floor((s.bounds.min_x_m - margin_m) / res) * res;
-  g.origin_y_m = std::floor((s.bounds.min_y_m - margin_m) / res) * res;
-  g.width = static_cast<int>(std::ceil((s.bounds.max_x_m + margin_m - g.origin_x_m) / res));
-  g.height = static_cast<int>(std::ceil((s.bounds.max_y_m + margin_m - g.origin_y_m) / res));
-  return g;
+  return navigation::global_grid_for(map_area_for(s, margin_m), res);
 }
 
 navigation::NavigatorParams navigator_params(const RobotProfile& robot, const RunOptions& o) {
-  auto p = navigation::NavigatorParams::for_robot(robot);
-  if (!o.params_file.empty()) navigation::apply_navigator_params_file(o.params_file, p);
+  auto p = navigation::navigator_params_for(robot, o.params_file);
   if (!o.localization.empty()) p.localization.method = o.localization;
   if (!o.local_planner.empty()) p.server.local_planner = o.local_planner;
   if (!o.global_planner.empty()) p.server.global_planner = o.global_planner;
@@ -262,7 +233,7 @@ RunResult run_scenario(const sim::Scenario& scenario, const RunOptions& o) {
   RunResult out;
   out.scenario = scenario.name;
   out.seed = o.seed.value_or(scenario.seed);
-  const RobotProfile robot = load_robot(o.robot.empty() ? scenario.robot : o.robot, o.config_dir);
+  const RobotProfile robot = navigation::load_robot(o.robot.empty() ? scenario.robot : o.robot, o.config_dir);
   out.robot = robot.name;
   sim::SimulationParams sp;
   sp.seed = o.seed.value_or(scenario.seed);

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "bipednav/control/gait_command.hpp"
+#include "bipednav/navigation/map_area.hpp"
 #include "bipednav/navigation/navigator.hpp"
 #include "bipednav/sim/fault_injection.hpp"
 #include "bipednav/sim/scenario.hpp"
@@ -115,10 +116,8 @@ struct RunResult {
   Snapshot final_state;
 };
 
-// Loads a robot profile: a name is config/<name>.yaml (config_dir, default navigation::config_dir());
-// an argument ending in .yaml or .yml, or containing a '/', is a profile file of the user's own
-// robot (config/README.md gives the format).
-RobotProfile load_robot(const std::string& name_or_file, const std::filesystem::path& config_dir = {});
+// The area a navigator's global map covers for `scenario`: its bounds plus `margin_m` on every side.
+navigation::MapArea map_area_for(const sim::Scenario& scenario, double margin_m = 2.0);
 // The global map's grid: the scenario's bounds plus a margin, at the given resolution.
 mapping::GridGeometry global_geometry_for(const sim::Scenario& scenario, double resolution_m, double margin_m = 2.0);
 
@@ -138,8 +137,9 @@ RunResult run_scenario(const sim::Scenario& scenario, const RunOptions& options)
 // That rule: sets r.success and r.verdict (why a run failed, in words) from the navigator's outcome,
 // the first contact and the true goal error against the tolerances. The footstep runs use it too.
 void judge_run(RunResult& r, double goal_tolerance_m, double goal_tolerance_rad);
-// The navigator's parameters for a run of `robot`: its defaults, options.params_file, then the
-// localization / planner options (without the scenario's goal tolerances).
+// The navigator's parameters for a run of `robot`: its defaults, options.params_file
+// (navigation::navigator_params_for), then the localization / planner options (without the
+// scenario's goal tolerances).
 navigation::NavigatorParams navigator_params(const RobotProfile& robot, const RunOptions& options);
 
 }  // namespace bipednav::runner

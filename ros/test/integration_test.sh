@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # ROS 1 integration test: a master on 127.0.0.1 with its own port, bipednav_sim_node on the
-# hexagon_static scenario, bipednav_nav_node, and the move_base client (move_base_client.py):
+# hexagon_static scenario, bipednav_nav_node sized by the simulator node's ~map_area, and the
+# move_base client (move_base_client.py):
 # a reachable goal SUCCEEDED, cmd_vel seen while moving, a goal on the centre cylinder ABORTED
 # with BLOCKED_GOAL, a goal preempted by another one. Every process is stopped by its PID.
 # Usage: integration_test.sh BIN_DIR SOURCE_DIR [REAL_TIME_FACTOR]
@@ -19,39 +20,13 @@ command -v rostopic >/dev/null || skip "rostopic not found"
   skip "Debian's ROS Python modules (rospy, actionlib, move_base_msgs) not found"
 for exe in bipednav_sim_node bipednav_nav_node; do [ -x "$BIN/$exe" ] || { echo "FAIL: $BIN/$exe missing"; exit 1; }; done
 
-WORK=$(mktemp -d /tmp/bipednav-ros-test.XXXXXX)
-PORT=$("$PY" -c 'import socket; s=socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
-export ROS_MASTER_URI=http://127.0.0.1:$PORT ROS_IP=127.0.0.1 ROS_HOME=$WORK ROS_LOG_DIR=$WORK/log
-export BIPEDNAV_CONFIG_DIR=$SRC/config
-PIDS=()
-cleanup() {
-  local rc=$?
-  for ((i = ${#PIDS[@]} - 1; i >= 0; i--)); do kill -TERM "${PIDS[i]}" 2>/dev/null; done
-  sleep 1
-  for pid in "${PIDS[@]}"; do kill -KILL "$pid" 2>/dev/null; wait "$pid" 2>/dev/null; done
-  if [ $rc -ne 0 ]; then
-    for f in "$WORK"/*.log; do echo "----- $f (last 25 lines)"; tail -n 25 "$f"; done
-  fi
-  rm -rf "$WORK"
-  exit $rc
-}
-trap cleanup EXIT INT TERM
-fail() { echo "FAIL: $*"; exit 1; }
-
-echo "master on $ROS_MASTER_URI, logs in $WORK"
-rosmaster --core -p "$PORT" >"$WORK/master.log" 2>&1 &
-PIDS+=($!)
-for _ in $(seq 50); do
-  "$PY" -c "import rosgraph; rosgraph.Master('/probe').getPid()" 2>/dev/null && break
-  sleep 0.2
-done
-"$PY" -c "import rosgraph; m = rosgraph.Master('/probe'); m.setParam('/use_sim_time', True)" ||
-  fail "master did not come up on port $PORT"
+# A master of its own, the work directory, fail() and the cleanup of every process in PIDS.
+. "$HERE/ros_master.sh"
 
 SCENARIO=$SRC/scenarios/hexagon_static.yaml
 stdbuf -oL "$BIN/bipednav_sim_node" _scenario:="$SCENARIO" _real_time_factor:="$RTF" >"$WORK/sim.log" 2>&1 &
 PIDS+=($!)
-stdbuf -oL "$BIN/bipednav_nav_node" _scenario:="$SCENARIO" >"$WORK/nav.log" 2>&1 &
+stdbuf -oL "$BIN/bipednav_nav_node" _map_area_param:=/bipednav_sim_node/map_area >"$WORK/nav.log" 2>&1 &
 PIDS+=($!)
 
 stdbuf -oL "$PY" "$HERE/move_base_client.py" --goal 1.7 0.55 0.0 --blocked-goal 0.0 0.0 0.0 \
@@ -78,6 +53,9 @@ client_rc=$?
 cat "$WORK/client.log"
 [ $moving -eq 1 ] || fail "no non-zero cmd_vel seen while the goal was active"
 [ $client_rc -eq 0 ] || fail "move_base client reported a failure"
+# The nav node sized its global map from the simulator node's ~map_area: the grid of a closed-loop
+# run of hexagon_static (its bounds + 2 m at 0.1 m).
+grep -q "global map 130x118 at 0.10 m" "$WORK/nav.log" || fail "nav node's global map is not hexagon_static's 130x118 cells"
 kill -0 "${PIDS[1]}" 2>/dev/null || fail "bipednav_sim_node died"
 kill -0 "${PIDS[2]}" 2>/dev/null || fail "bipednav_nav_node died"
 echo "PASS: ROS integration test"

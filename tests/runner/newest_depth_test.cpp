@@ -6,6 +6,7 @@
 
 #include "bipednav/mapping/costmap2d.hpp"
 #include "bipednav/navigation/navigator.hpp"
+#include "bipednav/navigation/robot_loading.hpp"
 #include "bipednav/runner/scenario_runner.hpp"
 #include "bipednav/sim/simulation.hpp"
 #include "test_data.hpp"
@@ -31,7 +32,7 @@ struct BoxWatch {
 // the LiDAR, which passes over it). At t = 2 s the box slides 3 m sideways, out of the camera's
 // view, within 1 s: the camera's floor returns must clear its cells.
 BoxWatch watch_box_leave(bool newest_depth_only) {
-  const RobotProfile robot = runner::load_robot("turtlebot3");
+  const RobotProfile robot = navigation::load_robot("turtlebot3");
   runner::RunOptions o;
   navigation::NavigatorParams params = runner::navigator_params(robot, o);
   params.newest_depth_only = newest_depth_only;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "bipednav/navigation/navigator_params_yaml.hpp"
+#include "bipednav/navigation/robot_loading.hpp"
 #include "bipednav/runner/footstep_runner.hpp"
 #include "bipednav/runner/scenario_runner.hpp"
 #include "test_data.hpp"
@@ -11,7 +12,7 @@ using namespace bipednav;
 
 TEST(RunParamsFile, OverlaysTheRobotsDefaultsAndTheOptionsWin) {
   BIPEDNAV_REQUIRE_DATA(file, "navigator_params/override.yaml");
-  const RobotProfile robot = runner::load_robot("digit");
+  const RobotProfile robot = navigation::load_robot("digit");
   runner::RunOptions o;
   const navigation::NavigatorParams defaults = runner::navigator_params(robot, o);
   EXPECT_EQ(defaults.server.local_planner, "tracker");

@@ -2,14 +2,15 @@
 // (NavigatorParams::brake_from_last_command).
 #include <gtest/gtest.h>
 
+#include "bipednav/navigation/robot_loading.hpp"
 #include "bipednav/runner/scenario_runner.hpp"
 #include "test_data.hpp"
 
 using namespace bipednav;
 
 TEST(WalkerBraking, OnForWalkersOnly) {
-  EXPECT_TRUE(navigation::NavigatorParams::for_robot(runner::load_robot("digit")).brake_from_last_command);
-  EXPECT_FALSE(navigation::NavigatorParams::for_robot(runner::load_robot("turtlebot3")).brake_from_last_command);
+  EXPECT_TRUE(navigation::NavigatorParams::for_robot(navigation::load_robot("digit")).brake_from_last_command);
+  EXPECT_FALSE(navigation::NavigatorParams::for_robot(navigation::load_robot("turtlebot3")).brake_from_last_command);
 }
 
 // Seed 9: Digit heads for the person's lane while the person walks down it towards Digit's path.
