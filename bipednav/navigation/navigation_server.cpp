@@ -255,8 +255,7 @@ Result NavigationServer::relax_constraints() {
 
 double NavigationServer::controller_xy_goal_tolerance() const {
   const double tolerance_m = params_.goal.xy_tolerance_m;
-  const double aim_m = params_.local_planner == "tracker" ? params_.local.tracker.xy_goal_tolerance_m
-                                                          : params_.local.teb.xy_goal_tolerance_m;
+  const double aim_m = local_planner_->aimed_xy_goal_tolerance_m();
   const double budget_m = tolerance_m - 2.0 * view_.position_sigma_m;
   return std::min(aim_m, std::max(params_.min_controller_goal_tolerance_fraction * tolerance_m, budget_m));
 }

@@ -39,6 +39,8 @@ class LocalPlanner {
   // Forgets the warm start, the selected homotopy class and the oscillation history.
   virtual void reset() = 0;
   virtual std::string_view name() const = 0;
+  // The position tolerance its parameters bring the robot inside at the goal.
+  virtual double aimed_xy_goal_tolerance_m() const = 0;
 
   // The tracked obstacles to yield to (the navigator's tracker, fed from the sensors; not owned, it
   // must outlive the planner); none by default.

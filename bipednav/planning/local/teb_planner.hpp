@@ -27,6 +27,7 @@ class TebPlanner : public LocalPlanner {
                           const mapping::Costmap2D& local_costmap, double now_s) override;
   void reset() override;
   std::string_view name() const override { return "teb"; }
+  double aimed_xy_goal_tolerance_m() const override { return params_.xy_goal_tolerance_m; }
 
   const TebParams& params() const { return params_; }
   // The obstacles and candidates of the last compute() (for display and tests).

@@ -27,6 +27,7 @@ class PathTracker : public LocalPlanner {
                           const mapping::Costmap2D& local_costmap, double now_s) override;
   void reset() override { holding_goal_ = false; }
   std::string_view name() const override { return "tracker"; }
+  double aimed_xy_goal_tolerance_m() const override { return params_.xy_goal_tolerance_m; }
 
  private:
   LocalPlanResult follow(const Pose2& T_map_base, const Twist& current_velocity, const Path& global_plan,
