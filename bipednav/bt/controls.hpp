@@ -2,11 +2,11 @@
 
 #include <set>
 
-#include "bipednav/navigation/bt_node.hpp"
+#include "bipednav/bt/node.hpp"
 
 // Composite (control) nodes with BehaviorTree.CPP v4 semantics, plus Nav2's RecoveryNode
 // and RoundRobin. Parents reset (halt) their children whenever they complete.
-namespace bipednav::navigation {
+namespace bipednav::bt {
 
 class BtControlNode : public BtNode {
  public:
@@ -98,4 +98,4 @@ class BtRoundRobin final : public BtControlNode {
   std::size_t failures_ = 0;
 };
 
-}  // namespace bipednav::navigation
+}  // namespace bipednav::bt

@@ -1,10 +1,10 @@
-#include "bipednav/navigation/bt_factory.hpp"
+#include "bipednav/bt/factory.hpp"
 
-#include "bipednav/navigation/bt_controls.hpp"
-#include "bipednav/navigation/bt_decorators.hpp"
-#include "bipednav/navigation/bt_leaves.hpp"
+#include "bipednav/bt/controls.hpp"
+#include "bipednav/bt/decorators.hpp"
+#include "bipednav/bt/leaves.hpp"
 
-namespace bipednav::navigation {
+namespace bipednav::bt {
 namespace {
 
 template <class Node>
@@ -109,4 +109,4 @@ std::vector<std::string> BtFactory::ids() const {
   return out;
 }
 
-}  // namespace bipednav::navigation
+}  // namespace bipednav::bt

@@ -1,4 +1,4 @@
-#include "bipednav/navigation/bt_blackboard.hpp"
+#include "bipednav/bt/blackboard.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -6,7 +6,7 @@
 #include <cmath>
 #include <cstdlib>
 
-namespace bipednav::navigation {
+namespace bipednav::bt {
 namespace {
 
 std::string trim(const std::string& s) {
@@ -165,4 +165,4 @@ void Blackboard::erase(const std::string& key) {
 
 void Blackboard::remap(const std::string& key, const std::string& parent_key) { remap_[key] = parent_key; }
 
-}  // namespace bipednav::navigation
+}  // namespace bipednav::bt

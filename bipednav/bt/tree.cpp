@@ -1,10 +1,10 @@
-#include "bipednav/navigation/bt_tree.hpp"
+#include "bipednav/bt/tree.hpp"
 
 #include <cmath>
 #include <functional>
 #include <sstream>
 
-namespace bipednav::navigation {
+namespace bipednav::bt {
 namespace {
 
 void visit(const BtNode& n, int depth, const std::function<void(const BtNode&, int)>& fn) {
@@ -84,4 +84,4 @@ std::string BehaviorTree::to_string() const {
   return os.str();
 }
 
-}  // namespace bipednav::navigation
+}  // namespace bipednav::bt

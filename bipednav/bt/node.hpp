@@ -8,9 +8,9 @@
 #include <string_view>
 #include <vector>
 
-#include "bipednav/navigation/bt_blackboard.hpp"
+#include "bipednav/bt/blackboard.hpp"
 
-namespace bipednav::navigation {
+namespace bipednav::bt {
 
 enum class BtStatus { IDLE, RUNNING, SUCCESS, FAILURE };
 std::string_view bt_status_name(BtStatus s);
@@ -18,7 +18,7 @@ std::string_view bt_status_name(BtStatus s);
 enum class BtNodeKind { Action, Condition, Control, Decorator, SubTree };
 std::string_view bt_kind_name(BtNodeKind k);
 
-enum class BtPortDir { Input, Output, InOut };
+enum class BtPortDir { Input, Output };
 
 // One declared port of a node type. Input ports without a default are required in the XML.
 struct BtPortSpec {
@@ -215,4 +215,4 @@ class BtSimTimer {
   double start_s_ = 0.0;
 };
 
-}  // namespace bipednav::navigation
+}  // namespace bipednav::bt

@@ -4,10 +4,10 @@
 #include <string>
 #include <vector>
 
-#include "bipednav/navigation/bt_blackboard.hpp"
-#include "bipednav/navigation/bt_node.hpp"
+#include "bipednav/bt/blackboard.hpp"
+#include "bipednav/bt/node.hpp"
 
-namespace bipednav::navigation {
+namespace bipednav::bt {
 
 // The state of one node, for introspection (HTML replay, run figure, logs).
 struct BtNodeState {
@@ -64,4 +64,4 @@ class BehaviorTree {
   double last_now_s_ = -1e300;
 };
 
-}  // namespace bipednav::navigation
+}  // namespace bipednav::bt

@@ -12,7 +12,7 @@
 #include "bipednav/common/path.hpp"
 #include "bipednav/common/pose2.hpp"
 
-namespace bipednav::navigation {
+namespace bipednav::bt {
 
 // The value types a blackboard entry or a port may hold.
 using BtValue = std::variant<std::monostate, bool, int, double, std::string, Pose2, Path>;
@@ -98,4 +98,4 @@ class Blackboard {
   bool autoremap_ = false;
 };
 
-}  // namespace bipednav::navigation
+}  // namespace bipednav::bt

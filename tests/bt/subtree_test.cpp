@@ -1,9 +1,9 @@
 #include <gtest/gtest.h>
 
-#include "bipednav/navigation/bt_xml.hpp"
-#include "navigation/bt_fakes.hpp"
+#include "bipednav/bt/xml.hpp"
+#include "bt/fakes.hpp"
 
-namespace bipednav::navigation {
+namespace bipednav::bt {
 namespace {
 
 using test::Harness;
@@ -143,4 +143,4 @@ TEST(BtSubTree, SetBlackboardAndGoalUpdated) {
 }
 
 }  // namespace
-}  // namespace bipednav::navigation
+}  // namespace bipednav::bt

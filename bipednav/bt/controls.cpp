@@ -1,10 +1,10 @@
-#include "bipednav/navigation/bt_controls.hpp"
+#include "bipednav/bt/controls.hpp"
 
 #include <algorithm>
 
 #include "bipednav/common/error.hpp"
 
-namespace bipednav::navigation {
+namespace bipednav::bt {
 
 BtStatus BtSequentialNode::finish(BtStatus s) {
   halt_children();
@@ -143,4 +143,4 @@ void BtRoundRobin::halt() {
   halt_children();
 }
 
-}  // namespace bipednav::navigation
+}  // namespace bipednav::bt

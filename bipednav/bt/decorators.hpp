@@ -1,11 +1,11 @@
 #pragma once
 
+#include "bipednav/bt/node.hpp"
 #include "bipednav/common/clock.hpp"
-#include "bipednav/navigation/bt_node.hpp"
 
 // Decorators (BehaviorTree.CPP v4 semantics; RateController as in Nav2, on the tree's
 // simulated clock) and the SubTree node; the engine's built-in leaves are in bt_leaves.hpp.
-namespace bipednav::navigation {
+namespace bipednav::bt {
 
 class BtDecoratorNode : public BtNode {
  public:
@@ -101,4 +101,4 @@ class BtSubTreeNode final : public BtNode {
   void halt() override { halt_children(); }
 };
 
-}  // namespace bipednav::navigation
+}  // namespace bipednav::bt

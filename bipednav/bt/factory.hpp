@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "bipednav/navigation/bt_node.hpp"
+#include "bipednav/bt/node.hpp"
 
-namespace bipednav::navigation {
+namespace bipednav::bt {
 
 using BtBuilder = std::function<std::unique_ptr<BtNode>(const BtNodeConfig&)>;
 
@@ -48,4 +48,4 @@ class BtFactory {
   std::map<std::string, BtNodeType> types_;
 };
 
-}  // namespace bipednav::navigation
+}  // namespace bipednav::bt

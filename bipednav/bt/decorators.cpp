@@ -1,8 +1,8 @@
-#include "bipednav/navigation/bt_decorators.hpp"
+#include "bipednav/bt/decorators.hpp"
 
 #include <cmath>
 
-namespace bipednav::navigation {
+namespace bipednav::bt {
 
 BtStatus BtInverter::tick(double now_s) {
   const BtStatus s = child(0).execute_tick(now_s);
@@ -89,4 +89,4 @@ void BtDelay::halt() {
   halt_children();
 }
 
-}  // namespace bipednav::navigation
+}  // namespace bipednav::bt

@@ -4,13 +4,13 @@
 #include <string>
 #include <vector>
 
-#include "bipednav/navigation/bt_factory.hpp"
-#include "bipednav/navigation/bt_node.hpp"
+#include "bipednav/bt/factory.hpp"
+#include "bipednav/bt/node.hpp"
 
 // Scriptable leaves for the behavior-tree engine tests: conditions read a value by node
 // name, actions run for a scripted number of ticks then return a scripted result, and
 // everything is logged ("start A", "run A", "halt A", "check C").
-namespace bipednav::navigation::test {
+namespace bipednav::bt::test {
 
 struct ActionScript {
   int running_ticks = 0;                // ticks returning RUNNING before the result
@@ -88,4 +88,4 @@ inline std::string one_tree(const std::string& body) {
          "\n</BehaviorTree>\n</root>\n";
 }
 
-}  // namespace bipednav::navigation::test
+}  // namespace bipednav::bt::test

@@ -1,4 +1,4 @@
-#include "bipednav/navigation/bt_xml.hpp"
+#include "bipednav/bt/xml.hpp"
 
 #include <tinyxml2.h>
 
@@ -6,10 +6,10 @@
 #include <map>
 #include <set>
 
-#include "bipednav/navigation/bt_controls.hpp"
-#include "bipednav/navigation/bt_decorators.hpp"
+#include "bipednav/bt/controls.hpp"
+#include "bipednav/bt/decorators.hpp"
 
-namespace bipednav::navigation {
+namespace bipednav::bt {
 namespace {
 
 using tinyxml2::XMLElement;
@@ -268,4 +268,4 @@ BehaviorTree load_tree_xml(const std::string& path_or_xml, const BtFactory& fact
   return BehaviorTree(std::move(node), std::move(blackboard), std::move(context), main_id);
 }
 
-}  // namespace bipednav::navigation
+}  // namespace bipednav::bt

@@ -1,8 +1,8 @@
 #pragma once
 
-#include "bipednav/navigation/bt_node.hpp"
+#include "bipednav/bt/node.hpp"
 
-namespace bipednav::navigation {
+namespace bipednav::bt {
 
 // The engine's built-in leaves (BehaviorTree.CPP v4 names): AlwaysSuccess / AlwaysFailure, Sleep,
 // SetBlackboard, and the navigation tree's GoalUpdated condition.
@@ -57,4 +57,4 @@ class BtGoalUpdated final : public BtCondition {
   bool check(double now_s) override;
 };
 
-}  // namespace bipednav::navigation
+}  // namespace bipednav::bt

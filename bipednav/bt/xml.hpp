@@ -3,10 +3,10 @@
 #include <memory>
 #include <string>
 
-#include "bipednav/navigation/bt_factory.hpp"
-#include "bipednav/navigation/bt_tree.hpp"
+#include "bipednav/bt/factory.hpp"
+#include "bipednav/bt/tree.hpp"
 
-namespace bipednav::navigation {
+namespace bipednav::bt {
 
 // Builds the tree from BehaviorTree.CPP v4-style XML:
 //   <root BTCPP_format="4" main_tree_to_execute="Main"> <BehaviorTree ID="Main"> ... </root>
@@ -20,4 +20,4 @@ namespace bipednav::navigation {
 BehaviorTree load_tree_xml(const std::string& path_or_xml, const BtFactory& factory,
                            std::shared_ptr<Blackboard> blackboard = nullptr);
 
-}  // namespace bipednav::navigation
+}  // namespace bipednav::bt

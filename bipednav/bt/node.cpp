@@ -1,8 +1,8 @@
-#include "bipednav/navigation/bt_node.hpp"
+#include "bipednav/bt/node.hpp"
 
 #include "bipednav/common/error.hpp"
 
-namespace bipednav::navigation {
+namespace bipednav::bt {
 
 std::string_view bt_status_name(BtStatus s) {
   switch (s) {
@@ -125,4 +125,4 @@ bool BtSimTimer::elapsed(double now_s) {
   return !(now_s - start_s_ + 1e-9 < duration_s_);
 }
 
-}  // namespace bipednav::navigation
+}  // namespace bipednav::bt

@@ -1,6 +1,6 @@
-#include "bipednav/navigation/bt_leaves.hpp"
+#include "bipednav/bt/leaves.hpp"
 
-namespace bipednav::navigation {
+namespace bipednav::bt {
 
 BtSleep::BtSleep(BtNodeConfig config) : BtNode(std::move(config)), timer_(this->config(), "msec") {}
 
@@ -35,4 +35,4 @@ bool BtGoalUpdated::check(double) {
   return goal->x != active->x || goal->y != active->y || goal->theta != active->theta;
 }
 
-}  // namespace bipednav::navigation
+}  // namespace bipednav::bt
