@@ -10,9 +10,9 @@
 #include "bipednav/bt/tree.hpp"
 #include "bipednav/bt/xml.hpp"
 #include "bipednav/common/sensor_frame.hpp"
+#include "bipednav/localization/localizer.hpp"
 #include "bipednav/mapping/global_costmap.hpp"
 #include "bipednav/mapping/local_costmap.hpp"
-#include "bipednav/navigation/localizer.hpp"
 #include "bipednav/navigation/navigation_server.hpp"
 #include "bipednav/navigation/sensor_gate.hpp"
 #include "bipednav/perception/pipeline.hpp"
@@ -23,6 +23,9 @@ namespace bipednav::navigation {
 
 // Robot profiles and behavior trees: $BIPEDNAV_CONFIG_DIR, else the source tree's config/.
 std::string config_dir();
+
+// The localizer's parameters, a part of the navigator's (the Localizer lives in localization/).
+using localization::LocalizerParams;
 
 struct NavigatorParams {
   perception::PerceptionParams perception;
@@ -179,7 +182,7 @@ class Navigator {
   NavigatorParams params_;
   RobotProfile robot_;
   perception::PerceptionPipeline perception_;
-  Localizer localizer_;
+  localization::Localizer localizer_;
   SensorGate gate_;
   mapping::LocalCostmap local_;
   mapping::GlobalCostmap global_;

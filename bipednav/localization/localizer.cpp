@@ -1,9 +1,9 @@
-#include "bipednav/navigation/localizer.hpp"
+#include "bipednav/localization/localizer.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
 
-namespace bipednav::navigation {
+namespace bipednav::localization {
 
 void LocalizerParams::validate() const {
   require(method == "loam" || method == "odometry", "localization.method", "loam or odometry");
@@ -30,9 +30,9 @@ Localizer::Localizer(LocalizerParams params, const RobotProfile& robot, const Po
     has_lidar_ = true;
   }
   if (params_.method == "loam" && has_lidar_) {
-    localization::LoamParams lp = params_.loam;
+    LoamParams lp = params_.loam;
     lp.output_deskewed = false;  // only the pose is read
-    loam_ = std::make_unique<localization::Loam>(std::move(lp));
+    loam_ = std::make_unique<Loam>(std::move(lp));
   }
 }
 
@@ -108,7 +108,7 @@ void Localizer::add_sweep(const PointCloud& sweep) {
   const Eigen::Vector3d up_in_lidar = T_base_lidar_.linear().transpose() *
                                       rpy_to_matrix(imu.roll_rad, imu.pitch_rad, 0.0).transpose() *
                                       Eigen::Vector3d::UnitZ();
-  const localization::LoamOutput out = loam_->process(sweep, prior, up_in_lidar);
+  const LoamOutput out = loam_->process(sweep, prior, up_in_lidar);
   const Pose2 predicted = correction_ * *odom_end;
   const Pose2 measured = pose2_from_se3(out.T_world_lidar * T_lidar_base);
   bool jump = distance(predicted, measured) > params_.max_correction_jump_m ||
@@ -160,4 +160,4 @@ bool Localizer::healthy(double now_s) const {
   return bad_sweeps_ < params_.unhealthy_after_bad_sweeps;
 }
 
-}  // namespace bipednav::navigation
+}  // namespace bipednav::localization

@@ -10,7 +10,7 @@
 #include "bipednav/common/sensor_frame.hpp"
 #include "bipednav/localization/loam.hpp"
 
-namespace bipednav::navigation {
+namespace bipednav::localization {
 
 struct LocalizerParams {
   std::string method = "loam";  // loam | odometry
@@ -66,7 +66,7 @@ class Localizer {
   LocalizerParams params_;
   SE3 T_base_lidar_ = SE3::Identity();
   bool has_lidar_ = false;
-  std::unique_ptr<localization::Loam> loam_;
+  std::unique_ptr<Loam> loam_;
   std::deque<Odometry> history_;
   Pose2 odom_now_;
   Twist velocity_;
@@ -83,4 +83,4 @@ class Localizer {
   bool anchored_ = false;
 };
 
-}  // namespace bipednav::navigation
+}  // namespace bipednav::localization

@@ -1,10 +1,10 @@
-#include "bipednav/navigation/localizer.hpp"
+#include "bipednav/localization/localizer.hpp"
 
 #include <gtest/gtest.h>
 
 #include "bipednav/common/error.hpp"
 
-namespace bipednav::navigation {
+namespace bipednav::localization {
 namespace {
 
 Odometry odometry_at(double t_s, double x_m) {
@@ -43,4 +43,4 @@ TEST(Localizer, RejectsANegativeDriftRatio) {
 }
 
 }  // namespace
-}  // namespace bipednav::navigation
+}  // namespace bipednav::localization
