@@ -19,6 +19,7 @@
 #include "bipednav/mapping/global_costmap.hpp"
 #include "bipednav/mapping/map_io.hpp"
 #include "bipednav/planning/global/global_planner.hpp"
+#include "bipednav/planning/global/global_planner_factory.hpp"
 #include "bipednav/planning/global/movingai_runner.hpp"
 #include "bipednav/planning/global/replan_benchmark.hpp"
 #include "bipednav/viz/canvas.hpp"

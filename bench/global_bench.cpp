@@ -2,6 +2,7 @@
 
 #include "bipednav/mapping/inflation.hpp"
 #include "bipednav/planning/global/global_planner.hpp"
+#include "bipednav/planning/global/global_planner_factory.hpp"
 #include "bipednav/planning/global/replan_benchmark.hpp"
 
 namespace {

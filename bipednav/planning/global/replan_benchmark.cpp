@@ -5,6 +5,7 @@
 
 #include "bipednav/common/cpu_time.hpp"
 #include "bipednav/common/error.hpp"
+#include "bipednav/planning/global/global_planner_factory.hpp"
 
 namespace bipednav::planning {
 

@@ -4,6 +4,7 @@
 
 #include "bipednav/common/error.hpp"
 #include "bipednav/io/movingai.hpp"
+#include "bipednav/planning/global/global_planner_factory.hpp"
 #include "bipednav/planning/global/movingai_runner.hpp"
 #include "test_data.hpp"
 
