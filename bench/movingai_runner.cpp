@@ -1,4 +1,4 @@
-#include "bipednav/planning/global/movingai_runner.hpp"
+#include "bench/movingai_runner.hpp"
 
 #include "bipednav/common/error.hpp"
 

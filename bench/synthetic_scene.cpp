@@ -1,4 +1,4 @@
-#include "bipednav/perception/synthetic_scene.hpp"
+#include "bench/synthetic_scene.hpp"
 
 #include <cmath>
 #include <limits>

@@ -1,4 +1,4 @@
-#include "bipednav/mapping/bench_scene.hpp"
+#include "bench/mapping_scene.hpp"
 
 #include <algorithm>
 #include <cmath>

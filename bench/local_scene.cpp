@@ -1,4 +1,4 @@
-#include "bipednav/planning/local/bench_scene.hpp"
+#include "bench/local_scene.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -9,7 +9,7 @@
 
 namespace bipednav::perception {
 
-// A synthetic stand-in for the simulator, for tests and benchmarks of this module: a flat floor
+// A synthetic stand-in for the simulator, for tests and benchmarks of perception: a flat floor
 // (z = 0 of the base frame) in a walled room with boxes, seen by analytic ray casting.
 struct SyntheticBox {
   Eigen::Vector3d min_m, max_m;  // axis-aligned, base frame
