@@ -4,7 +4,7 @@
 #include "bipednav/common/clock.hpp"
 
 // Decorators (BehaviorTree.CPP v4 semantics; RateController as in Nav2, on the tree's
-// simulated clock) and the SubTree node; the engine's built-in leaves are in bt_leaves.hpp.
+// simulated clock) and the SubTree node; the engine's built-in leaves are in leaves.hpp.
 namespace bipednav::bt {
 
 class BtDecoratorNode : public BtNode {
