@@ -20,11 +20,11 @@ constexpr double kPeriodS = 0.1;     // control period
 
 TebParams digit_teb(bool lag_model) {
   TebParams p;
-  p.limits.max_vel_x_mps = 0.5;
-  p.limits.max_vel_x_backwards_mps = 0.25;
-  p.limits.max_vel_theta_radps = 0.6;
-  p.limits.acc_lim_x_mps2 = 0.5;
-  p.limits.acc_lim_theta_radps2 = 1.0;
+  p.limits.velocity.max_vel_x_mps = 0.5;
+  p.limits.velocity.max_vel_x_backwards_mps = 0.25;
+  p.limits.velocity.max_vel_theta_radps = 0.6;
+  p.limits.velocity.acc_lim_x_mps2 = 0.5;
+  p.limits.velocity.acc_lim_theta_radps2 = 1.0;
   p.limits.min_obstacle_dist_m = 0.5;  // Digit's inscribed radius 0.38 m + 0.12 m
   p.control_period_s = kPeriodS;
   if (lag_model) p.response.time_constant_s = kDigitLagS;
