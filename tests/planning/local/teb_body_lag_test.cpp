@@ -76,10 +76,10 @@ LagRun run_lagging_unicycle(TebPlanner& planner, const Path& plan, const mapping
     run.cmds.push_back(r.cmd);
     run.outcomes.push_back(r.result.outcome);
     for (int s = 0; s < static_cast<int>(std::lround(kPeriodS / kBodyStepS)); ++s) {
-      body.linear_x =
-          track_first_order(body.linear_x, r.cmd.linear_x, kBodyStepS, kDigitLagS, lim.acc_lim_x_mps2 * kBodyStepS);
+      body.linear_x = track_first_order(body.linear_x, r.cmd.linear_x, kBodyStepS, kDigitLagS,
+                                        lim.velocity.acc_lim_x_mps2 * kBodyStepS);
       body.angular_z = track_first_order(body.angular_z, r.cmd.angular_z, kBodyStepS, kDigitLagS,
-                                         lim.acc_lim_theta_radps2 * kBodyStepS);
+                                         lim.velocity.acc_lim_theta_radps2 * kBodyStepS);
       pose = integrate_arc(pose, body.linear_x, body.angular_z, kBodyStepS);
     }
     for (const auto& d : discs)
