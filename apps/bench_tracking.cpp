@@ -132,7 +132,8 @@ nlohmann::json score_json(const TrackerScore& s) {
           {"appearances_confirmed", m.appearances_picked_up},
           {"mean_time_to_confirm_s", m.mean_pickup_s},
           {"max_time_to_confirm_s", m.max_pickup_s},
-          {"cpu_ms_per_update", s.updates > 0 ? s.cpu_ms / static_cast<double>(s.updates) : 0.0}};
+          {"cpu_ms_per_update", s.updates > 0 ? s.cpu_ms / static_cast<double>(s.updates) : 0.0},
+          {"unmatched_truths_by_nearest", s.unmatched}};
 }
 
 // Every tracker's scores pooled over the runs, with the goals met or not.
@@ -143,6 +144,7 @@ nlohmann::json pooled_json(const std::vector<TrackingRun>& runs) {
     for (const auto& [name, s] : r.scores) {
       parts[name].push_back(s.mot);
       cpu[name].updates += s.updates, cpu[name].cpu_ms += s.cpu_ms;
+      for (const auto& [cause, n] : s.unmatched) cpu[name].unmatched[cause] += n;
     }
   }
   nlohmann::json out = nlohmann::json::object();

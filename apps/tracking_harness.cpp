@@ -130,6 +130,7 @@ class RunScorer {
       for (const auto& tr : trackers_[k].tracks())
         if (tr.confirmed() && tr.mover) hyps.push_back(world_object(tr.id, tr.position(), tr.velocity(), T_world_map));
       score(scored_[k], t, hyps, T_world_base);
+      count_unmatched(scored_[k].score, trackers_[k], hyps, T_world_map);
     }
     score_baselines(nav, t, T_world_map, T_world_base);
   }
@@ -152,6 +153,34 @@ class RunScorer {
       in_region[j] = (hyps[j].position - T_world_base.position()).norm() <= eval_.range_m;
     s.mot.add_frame(t, truths_, ignored_, hyps, in_region);
     ++s.score.updates;
+  }
+
+  // Adds the counted truths with no mover within match_distance_m, by the nearest evidence the
+  // tracker holds (TrackerScore::unmatched).
+  void count_unmatched(TrackerScore& s, const tracking::MultiObjectTracker& tracker,
+                       const std::vector<MotObject>& movers, const Pose2& T_world_map) const {
+    const double r = eval_.match_distance_m;
+    auto near = [&](const Eigen::Vector2d& truth, const Eigen::Vector2d& p_map) {
+      return (T_world_map.transform(p_map) - truth).norm() <= r;
+    };
+    const auto& tracks = tracker.tracks();
+    const auto& detections = tracker.detections();
+    for (const auto& truth : truths_) {
+      const Eigen::Vector2d& q = truth.position;
+      if (std::any_of(movers.begin(), movers.end(), [&](const MotObject& h) { return (h.position - q).norm() <= r; }))
+        continue;
+      const char* cause = "nothing";
+      if (std::any_of(tracks.begin(), tracks.end(),
+                      [&](const tracking::Track& tr) { return tr.confirmed() && near(q, tr.position()); }))
+        cause = "confirmed_not_mover";
+      else if (std::any_of(tracks.begin(), tracks.end(),
+                           [&](const tracking::Track& tr) { return near(q, tr.position()); }))
+        cause = "tentative";
+      else if (std::any_of(detections.begin(), detections.end(),
+                           [&](const tracking::Detection& d) { return near(q, d.position); }))
+        cause = "detection";
+      ++s.unmatched[cause];
+    }
   }
 
   void score_baselines(const navigation::Navigator& nav, double t, const Pose2& T_world_map,

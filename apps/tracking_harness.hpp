@@ -39,6 +39,10 @@ struct TrackerScore {
   tracking::MotSummary mot;
   long updates = 0;
   double cpu_ms = 0.0;
+  // The counted truths with no mover of the tracker within match_distance_m, by the nearest thing
+  // the tracker holds within that distance: "confirmed_not_mover", "tentative", "detection" (a
+  // detection of the cycle but no track), "nothing". The variants' only (the baselines: empty).
+  std::map<std::string, long> unmatched;
 };
 
 struct TrackingRun {

@@ -1,8 +1,9 @@
 #include <benchmark/benchmark.h>
 
+#include "bench/replan_benchmark.hpp"
 #include "bipednav/mapping/inflation.hpp"
 #include "bipednav/planning/global/global_planner.hpp"
-#include "bipednav/planning/global/replan_benchmark.hpp"
+#include "bipednav/planning/global/global_planner_factory.hpp"
 
 namespace {
 

@@ -1,6 +1,6 @@
 #include <benchmark/benchmark.h>
 
-#include "bipednav/planning/local/bench_scene.hpp"
+#include "bench/local_scene.hpp"
 #include "bipednav/planning/local/costmap_obstacles.hpp"
 #include "bipednav/planning/local/teb_planner.hpp"
 

@@ -1,6 +1,6 @@
 #include <benchmark/benchmark.h>
 
-#include "bipednav/mapping/bench_scene.hpp"
+#include "bench/mapping_scene.hpp"
 #include "bipednav/mapping/heightmap_fusion.hpp"
 #include "bipednav/mapping/inflation.hpp"
 #include "bipednav/mapping/local_costmap.hpp"

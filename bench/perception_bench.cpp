@@ -1,10 +1,10 @@
 // Micro-benchmarks of the perception kernels on a synthetic Digit frame.
 #include <benchmark/benchmark.h>
 
+#include "bench/synthetic_scene.hpp"
 #include "bipednav/perception/ground_segmentation.hpp"
 #include "bipednav/perception/pass_through.hpp"
 #include "bipednav/perception/pipeline.hpp"
-#include "bipednav/perception/synthetic_scene.hpp"
 #include "bipednav/perception/voxel_grid.hpp"
 
 namespace {

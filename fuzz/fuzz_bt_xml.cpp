@@ -1,17 +1,18 @@
-// libFuzzer target: behavior-tree XML (navigation/bt_xml + bt_factory) with the built-in nodes
+// libFuzzer target: behavior-tree XML (bt/xml + bt/factory) with the built-in nodes
 // and every navigation leaf of navigate.xml bound to scripted stand-ins; a tree that loads is
 // ticked a few times (ports are read at tick time). Input not starting with '<' (after blanks)
 // goes through a file, as load_tree_xml treats it as a path.
 #include <memory>
 #include <string>
 
-#include "bipednav/navigation/bt_factory.hpp"
+#include "bipednav/bt/factory.hpp"
+#include "bipednav/bt/xml.hpp"
 #include "bipednav/navigation/bt_navigation_leaves.hpp"
-#include "bipednav/navigation/bt_xml.hpp"
 #include "fuzz_common.hpp"
 
 namespace {
 
+using namespace bipednav::bt;
 using namespace bipednav::navigation;
 
 BtFactory make_factory() {

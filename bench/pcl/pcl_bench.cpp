@@ -18,10 +18,10 @@
 #include <string>
 #include <vector>
 
+#include "bench/synthetic_scene.hpp"
 #include "bipednav/io/pcd.hpp"
 #include "bipednav/perception/ground_segmentation.hpp"
 #include "bipednav/perception/pass_through.hpp"
-#include "bipednav/perception/synthetic_scene.hpp"
 #include "bipednav/perception/voxel_grid.hpp"
 
 namespace {

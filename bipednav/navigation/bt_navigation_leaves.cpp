@@ -4,11 +4,11 @@ namespace bipednav::navigation {
 namespace {
 
 std::vector<BtLeafSpec> make_specs() {
-  using P = BtPortSpec;
-  const auto C = BtNodeKind::Condition;
-  const auto A = BtNodeKind::Action;
-  const P goal = P::input("goal", BtType::Pose2, "{goal}");
-  const P error_code = P::output("error_code", BtType::Int);
+  using P = bt::BtPortSpec;
+  const auto C = bt::BtNodeKind::Condition;
+  const auto A = bt::BtNodeKind::Action;
+  const P goal = P::input("goal", bt::BtType::Pose2, "{goal}");
+  const P error_code = P::output("error_code", bt::BtType::Int);
   return {
       {"SensorsAlive", C, {}, "every LiDAR and depth camera delivered a frame within its timeout"},
       {"IsLocalizationHealthy", C, {}, "the localization reports good health"},
@@ -24,7 +24,7 @@ std::vector<BtLeafSpec> make_specs() {
       {"GoalReached", C, {goal}, "the robot is within the goal checker's xy and yaw tolerance of goal and stopped"},
       {"IsPathValid",
        C,
-       {P::input("path", BtType::Path, "{path}")},
+       {P::input("path", bt::BtType::Path, "{path}")},
        "path is non-empty and no lethal cell lies on its next path_check_distance_m"},
       {"CanRotateInPlace", C, {}, "the robot profile allows turning on the spot"},
       {"PlanningRecoveryAllowed",
@@ -33,20 +33,23 @@ std::vector<BtLeafSpec> make_specs() {
        "admits one more planning recovery while the goal's planning_recoveries_allowed last (each success counts)"},
       {"ComputePathToPose",
        A,
-       {goal, P::output("path", BtType::Path), error_code},
+       {goal, P::output("path", bt::BtType::Path), error_code},
        "get_path: plan from the robot to goal; SUCCESS writes path, FAILURE writes the MBF code (50-65)"},
       {"FollowPath",
        A,
-       {P::input("path", BtType::Path, "{path}"), error_code},
+       {P::input("path", bt::BtType::Path, "{path}"), error_code},
        "exe_path: follow path, re-reading it every tick (replans); SUCCESS at the goal, FAILURE with the MBF code "
        "(100-118); halted = stop"},
       {"ClearCostmaps", A, {}, "recovery: clear the obstacle layers"},
       {"BackUp",
        A,
-       {P::input("distance_m", BtType::Double, "0.3"), P::input("speed_mps", BtType::Double, "0.1")},
+       {P::input("distance_m", bt::BtType::Double, "0.3"), P::input("speed_mps", bt::BtType::Double, "0.1")},
        "recovery: drive backwards distance_m at speed_mps"},
-      {"RotateInPlace", A, {P::input("angle_rad", BtType::Double, "1.5708")}, "recovery: turn by angle_rad"},
-      {"Wait", A, {P::input("duration_s", BtType::Double, "2.0")}, "recovery: stand still for duration_s of sim time"},
+      {"RotateInPlace", A, {P::input("angle_rad", bt::BtType::Double, "1.5708")}, "recovery: turn by angle_rad"},
+      {"Wait",
+       A,
+       {P::input("duration_s", bt::BtType::Double, "2.0")},
+       "recovery: stand still for duration_s of sim time"},
       {"RelaxConstraints",
        A,
        {},
@@ -59,13 +62,13 @@ std::vector<BtLeafSpec> make_specs() {
 
 std::vector<BtLeafSpec> navigation_leaf_specs() { return make_specs(); }
 
-BtPorts bt_leaf_ports(const std::string& id) {
+bt::BtPorts bt_leaf_ports(const std::string& id) {
   for (const auto& s : navigation_leaf_specs())
     if (s.id == id) return s.ports;
   throw Error("bt_leaf_ports: '" + id + "' is not a leaf of the default navigation tree");
 }
 
-std::vector<std::string> unbound_navigation_leaves(const BtFactory& factory) {
+std::vector<std::string> unbound_navigation_leaves(const bt::BtFactory& factory) {
   std::vector<std::string> out;
   for (const auto& s : navigation_leaf_specs())
     if (!factory.has(s.id)) out.push_back(s.id);

@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-#include "bipednav/navigation/bt_factory.hpp"
+#include "bipednav/bt/factory.hpp"
 
 // The application leaves config/behavior_trees/navigate.xml uses, with their ports, so the
 // navigation server's bindings and the tree cannot drift apart:
@@ -12,8 +12,8 @@ namespace bipednav::navigation {
 
 struct BtLeafSpec {
   std::string id;
-  BtNodeKind kind = BtNodeKind::Action;
-  BtPorts ports;
+  bt::BtNodeKind kind = bt::BtNodeKind::Action;
+  bt::BtPorts ports;
   std::string meaning;  // what the binding must do
 };
 
@@ -23,9 +23,9 @@ struct BtLeafSpec {
 std::vector<BtLeafSpec> navigation_leaf_specs();
 
 // The ports of one of these leaves; throws Error for an unknown ID.
-BtPorts bt_leaf_ports(const std::string& id);
+bt::BtPorts bt_leaf_ports(const std::string& id);
 
 // IDs of navigation_leaf_specs() that `factory` does not know yet (empty when all bound).
-std::vector<std::string> unbound_navigation_leaves(const BtFactory& factory);
+std::vector<std::string> unbound_navigation_leaves(const bt::BtFactory& factory);
 
 }  // namespace bipednav::navigation

@@ -4,6 +4,8 @@
 #include <cmath>
 
 #include "bipednav/common/cpu_time.hpp"
+#include "bipednav/planning/global/global_planner_factory.hpp"
+#include "bipednav/planning/local/local_planner_factory.hpp"
 
 namespace bipednav::navigation {
 

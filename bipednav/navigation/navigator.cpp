@@ -60,7 +60,7 @@ Navigator::Navigator(NavigatorParams params, RobotProfile robot, const mapping::
       global_(global_geometry, params_.global_map),
       moving_(params_.moving_obstacles),
       server_(params_.server, robot_, global_, local_, &moving_),
-      tree_(load_tree_xml(params_.behavior_tree, leaf_factory())),  // no leaf runs before the constructor ends
+      tree_(bt::load_tree_xml(params_.behavior_tree, leaf_factory())),  // no leaf runs before the constructor ends
       local_gate_(params_.local_map.rate_hz),
       global_gate_(params_.global_map.rate_hz),
       control_gate_(params_.control_rate_hz) {
@@ -75,8 +75,8 @@ Navigator::Navigator(NavigatorParams params, RobotProfile robot, const mapping::
   moving_.set_visibility(tracking::SensorVisibility(robot_, visibility));
 }
 
-BtFactory Navigator::leaf_factory() {
-  BtFactory factory;
+bt::BtFactory Navigator::leaf_factory() {
+  bt::BtFactory factory;
   register_leaves(factory);
   return factory;
 }
@@ -320,14 +320,14 @@ void Navigator::control() {
     return;
   }
   Stopwatch sw;
-  const BtStatus s = tree_.tick(now_s_);
+  const bt::BtStatus s = tree_.tick(now_s_);
   status_.active_leaf = tree_.active_leaf();
   if (auto p = tree_.blackboard()->get<Path>("path"); p && *p != global_path_) {
     global_path_ = std::move(*p);
     ++global_path_version_;
   }
   cmd_ = yield_to_moving_obstacles(server_.command());
-  if (s == BtStatus::SUCCESS || s == BtStatus::FAILURE) finish(s);
+  if (s == bt::BtStatus::SUCCESS || s == bt::BtStatus::FAILURE) finish(s);
   timings_.control_ms = sw.elapsed_ms();
 }
 
@@ -354,10 +354,10 @@ std::string Navigator::weak_estimate_note() const {
   return buf;
 }
 
-void Navigator::finish(BtStatus s) {
+void Navigator::finish(bt::BtStatus s) {
   server_.stop();
   cmd_ = {};
-  if (s == BtStatus::SUCCESS) {
+  if (s == bt::BtStatus::SUCCESS) {
     status_.state = NavState::SUCCEEDED;
     status_.result = {Outcome::SUCCESS, "goal reached" + weak_estimate_note()};
     return;

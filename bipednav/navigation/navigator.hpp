@@ -6,13 +6,13 @@
 #include <string>
 #include <vector>
 
+#include "bipednav/bt/factory.hpp"
+#include "bipednav/bt/tree.hpp"
+#include "bipednav/bt/xml.hpp"
 #include "bipednav/common/sensor_frame.hpp"
+#include "bipednav/localization/localizer.hpp"
 #include "bipednav/mapping/global_costmap.hpp"
 #include "bipednav/mapping/local_costmap.hpp"
-#include "bipednav/navigation/bt_factory.hpp"
-#include "bipednav/navigation/bt_tree.hpp"
-#include "bipednav/navigation/bt_xml.hpp"
-#include "bipednav/navigation/localizer.hpp"
 #include "bipednav/navigation/navigation_server.hpp"
 #include "bipednav/navigation/sensor_gate.hpp"
 #include "bipednav/perception/pipeline.hpp"
@@ -23,6 +23,9 @@ namespace bipednav::navigation {
 
 // Robot profiles and behavior trees: $BIPEDNAV_CONFIG_DIR, else the source tree's config/.
 std::string config_dir();
+
+// The localizer's parameters, a part of the navigator's (the Localizer lives in localization/).
+using localization::LocalizerParams;
 
 struct NavigatorParams {
   perception::PerceptionParams perception;
@@ -156,7 +159,7 @@ class Navigator {
   const std::vector<RecoveryRecord>& recovery_log() const { return server_.recovery_log(); }
   const NavigatorTimings& timings() const { return timings_; }  // wall time of the last run of each stage
   const NavigatorCpu& cpu() const { return cpu_; }
-  const BehaviorTree& tree() const { return tree_; }
+  const bt::BehaviorTree& tree() const { return tree_; }
   const NavigationServer& server() const { return server_; }
   const SensorGate& sensor_gate() const { return gate_; }
   const RobotProfile& robot() const { return robot_; }
@@ -187,10 +190,10 @@ class Navigator {
   Twist yield_to_moving_obstacles(const Twist& cmd) const;
   Twist reference_velocity() const;  // see NavigatorParams::brake_from_last_command
   void control();
-  void register_leaves(BtFactory& factory);
-  BtFactory leaf_factory();  // the engine's nodes and this navigator's leaves
+  void register_leaves(bt::BtFactory& factory);
+  bt::BtFactory leaf_factory();  // the engine's nodes and this navigator's leaves
   bool sensors_alive() const;
-  void finish(BtStatus status);
+  void finish(bt::BtStatus status);
   std::string weak_estimate_note() const;  // empty unless the position estimate is weak at the goal
   bool depth_superseded(const SensorFrame& frame, const Admission& admitted, std::size_t i);
   bool depth_superseded(const std::string& camera, double stamp_s, double now_s, bool newer_in_step);
@@ -198,13 +201,13 @@ class Navigator {
   NavigatorParams params_;
   RobotProfile robot_;
   perception::PerceptionPipeline perception_;
-  Localizer localizer_;
+  localization::Localizer localizer_;
   SensorGate gate_;
   mapping::LocalCostmap local_;
   mapping::GlobalCostmap global_;
   planning::local::MovingObstacleTracker moving_;  // the local planner reads it too
   NavigationServer server_;
-  BehaviorTree tree_;
+  bt::BehaviorTree tree_;
   RateGate local_gate_, global_gate_, control_gate_;
   perception::PerceptionOutput perception_out_;
   perception::PerceptionInput perception_in_;  // this tick's admitted clouds (buffer kept between ticks)

@@ -4,12 +4,10 @@
 #include <cmath>
 #include <limits>
 
+#include "bipednav/common/error.hpp"
 #include "bipednav/mapping/heightmap_fusion.hpp"
 
 namespace bipednav::sim {
-
-using footstep::Foot;
-using footstep::Footstep;
 
 void HumanoidWalkerParams::validate() const {
   body.validate();
@@ -26,8 +24,7 @@ Pose2 body_between(const Pose2& a, const Pose2& b) {
   return {(a.x + b.x) / 2.0, (a.y + b.y) / 2.0, normalize_angle(a.theta + angle_diff(b.theta, a.theta) / 2.0)};
 }
 
-std::vector<BodyPart> upper_body_parts(const footstep::BodyModel& body, const Pose2& a, const Pose2& b,
-                                       double support_z_m) {
+std::vector<BodyPart> upper_body_parts(const BodyModel& body, const Pose2& a, const Pose2& b, double support_z_m) {
   const Pose2 c = body_between(a, b);
   std::vector<BodyPart> parts;
   parts.push_back({"torso", c, body.torso_depth_m, body.torso_width_m, support_z_m + body.torso_bottom_m});
@@ -101,7 +98,7 @@ double HumanoidWalker::sole_height(const Pose2& sole, double* spread, double* su
 // Samples the swing sole along a segment while the foot at `fixed` stands,
 // recording the deepest penetration per part and the smallest clearance.
 void HumanoidWalker::sweep(const Segment& seg, const Pose2& fixed, double t0, double dt, StepExecution& out) const {
-  const footstep::BodyModel& b = params_.body;
+  const BodyModel& b = params_.body;
   const int n = params_.samples_per_segment;
   const Pose2 &from = seg.from, &to = seg.to;
   for (int k = 0; k <= n; ++k) {

@@ -5,17 +5,16 @@
 #include <string>
 #include <vector>
 
+#include "bipednav/common/biped.hpp"
 #include "bipednav/common/rng.hpp"
 #include "bipednav/common/se3.hpp"
 #include "bipednav/mapping/heightmap.hpp"
-#include "bipednav/planning/footstep/action_set.hpp"
-#include "bipednav/planning/footstep/footstep_types.hpp"
 
 namespace bipednav::sim {
 
 // A Nao-sized humanoid that walks by footsteps in the simulator (second reference, section VI).
 struct HumanoidWalkerParams {
-  footstep::BodyModel body;               // the body the whole-body check sweeps (the planner's model)
+  BodyModel body;                         // the body the whole-body check sweeps (the planner's model)
   double landing_noise_xy_m = 0.003;      // execution noise of the swing foot's landing (sigma)
   double landing_noise_yaw_rad = 0.01;    // ... of its heading (sigma)
   double odometry_noise_xy_m = 0.002;     // kinematic odometry error per step (sigma)
@@ -48,7 +47,7 @@ struct BodyContact {
 };
 
 struct StepExecution {
-  footstep::Footstep landed;          // true pose of the landed foot, z from the terrain
+  Footstep landed;                    // true pose of the landed foot, z from the terrain
   std::vector<BodyContact> contacts;  // deeper than collision_tolerance_m
   double min_clearance_m = 0.0;       // lowest gap between a swinging/moving part and the terrain
   double landing_spread_m = 0.0;      // max - min terrain height under the landed sole
@@ -65,8 +64,7 @@ struct BodyPart {
 // The body parts between two feet at one instant: torso and arms centred between the feet with
 // the mean heading, their bottoms above `support_z_m` (the stance sole), as in the planner's
 // body model (footstep/inverse_heightmap.cpp).
-std::vector<BodyPart> upper_body_parts(const footstep::BodyModel& body, const Pose2& a, const Pose2& b,
-                                       double support_z_m);
+std::vector<BodyPart> upper_body_parts(const BodyModel& body, const Pose2& a, const Pose2& b, double support_z_m);
 // The body pose midway between two feet (mean heading).
 Pose2 body_between(const Pose2& a, const Pose2& b);
 // Height gap between a part's bottom and the highest terrain under it (+inf over unknown terrain).
@@ -86,10 +84,10 @@ class HumanoidWalker {
   // Moves the swing foot (the one that is not the stance foot) and makes it the new stance foot.
   StepExecution step(const StepCommand& command);
 
-  const footstep::Footstep& stance() const { return feet_[static_cast<int>(stance_)]; }
-  const footstep::Footstep& swing() const { return feet_[1 - static_cast<int>(stance_)]; }
-  const footstep::Footstep& odom_stance() const { return odom_[static_cast<int>(stance_)]; }
-  const footstep::Footstep& odom_swing() const { return odom_[1 - static_cast<int>(stance_)]; }
+  const Footstep& stance() const { return feet_[static_cast<int>(stance_)]; }
+  const Footstep& swing() const { return feet_[1 - static_cast<int>(stance_)]; }
+  const Footstep& odom_stance() const { return odom_[static_cast<int>(stance_)]; }
+  const Footstep& odom_swing() const { return odom_[1 - static_cast<int>(stance_)]; }
   Pose2 body_pose() const { return body_between(feet_[0].pose, feet_[1].pose); }
   // The base frame: between the feet at the stance sole's height, yawed like the body.
   SE3 T_world_base() const { return se3_from_pose2(body_pose(), stance().z_m); }
@@ -108,9 +106,9 @@ class HumanoidWalker {
   HumanoidWalkerParams params_;
   const mapping::Heightmap& truth_;
   Rng rng_;
-  footstep::Footstep feet_[2];
-  footstep::Footstep odom_[2];
-  footstep::Foot stance_ = footstep::Foot::kLeft;
+  Footstep feet_[2];
+  Footstep odom_[2];
+  Foot stance_ = Foot::kLeft;
   double last_peak_m_ = 0.04;
   double time_s_ = 0.0;
 };

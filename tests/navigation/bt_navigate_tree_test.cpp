@@ -2,11 +2,15 @@
 
 #include <algorithm>
 #include <deque>
+#include <fstream>
 #include <map>
+#include <sstream>
 
+#include "bipednav/bt/xml.hpp"
 #include "bipednav/common/outcome.hpp"
+#include "bipednav/common/rng.hpp"
 #include "bipednav/navigation/bt_navigation_leaves.hpp"
-#include "bipednav/navigation/bt_xml.hpp"
+#include "bt/fakes.hpp"
 #include "test_data.hpp"
 
 // The default tree (config/behavior_trees/navigate.xml) with its leaves bound to a scripted
@@ -40,20 +44,20 @@ struct FakeNav {
 };
 
 // An action that lasts `duration(self)` seconds of tree time.
-BtLambdaAction::StepFn timed(FakeNav& n, std::string label, std::function<double(BtNode&)> duration) {
-  return [&n, label, duration](BtNode& self, double now_s, bool first) {
+bt::BtLambdaAction::StepFn timed(FakeNav& n, std::string label, std::function<double(bt::BtNode&)> duration) {
+  return [&n, label, duration](bt::BtNode& self, double now_s, bool first) {
     if (first) {
       n.log.push_back(label);
       n.started_s[self.path()] = now_s;
     }
-    return now_s - n.started_s[self.path()] + 1e-9 >= duration(self) ? BtStatus::SUCCESS : BtStatus::RUNNING;
+    return now_s - n.started_s[self.path()] + 1e-9 >= duration(self) ? bt::BtStatus::SUCCESS : bt::BtStatus::RUNNING;
   };
 }
 
-void bind_conditions(BtFactory& f, FakeNav& n) {
+void bind_conditions(bt::BtFactory& f, FakeNav& n) {
   auto flag = [&f](const std::string& id, const bool* value) {
     f.register_simple_condition(
-        id, [value](BtNode&, double) { return *value; }, bt_leaf_ports(id));
+        id, [value](bt::BtNode&, double) { return *value; }, bt_leaf_ports(id));
   };
   flag("SensorsAlive", &n.sensors_ok);
   flag("IsLocalizationHealthy", &n.localization_ok);
@@ -63,7 +67,7 @@ void bind_conditions(BtFactory& f, FakeNav& n) {
   flag("GoalReached", &n.goal_reached);
   f.register_simple_condition(
       "PlanningRecoveryAllowed",
-      [&n](BtNode&, double) {
+      [&n](bt::BtNode&, double) {
         if (n.planning_recoveries_left <= 0) return false;
         --n.planning_recoveries_left;
         return true;
@@ -71,17 +75,17 @@ void bind_conditions(BtFactory& f, FakeNav& n) {
       bt_leaf_ports("PlanningRecoveryAllowed"));
   f.register_simple_condition(
       "IsGoalValid",
-      [&n](BtNode& self, double) {
+      [&n](bt::BtNode& self, double) {
         if (!n.goal_ok) self.set_output("error_code", static_cast<int>(code(Outcome::BLOCKED_GOAL)));
         return n.goal_ok;
       },
       bt_leaf_ports("IsGoalValid"));
 }
 
-void bind_actions(BtFactory& f, FakeNav& n) {
+void bind_actions(bt::BtFactory& f, FakeNav& n) {
   f.register_simple_action(
       "ComputePathToPose",
-      [&n](BtNode& self, double, bool) {
+      [&n](bt::BtNode& self, double, bool) {
         const Pose2 goal = self.input<Pose2>("goal");
         n.planned_goals.push_back(goal);
         n.log.push_back("plan");
@@ -89,53 +93,53 @@ void bind_actions(BtFactory& f, FakeNav& n) {
         if (!n.plan_results.empty()) n.plan_results.pop_front();
         if (!ok) {
           self.set_output("error_code", static_cast<int>(code(Outcome::NO_PATH_FOUND)));
-          return BtStatus::FAILURE;
+          return bt::BtStatus::FAILURE;
         }
         Path p;
         p.poses = {Pose2{}, goal};
         self.set_output("path", p);
-        return BtStatus::SUCCESS;
+        return bt::BtStatus::SUCCESS;
       },
       {}, bt_leaf_ports("ComputePathToPose"));
   f.register_simple_action(
       "FollowPath",
-      [&n](BtNode& self, double, bool first) {
+      [&n](bt::BtNode& self, double, bool first) {
         if (first) {
           n.log.push_back("follow");
           n.follow_tick = 0;
         }
-        if (self.input<Path>("path").empty()) return BtStatus::FAILURE;
+        if (self.input<Path>("path").empty()) return bt::BtStatus::FAILURE;
         ++n.follow_tick;
         if (!n.follow_failure_codes.empty() && n.follow_tick == 3) {
           self.set_output("error_code", n.follow_failure_codes.front());
           n.follow_failure_codes.pop_front();
-          return BtStatus::FAILURE;
+          return bt::BtStatus::FAILURE;
         }
-        return n.follow_tick >= n.follow_ticks ? BtStatus::SUCCESS : BtStatus::RUNNING;
+        return n.follow_tick >= n.follow_ticks ? bt::BtStatus::SUCCESS : bt::BtStatus::RUNNING;
       },
-      [&n](BtNode&) { n.log.push_back("halt FollowPath"); }, bt_leaf_ports("FollowPath"));
+      [&n](bt::BtNode&) { n.log.push_back("halt FollowPath"); }, bt_leaf_ports("FollowPath"));
   auto instant = [&f, &n](const std::string& id) {
-    f.register_simple_action(id, timed(n, id, [](BtNode&) { return 0.0; }), {}, bt_leaf_ports(id));
+    f.register_simple_action(id, timed(n, id, [](bt::BtNode&) { return 0.0; }), {}, bt_leaf_ports(id));
   };
   instant("ClearCostmaps");
   instant("RelaxConstraints");
   instant("Stop");
   f.register_simple_action(
       "BackUp",
-      timed(n, "BackUp", [](BtNode& s) { return s.input<double>("distance_m") / s.input<double>("speed_mps"); }),
-      [&n](BtNode&) { n.log.push_back("halt BackUp"); }, bt_leaf_ports("BackUp"));
-  f.register_simple_action("RotateInPlace",
-                           timed(n, "RotateInPlace", [](BtNode& s) { return std::abs(s.input<double>("angle_rad")); }),
-                           {}, bt_leaf_ports("RotateInPlace"));
+      timed(n, "BackUp", [](bt::BtNode& s) { return s.input<double>("distance_m") / s.input<double>("speed_mps"); }),
+      [&n](bt::BtNode&) { n.log.push_back("halt BackUp"); }, bt_leaf_ports("BackUp"));
   f.register_simple_action(
-      "Wait", timed(n, "Wait", [](BtNode& s) { return s.input<double>("duration_s"); }),
-      [&n](BtNode&) { n.log.push_back("halt Wait"); }, bt_leaf_ports("Wait"));
+      "RotateInPlace", timed(n, "RotateInPlace", [](bt::BtNode& s) { return std::abs(s.input<double>("angle_rad")); }),
+      {}, bt_leaf_ports("RotateInPlace"));
+  f.register_simple_action(
+      "Wait", timed(n, "Wait", [](bt::BtNode& s) { return s.input<double>("duration_s"); }),
+      [&n](bt::BtNode&) { n.log.push_back("halt Wait"); }, bt_leaf_ports("Wait"));
 }
 
 struct NavigateTreeTest : ::testing::Test {
   FakeNav nav;
-  BtFactory factory;
-  std::shared_ptr<Blackboard> bb = Blackboard::create();
+  bt::BtFactory factory;
+  std::shared_ptr<bt::Blackboard> bb = bt::Blackboard::create();
   double t = 0.0;
   int step = 0;
 
@@ -144,13 +148,14 @@ struct NavigateTreeTest : ::testing::Test {
     bind_actions(factory, nav);
     bb->set("goal", Pose2{3.0, 1.0, 0.0});
   }
-  BehaviorTree load() {
-    return load_tree_xml((bipednav::test::source_dir() / "config/behavior_trees/navigate.xml").string(), factory, bb);
+  bt::BehaviorTree load() {
+    return bt::load_tree_xml((bipednav::test::source_dir() / "config/behavior_trees/navigate.xml").string(), factory,
+                             bb);
   }
   // Ticks at 10 Hz until the tree completes or `until_s`; `each` runs before every tick.
-  BtStatus run(BehaviorTree& tree, double until_s, const std::function<void(double)>& each = {}) {
-    BtStatus s = BtStatus::RUNNING;
-    while (s == BtStatus::RUNNING && t <= until_s + 1e-9) {
+  bt::BtStatus run(bt::BehaviorTree& tree, double until_s, const std::function<void(double)>& each = {}) {
+    bt::BtStatus s = bt::BtStatus::RUNNING;
+    while (s == bt::BtStatus::RUNNING && t <= until_s + 1e-9) {
       if (each) each(t);
       s = tree.tick(t);
       t = ++step * 0.1;
@@ -172,11 +177,11 @@ TEST_F(NavigateTreeTest, AllLeavesAreDeclaredAndBound) {
 TEST_F(NavigateTreeTest, NormalRunReplansAlongsideControlAndStops) {
   auto tree = load();
   std::vector<std::string> running;
-  const BtStatus s = run(tree, 30.0, [&](double now) {
+  const bt::BtStatus s = run(tree, 30.0, [&](double now) {
     if (std::abs(now - 1.0) < 1e-6)
-      for (const BtNode* n : tree.running_leaves()) running.push_back(n->name());
+      for (const bt::BtNode* n : tree.running_leaves()) running.push_back(n->name());
   });
-  EXPECT_EQ(s, BtStatus::SUCCESS);
+  EXPECT_EQ(s, bt::BtStatus::SUCCESS);
   EXPECT_NEAR(t, 2.0, 1e-9);  // FollowPath's 20th tick at 1.9 s
   EXPECT_EQ(nav.count("follow"), 1);
   EXPECT_EQ(nav.count("plan"), 1 + 10);  // initial plan + replans at 0, 0.2, ..., 1.8 s
@@ -191,7 +196,7 @@ TEST_F(NavigateTreeTest, PlanningFailureCyclesRecoveriesThenFailsWithNoPath) {
   nav.plan_ok = false;
   nav.can_rotate = false;
   auto tree = load();
-  EXPECT_EQ(run(tree, 60.0), BtStatus::FAILURE);
+  EXPECT_EQ(run(tree, 60.0), bt::BtStatus::FAILURE);
   EXPECT_EQ(nav.count("plan"), 5);  // 1 + number_of_retries
   const std::vector<std::string> expected = {"ClearCostmaps", "RelaxConstraints", "BackUp", "Wait"};
   EXPECT_EQ(nav.recoveries(), expected);  // no RotateInPlace: the robot may not turn in place
@@ -203,7 +208,7 @@ TEST_F(NavigateTreeTest, PlanningFailureCyclesRecoveriesThenFailsWithNoPath) {
 TEST_F(NavigateTreeTest, PlanningRecoveriesRotateWhereAllowed) {
   nav.plan_ok = false;
   auto tree = load();
-  EXPECT_EQ(run(tree, 60.0), BtStatus::FAILURE);
+  EXPECT_EQ(run(tree, 60.0), bt::BtStatus::FAILURE);
   const std::vector<std::string> expected = {"ClearCostmaps", "RelaxConstraints", "RotateInPlace", "BackUp"};
   EXPECT_EQ(nav.recoveries(), expected);
 }
@@ -212,7 +217,7 @@ TEST_F(NavigateTreeTest, PlanningRecoveriesStopWhenTheGoalsBudgetIsSpent) {
   nav.plan_ok = false;
   nav.planning_recoveries_left = 2;
   auto tree = load();
-  EXPECT_EQ(run(tree, 60.0), BtStatus::FAILURE);
+  EXPECT_EQ(run(tree, 60.0), bt::BtStatus::FAILURE);
   EXPECT_EQ(nav.count("plan"), 3);
   const std::vector<std::string> expected = {"ClearCostmaps", "RelaxConstraints"};
   EXPECT_EQ(nav.recoveries(), expected);
@@ -229,7 +234,7 @@ TEST_F(NavigateTreeTest, PlanningRecoveryBudgetSpansTheNavigation) {
   auto tree = load();
   nav.plan_results = {false, true};
   nav.plan_ok = false;
-  EXPECT_EQ(run(tree, 200.0), BtStatus::FAILURE);
+  EXPECT_EQ(run(tree, 200.0), bt::BtStatus::FAILURE);
   // Planning (1), the four control recoveries, then Replanning's own round robin (2).
   const std::vector<std::string> expected = {"ClearCostmaps", "ClearCostmaps",   "Wait", "BackUp", "RotateInPlace",
                                              "ClearCostmaps", "RelaxConstraints"};
@@ -248,7 +253,7 @@ TEST_F(NavigateTreeTest, FailedReplansOnAnInvalidPathSpendThePlanningBudget) {
   nav.plan_ok = false;
   nav.path_valid = false;
   auto tree = load();
-  EXPECT_EQ(run(tree, 200.0), BtStatus::FAILURE);
+  EXPECT_EQ(run(tree, 200.0), bt::BtStatus::FAILURE);
   const std::vector<std::string> expected = {"ClearCostmaps", "Wait", "BackUp", "RotateInPlace"};
   EXPECT_EQ(nav.recoveries(), expected);
   EXPECT_EQ(nav.planning_recoveries_left, 0);
@@ -259,7 +264,7 @@ TEST_F(NavigateTreeTest, FailedReplansOnAnInvalidPathSpendThePlanningBudget) {
 TEST_F(NavigateTreeTest, ControlFailureRecoversAndSucceeds) {
   nav.follow_failure_codes = {code(Outcome::BLOCKED_PATH)};
   auto tree = load();
-  EXPECT_EQ(run(tree, 30.0), BtStatus::SUCCESS);
+  EXPECT_EQ(run(tree, 30.0), bt::BtStatus::SUCCESS);
   EXPECT_EQ(nav.count("follow"), 2);
   EXPECT_EQ(nav.recoveries(), std::vector<std::string>{"ClearCostmaps"});
   EXPECT_EQ(error_code(), code(Outcome::BLOCKED_PATH));  // the last controller failure, for the log
@@ -269,7 +274,7 @@ TEST_F(NavigateTreeTest, ControlFailureRecoversAndSucceeds) {
 TEST_F(NavigateTreeTest, ExhaustedControlRecoveriesRerunPlanning) {
   nav.follow_failure_codes = std::deque<int>(5, code(Outcome::ROBOT_STUCK));
   auto tree = load();
-  EXPECT_EQ(run(tree, 120.0), BtStatus::SUCCESS);
+  EXPECT_EQ(run(tree, 120.0), bt::BtStatus::SUCCESS);
   EXPECT_EQ(nav.count("follow"), 6);
   const std::vector<std::string> expected = {"ClearCostmaps", "Wait", "BackUp", "RotateInPlace"};
   EXPECT_EQ(nav.recoveries(), expected);
@@ -282,10 +287,10 @@ TEST_F(NavigateTreeTest, NewGoalPreemptsAndIsReached) {
   nav.follow_ticks = 30;
   auto tree = load();
   const Pose2 new_goal{5.0, 5.0, 1.0};
-  const BtStatus s = run(tree, 30.0, [&](double now) {
+  const bt::BtStatus s = run(tree, 30.0, [&](double now) {
     if (std::abs(now - 1.0) < 1e-6) bb->set("goal", new_goal);
   });
-  EXPECT_EQ(s, BtStatus::SUCCESS);
+  EXPECT_EQ(s, bt::BtStatus::SUCCESS);
   EXPECT_EQ(nav.count("halt FollowPath"), 1);
   EXPECT_EQ(nav.count("follow"), 2);
   EXPECT_EQ(bb->get<Pose2>("active_goal")->x, 5.0);
@@ -297,7 +302,7 @@ TEST_F(NavigateTreeTest, NewGoalPreemptsAndIsReached) {
 TEST_F(NavigateTreeTest, GoalReachedEndsControlEarly) {
   nav.follow_ticks = 1000;
   auto tree = load();
-  EXPECT_EQ(run(tree, 30.0, [&](double now) { nav.goal_reached = now > 1.45; }), BtStatus::SUCCESS);
+  EXPECT_EQ(run(tree, 30.0, [&](double now) { nav.goal_reached = now > 1.45; }), bt::BtStatus::SUCCESS);
   EXPECT_EQ(nav.count("halt FollowPath"), 1);
   EXPECT_EQ(nav.log.back(), "Stop");
 }
@@ -305,7 +310,7 @@ TEST_F(NavigateTreeTest, GoalReachedEndsControlEarly) {
 TEST_F(NavigateTreeTest, BlockedGoalFailsAfterValidationRecoveries) {
   nav.goal_ok = false;
   auto tree = load();
-  EXPECT_EQ(run(tree, 30.0), BtStatus::FAILURE);
+  EXPECT_EQ(run(tree, 30.0), bt::BtStatus::FAILURE);
   EXPECT_EQ(error_code(), code(Outcome::BLOCKED_GOAL));
   EXPECT_EQ(nav.recoveries(), (std::vector<std::string>{"ClearCostmaps", "BackUp"}));
   EXPECT_EQ(nav.count("plan"), 0);
@@ -314,8 +319,8 @@ TEST_F(NavigateTreeTest, BlockedGoalFailsAfterValidationRecoveries) {
 
 TEST_F(NavigateTreeTest, SilentSensorsStopTheRobotAndNavigationResumes) {
   auto tree = load();
-  const BtStatus s = run(tree, 30.0, [&](double now) { nav.sensors_ok = !(now > 0.95 && now < 1.55); });
-  EXPECT_EQ(s, BtStatus::SUCCESS);
+  const bt::BtStatus s = run(tree, 30.0, [&](double now) { nav.sensors_ok = !(now > 0.95 && now < 1.55); });
+  EXPECT_EQ(s, bt::BtStatus::SUCCESS);
   EXPECT_EQ(nav.count("halt FollowPath"), 1);
   EXPECT_TRUE(nav.recoveries().empty());  // the gate waits for health on a timer, not a recovery
   EXPECT_EQ(nav.count("follow"), 2);      // restarted with a fresh plan
@@ -327,9 +332,51 @@ TEST_F(NavigateTreeTest, SilentSensorsStopTheRobotAndNavigationResumes) {
 
 TEST_F(NavigateTreeTest, BadLocalizationForTooLongFails) {
   auto tree = load();
-  EXPECT_EQ(run(tree, 30.0, [&](double now) { nav.localization_ok = now < 0.5; }), BtStatus::FAILURE);
+  EXPECT_EQ(run(tree, 30.0, [&](double now) { nav.localization_ok = now < 0.5; }), bt::BtStatus::FAILURE);
   EXPECT_NEAR(t, 0.5 + 10.0 + 0.1, 1e-9);  // the safety gate waits 10 s for health to return
   EXPECT_EQ(nav.log.back(), "Stop");
+}
+
+TEST(BtXmlErrors, MutatedDefaultTreeNeverCrashes) {
+  bt::test::Harness h;
+  bt::BtFactory f;
+  for (const auto& spec : navigation_leaf_specs())
+    f.register_action(
+        spec.id, [&h](const bt::BtNodeConfig& c) { return std::make_unique<bt::test::ScriptedAction>(c, h); },
+        spec.ports);
+  std::ifstream in(bipednav::test::source_dir() / "config/behavior_trees/navigate.xml");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const std::string xml = ss.str();
+  ASSERT_GT(xml.size(), 1000u);
+  bt::load_tree_xml(xml, f);  // the original loads
+  Rng rng(42);
+  int errors = 0;
+  for (int i = 0; i < 300; ++i) {
+    std::string m = xml;
+    const auto pos = static_cast<std::size_t>(rng.uniform_int(0, static_cast<std::int64_t>(m.size()) - 1));
+    switch (i % 4) {
+      case 0:
+        m.erase(pos, static_cast<std::size_t>(rng.uniform_int(1, 40)));
+        break;
+      case 1:
+        m[pos] = "<>/\"={}_ aZ0"[rng.uniform_int(0, 12)];
+        break;
+      case 2:
+        m.resize(pos);
+        break;
+      default:
+        m.insert(pos, m.substr(static_cast<std::size_t>(rng.uniform_int(0, 2000)), 60));
+        break;
+    }
+    try {
+      auto tree = bt::load_tree_xml(m, f);
+      for (int k = 0; k < 5; ++k) tree.tick(0.1 * k);
+    } catch (const Error&) {
+      ++errors;
+    }
+  }
+  EXPECT_GT(errors, 100);
 }
 
 }  // namespace

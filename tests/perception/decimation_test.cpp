@@ -7,11 +7,11 @@
 #include <limits>
 #include <set>
 
+#include "bench/synthetic_scene.hpp"
 #include "bipednav/common/error.hpp"
 #include "bipednav/common/rng.hpp"
 #include "bipednav/perception/pass_through.hpp"
 #include "bipednav/perception/pipeline.hpp"
-#include "bipednav/perception/synthetic_scene.hpp"
 
 namespace bipednav::perception {
 namespace {

@@ -2,8 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "bench/synthetic_scene.hpp"
 #include "bipednav/common/error.hpp"
-#include "bipednav/perception/synthetic_scene.hpp"
 
 namespace bipednav::perception {
 namespace {

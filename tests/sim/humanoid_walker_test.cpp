@@ -36,13 +36,13 @@ TEST(TrueHeightmap, BoxHeightsAndGround) {
 TEST(HumanoidWalker, NoiselessStepLandsExactlyAndOdometryFollows) {
   const auto flat = terrain_with_box(0, 0, 0, 0, 0);
   HumanoidWalker w(noiseless(), flat, {0.0, 0.0, 0.0}, 1);
-  EXPECT_EQ(w.stance().foot, footstep::Foot::kLeft);
+  EXPECT_EQ(w.stance().foot, Foot::kLeft);
   EXPECT_NEAR(w.stance().pose.y, 0.05, 1e-12);
   const StepExecution e = w.step({{0.08, -0.10, 0.0}, 0.5, 0.04, "fwd_8"});
   EXPECT_TRUE(e.contacts.empty());
   EXPECT_NEAR(e.landed.pose.x, 0.08, 1e-12);
   EXPECT_NEAR(e.landed.pose.y, -0.05, 1e-12);
-  EXPECT_EQ(w.stance().foot, footstep::Foot::kRight);
+  EXPECT_EQ(w.stance().foot, Foot::kRight);
   EXPECT_NEAR(w.body_pose().x, 0.04, 1e-12);
   EXPECT_NEAR(w.odom_stance().pose.x, 0.08, 1e-12);
   EXPECT_DOUBLE_EQ(w.time_s(), 0.5);

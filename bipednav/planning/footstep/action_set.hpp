@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "bipednav/common/biped.hpp"
 #include "bipednav/common/error.hpp"
 
 namespace bipednav::footstep {
@@ -27,26 +28,8 @@ struct FootstepAction {
   double peak_m = 0.04;
 };
 
-// Geometry of the simple articulated body used for the whole-body check (metres; heights are
-// measured from the stance sole). Boxes are centred between the feet unless stated.
-struct BodyModel {
-  double foot_length_m = 0.16;
-  double foot_width_m = 0.09;
-  double nominal_separation_m = 0.10;  // sole centre to sole centre
-  double ankle_height_m = 0.04;
-  double hip_height_m = 0.22;
-  double leg_width_m = 0.06;
-  double torso_depth_m = 0.10;
-  double torso_width_m = 0.14;
-  double torso_bottom_m = 0.20;
-  double arm_offset_m = 0.12;  // lateral offset of each arm's centre from the body centre
-  double arm_depth_m = 0.06;
-  double arm_width_m = 0.05;
-  double arm_bottom_m = 0.22;
-  double height_m = 0.58;
-
-  void validate() const;
-};
+// The body the whole-body check sweeps (common/biped.hpp), named in the planner's namespace.
+using bipednav::BodyModel;
 
 // A robot's footstep capabilities: its actions and its body, plus the terrain tolerances.
 struct ActionSet {

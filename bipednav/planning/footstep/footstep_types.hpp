@@ -2,21 +2,15 @@
 
 #include <cstdint>
 
-#include "bipednav/common/pose2.hpp"
+#include "bipednav/common/biped.hpp"
 
 namespace bipednav::footstep {
 
-enum class Foot : std::uint8_t { kLeft = 0, kRight = 1 };
-
-inline Foot other(Foot f) { return f == Foot::kLeft ? Foot::kRight : Foot::kLeft; }
-inline const char* foot_name(Foot f) { return f == Foot::kLeft ? "left" : "right"; }
-
-// A placed foot: the sole's centre and heading in the map frame, its height, and which foot.
-struct Footstep {
-  Pose2 pose;
-  double z_m = 0.0;
-  Foot foot = Foot::kLeft;
-};
+// The walking body's feet (common/biped.hpp), named in the planner's namespace.
+using bipednav::Foot;
+using bipednav::foot_name;
+using bipednav::Footstep;
+using bipednav::other;
 
 // A planning state (x^, y^, theta^, f) of section V-A: the discretised pose of the stance foot.
 struct StateKey {

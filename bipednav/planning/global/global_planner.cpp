@@ -2,13 +2,9 @@
 
 #include <cmath>
 #include <cstdio>
-#include <functional>
 #include <limits>
-#include <utility>
 
 #include "bipednav/common/error.hpp"
-#include "bipednav/planning/global/astar.hpp"
-#include "bipednav/planning/global/dstar_lite_planner.hpp"
 
 namespace bipednav::planning {
 
@@ -21,17 +17,6 @@ void GlobalPlannerParams::validate() const {
 }
 
 namespace {
-
-using Factory = std::function<std::unique_ptr<GlobalPlanner>(const GlobalPlannerParams&)>;
-
-// The explicit table of global planners (no static registration).
-const std::vector<std::pair<std::string, Factory>>& planner_table() {
-  static const std::vector<std::pair<std::string, Factory>> table = {
-      {"dstar_lite", [](const GlobalPlannerParams& p) { return std::make_unique<DStarLitePlanner>(p); }},
-      {"astar", [](const GlobalPlannerParams& p) { return std::make_unique<AStarPlanner>(p); }},
-  };
-  return table;
-}
 
 std::string fmt(const char* f, double a, double b) {
   char buf[96];
@@ -75,20 +60,6 @@ std::optional<mapping::Cell> locate(const mapping::GridGeometry& g, const Pose2&
 }
 
 }  // namespace
-
-std::unique_ptr<GlobalPlanner> make_global_planner(const std::string& name, const GlobalPlannerParams& params) {
-  for (const auto& [n, make] : planner_table())
-    if (n == name) return make(params);
-  std::string names;
-  for (const auto& n : global_planner_names()) names += (names.empty() ? "" : " | ") + n;
-  throw ParamError("global_planner", "one of " + names + " (got '" + name + "')");
-}
-
-std::vector<std::string> global_planner_names() {
-  std::vector<std::string> out;
-  for (const auto& entry : planner_table()) out.push_back(entry.first);
-  return out;
-}
 
 std::optional<mapping::Cell> goal_search_cell(const mapping::Costmap2D& map, const Pose2& goal,
                                               const GlobalPlannerParams& params) {

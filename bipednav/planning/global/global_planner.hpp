@@ -1,7 +1,6 @@
 #pragma once
 
 #include <cstdint>
-#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -67,10 +66,6 @@ class GlobalPlanner {
   virtual void reset() = 0;
   virtual std::string name() const = 0;
 };
-
-// Explicit factory table: "dstar_lite" or "astar"; anything else raises ParamError.
-std::unique_ptr<GlobalPlanner> make_global_planner(const std::string& name, const GlobalPlannerParams& params);
-std::vector<std::string> global_planner_names();
 
 // ---- helpers shared by the implementations ----
 

@@ -1,6 +1,5 @@
 #pragma once
 
-#include <memory>
 #include <optional>
 #include <string_view>
 
@@ -88,11 +87,5 @@ struct LocalPlannerParams {
 // The result for bad input (see plan_utils' check_inputs), or nullopt when the input is usable.
 std::optional<LocalPlanResult> reject_bad_inputs(const Pose2& T_map_base, const Twist& current_velocity,
                                                  const Path& global_plan, const mapping::Costmap2D& local_costmap);
-
-// Factory table: "teb" or "tracker"; throws ParamError for another name.
-// `moving`: the tracked moving obstacles the planner yields to (set_moving_obstacles); nullptr, said
-// explicitly, for a planner that yields to none.
-std::unique_ptr<LocalPlanner> make_local_planner(std::string_view name, const LocalPlannerParams& params,
-                                                 const MovingObstacleTracker* moving);
 
 }  // namespace bipednav::planning::local

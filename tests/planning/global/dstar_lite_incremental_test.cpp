@@ -2,6 +2,7 @@
 
 #include "bipednav/common/rng.hpp"
 #include "bipednav/planning/global/dstar_lite_planner.hpp"
+#include "bipednav/planning/global/global_planner_factory.hpp"
 #include "test_grids.hpp"
 
 using namespace bipednav;

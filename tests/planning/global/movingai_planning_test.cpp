@@ -2,9 +2,10 @@
 
 #include <cmath>
 
+#include "bench/movingai_runner.hpp"
 #include "bipednav/common/error.hpp"
 #include "bipednav/io/movingai.hpp"
-#include "bipednav/planning/global/movingai_runner.hpp"
+#include "bipednav/planning/global/global_planner_factory.hpp"
 #include "test_data.hpp"
 
 using namespace bipednav;

@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "bipednav/common/error.hpp"
+#include "bipednav/planning/global/global_planner_factory.hpp"
 #include "test_grids.hpp"
 
 using namespace bipednav;

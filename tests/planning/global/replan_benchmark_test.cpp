@@ -1,4 +1,4 @@
-#include "bipednav/planning/global/replan_benchmark.hpp"
+#include "bench/replan_benchmark.hpp"
 
 #include <gtest/gtest.h>
 

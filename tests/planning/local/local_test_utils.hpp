@@ -2,10 +2,10 @@
 
 #include <cmath>
 
+#include "bench/local_scene.hpp"
 #include "bipednav/common/path.hpp"
 #include "bipednav/common/twist.hpp"
 #include "bipednav/mapping/costmap2d.hpp"
-#include "bipednav/planning/local/bench_scene.hpp"
 
 namespace bipednav::planning::local::test {
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "bipednav/planning/local/local_planner.hpp"
+#include "bipednav/planning/local/local_planner_factory.hpp"
 #include "bipednav/planning/local/moving_obstacles.hpp"
 #include "local_test_utils.hpp"
 #include "moving_obstacle_test_utils.hpp"

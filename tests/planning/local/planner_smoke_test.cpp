@@ -2,6 +2,7 @@
 
 #include "bipednav/common/error.hpp"
 #include "bipednav/planning/local/local_planner.hpp"
+#include "bipednav/planning/local/local_planner_factory.hpp"
 #include "local_test_utils.hpp"
 
 namespace bipednav::planning::local {
