@@ -6,6 +6,7 @@
 #include "apps/cmd_odometry.hpp"
 #include "apps/scenario_files.hpp"
 #include "bipednav/common/angles.hpp"
+#include "bipednav/navigation/robot_loading.hpp"
 #include "bipednav/runner/footstep_runner.hpp"
 
 namespace bipednav::app {
@@ -19,7 +20,7 @@ json bench_humanoid_drift(const std::string& scenario_name) {
   constexpr double kRefOdometryCmPerM = 15.3, kRefOdometryDegPerM = 1.76;
   const sim::Scenario scenario = sim::load_scenario(resolve_scenario(scenario_name));
   runner::FootstepRunOptions o;
-  o.navigator = runner::footstep_navigator_params({});
+  o.navigator = runner::footstep_navigator_params(navigation::load_robot(scenario.robot), {});
   const runner::FootstepRunResult run = runner::run_footstep_scenario(scenario, o);
   if (run.steps.empty()) throw Error("bench localization: the humanoid took no step in " + scenario.name);
   const runner::ExecutedStep& last = run.steps.back();

@@ -58,11 +58,11 @@ RobotProfile digit_profile() {
   p.kind = "walker";
   p.footprint_radius_m = 0.35;
   p.height_m = 1.6;
-  p.max_vel_x_mps = 0.5;
-  p.max_vel_x_backwards_mps = 0.25;
-  p.max_vel_theta_radps = 0.6;
-  p.acc_lim_x_mps2 = 0.5;
-  p.acc_lim_theta_radps2 = 1.0;
+  p.limits.max_vel_x_mps = 0.5;
+  p.limits.max_vel_x_backwards_mps = 0.25;
+  p.limits.max_vel_theta_radps = 0.6;
+  p.limits.acc_lim_x_mps2 = 0.5;
+  p.limits.acc_lim_theta_radps2 = 1.0;
   p.tracking_time_constant_s = 0.3;
   p.sway_amplitude_m = 0.03;
   p.step_frequency_hz = 2.0;

@@ -196,7 +196,7 @@ void run_odometry(const OdometryOptions& o) {
   if (planned.source == "straight (no goal)" && !o.json_out)
     std::fprintf(stderr, "note: scenario '%s' has no goal; driving straight ahead\n", scenario.name.c_str());
   const std::vector<Eigen::Vector2d>& route = planned.waypoints;
-  const double v = o.speed_mps > 0 ? std::min(o.speed_mps, robot.max_vel_x_mps) : robot.max_vel_x_mps;
+  const double v = o.speed_mps > 0 ? std::min(o.speed_mps, robot.limits.max_vel_x_mps) : robot.limits.max_vel_x_mps;
   const double t_end = o.duration_s > 0 ? o.duration_s : scenario.time_limit_s;
 
   std::optional<localization::Loam> loam;
@@ -297,7 +297,7 @@ json bench_loam(const BenchOptions& o) {
   while (static_cast<int>(sweeps.size()) < o.sweeps && sim.now_s() < 600.0) {
     while (next < route.size() && (route[next] - sim.true_pose().position()).norm() < 0.2) ++next;
     const SensorFrame f =
-        sim.step(next < route.size() ? steer(sim.true_pose(), route[next], robot.max_vel_x_mps) : Twist{});
+        sim.step(next < route.size() ? steer(sim.true_pose(), route[next], robot.limits.max_vel_x_mps) : Twist{});
     if (f.lidar) sweeps.push_back(*f.lidar);
   }
   localization::Loam loam;

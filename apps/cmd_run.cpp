@@ -256,7 +256,7 @@ void print_params(const ParamsArgs& a) {
   const RobotProfile robot = navigation::load_robot(a.robot);
   const bool footsteps = runner::is_footstep_robot(robot);
   const std::string yaml =
-      footsteps ? navigation::navigator_params_yaml(footstep_params_for_cli(o.params_file))
+      footsteps ? navigation::navigator_params_yaml(footstep_params_for_cli(robot, o.params_file))
                 : without_default_tree(navigation::navigator_params_yaml(wheeled_params_for_cli(robot, o)),
                                        navigation::NavigatorParams::for_robot(robot).behavior_tree);
   std::printf("# bipednav %snavigation parameters for robot %s%s: every key is optional; read with --params FILE\n%s",

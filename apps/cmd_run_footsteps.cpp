@@ -19,9 +19,10 @@ bool runs_by_footsteps(const sim::Scenario& scenario, const std::string& robot_o
   return runner::is_footstep_robot(navigation::load_robot(robot_override.empty() ? scenario.robot : robot_override));
 }
 
-navigation::FootstepNavigatorParams footstep_params_for_cli(const std::filesystem::path& params_file) {
+navigation::FootstepNavigatorParams footstep_params_for_cli(const RobotProfile& robot,
+                                                            const std::filesystem::path& params_file) {
   try {
-    return runner::footstep_navigator_params(params_file);
+    return runner::footstep_navigator_params(robot, params_file);
   } catch (const FileError& e) {
     throw Error(std::string(e.what()) +
                 " (a humanoid, kind humanoid, reads the footstep navigator's layout, not a wheeled robot's: "
@@ -62,7 +63,7 @@ bool run_footsteps_command(sim::Scenario scenario, const std::string& robot_over
                            const std::filesystem::path& replay) {
   if (!robot_override.empty()) scenario.robot = robot_override;
   runner::FootstepRunOptions o;
-  o.navigator = footstep_params_for_cli(params_file);
+  o.navigator = footstep_params_for_cli(navigation::load_robot(scenario.robot), params_file);
   if (args.seed) o.seed = *args.seed;
   if (args.time_limit_s) o.time_limit_s = *args.time_limit_s;
   o.progress = args.progress;

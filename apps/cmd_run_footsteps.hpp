@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 
+#include "bipednav/common/robot_profile.hpp"
 #include "bipednav/navigation/footstep_navigator.hpp"
 #include "bipednav/sim/scenario.hpp"
 
@@ -14,9 +15,10 @@ namespace bipednav::app {
 // profile of kind humanoid.
 bool runs_by_footsteps(const sim::Scenario& scenario, const std::string& robot_override);
 
-// The footstep navigator's parameters with `params_file` overlaid (runner::footstep_navigator_params);
-// a file in the wheeled navigator's layout is reported as such.
-navigation::FootstepNavigatorParams footstep_params_for_cli(const std::filesystem::path& params_file);
+// The footstep navigator's parameters for `robot` with `params_file` overlaid
+// (runner::footstep_navigator_params); a file in the wheeled navigator's layout is reported as such.
+navigation::FootstepNavigatorParams footstep_params_for_cli(const RobotProfile& robot,
+                                                            const std::filesystem::path& params_file);
 
 // Overrides of a footstep run from the command line (unset: the scenario's).
 struct FootstepRunArgs {

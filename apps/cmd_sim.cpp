@@ -112,7 +112,7 @@ RunRecord run(sim::Simulation& sim, const sim::Scenario& scenario, const RobotPr
   RunRecord rec;
   const auto steps = static_cast<std::size_t>(std::ceil(opt.duration_s / opt.step_s - 1e-9));
   Twist straight;  // without a script: a slow straight line
-  straight.linear_x = 0.5 * robot.max_vel_x_mps;
+  straight.linear_x = 0.5 * robot.limits.max_vel_x_mps;
   ProgressBar progress("sim " + scenario.name, steps, !opt.quiet);
   rec.track.add(sim.now_s(), sim.true_pose());
   bool touching = sim.in_collision();

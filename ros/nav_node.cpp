@@ -117,7 +117,7 @@ void NavNode::load(ros::NodeHandle& pnh) {
   robot_ = navigation::load_robot(p_.robot, p_.config_dir);
   // The robot's defaults, then a navigation parameters file (`bipednav params --robot R` prints
   // one); the single ROS params below still override it.
-  nav_params_ = navigation::navigator_params_for(robot_, param(pnh, "params_file", std::string()));
+  nav_params_ = navigation::navigator_params_for(robot_, param(pnh, "params_file", std::string()), p_.config_dir);
   auto& n = nav_params_;
   n.server.global_planner = param(pnh, "global_planner", n.server.global_planner);
   n.server.local_planner = param(pnh, "local_planner", n.server.local_planner);

@@ -5,6 +5,7 @@
 
 #include "bipednav/common/error.hpp"
 #include "bipednav/common/se3.hpp"
+#include "bipednav/common/velocity_limits.hpp"
 
 namespace bipednav {
 
@@ -25,11 +26,7 @@ struct RobotProfile {
   std::string kind = "diff_drive";  // "diff_drive", "walker" (velocity-commanded biped), "humanoid" (footsteps)
   double footprint_radius_m = 0.2;  // circumscribed radius of the footprint (a circle)
   double height_m = 0.5;
-  double max_vel_x_mps = 0.26;
-  double max_vel_x_backwards_mps = 0.15;
-  double max_vel_theta_radps = 1.0;
-  double acc_lim_x_mps2 = 0.5;
-  double acc_lim_theta_radps2 = 1.5;
+  VelocityLimits limits;                   // forward/yaw only (max_vel_y_mps = 0)
   double tracking_time_constant_s = 0.05;  // first-order lag of the velocity controller
   double sway_amplitude_m = 0.0;           // lateral sway of a walker's base
   double step_frequency_hz = 0.0;          // steps per second of a walker
@@ -42,11 +39,7 @@ struct RobotProfile {
             "one of diff_drive, walker, humanoid");
     require(footprint_radius_m > 0.0 && footprint_radius_m < 5.0, "footprint_radius_m", "in (0, 5) m");
     require(height_m > 0.0, "height_m", "> 0");
-    require(max_vel_x_mps > 0.0, "max_vel_x_mps", "> 0");
-    require(max_vel_x_backwards_mps >= 0.0, "max_vel_x_backwards_mps", ">= 0");
-    require(max_vel_theta_radps > 0.0, "max_vel_theta_radps", "> 0");
-    require(acc_lim_x_mps2 > 0.0, "acc_lim_x_mps2", "> 0");
-    require(acc_lim_theta_radps2 > 0.0, "acc_lim_theta_radps2", "> 0");
+    limits.validate();
     require(tracking_time_constant_s >= 0.0, "tracking_time_constant_s", ">= 0");
     require(sway_amplitude_m >= 0.0, "sway_amplitude_m", ">= 0");
     require(step_frequency_hz >= 0.0, "step_frequency_hz", ">= 0");

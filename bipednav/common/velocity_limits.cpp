@@ -30,12 +30,6 @@ void VelocityLimits::validate() const {
   require(pos(acc_lim_theta_radps2), "acc_lim_theta_radps2", "> 0 rad/s^2");
 }
 
-VelocityLimits VelocityLimits::from_profile(const RobotProfile& robot) {
-  const VelocityLimits l = forward_yaw_of(robot);
-  l.validate();
-  return l;
-}
-
 Twist limit_velocity(const Twist& desired, const Twist& current, double dt_s, const VelocityLimits& lim) {
   if (!std::isfinite(dt_s) || dt_s < 0.0) throw Error("limit_velocity: dt_s must be finite and >= 0");
   Twist out;

@@ -1,12 +1,13 @@
 #pragma once
 
-#include "bipednav/common/robot_profile.hpp"
 #include "bipednav/common/twist.hpp"
 
 namespace bipednav {
 
-// Velocity and acceleration limits of a planar command (the walking controller's interface).
-// max_vel_y_mps = 0 for forward/yaw-only robots (Digit's and a diff-drive's interface).
+// Velocity and acceleration limits of a planar command (the walking controller's interface): a
+// robot profile's (RobotProfile::limits), TEB's (TebLimits::velocity) and the path tracker's
+// (TrackerParams::limits). max_vel_y_mps = 0 for forward/yaw-only robots (Digit's and a
+// diff-drive's interface).
 struct VelocityLimits {
   double max_vel_x_mps = 0.26;
   double max_vel_x_backwards_mps = 0.15;
@@ -17,19 +18,17 @@ struct VelocityLimits {
   double acc_lim_y_mps2 = 0.5;
 
   void validate() const;
-  // The limits of a robot profile (lateral motion disabled: the profiles are forward/yaw only).
-  static VelocityLimits from_profile(const RobotProfile& robot);
-  // The forward/yaw limits of any struct with the five fields of these names (a profile, TEB's and
-  // the tracker's parameters); no lateral motion.
-  template <class P>
-  static VelocityLimits forward_yaw_of(const P& p) {
-    VelocityLimits l;
-    l.max_vel_x_mps = p.max_vel_x_mps;
-    l.max_vel_x_backwards_mps = p.max_vel_x_backwards_mps;
-    l.max_vel_theta_radps = p.max_vel_theta_radps;
-    l.acc_lim_x_mps2 = p.acc_lim_x_mps2;
-    l.acc_lim_theta_radps2 = p.acc_lim_theta_radps2;
-    return l;
+
+  // The fields of a robot profile or a navigation parameters file, read flat into the struct that
+  // embeds the limits (no nested mapping). The lateral fields are left out: the profiles and the
+  // local planners are forward/yaw only, so they keep max_vel_y_mps = 0.
+  template <class V>
+  void visit_fields(V& v) {
+    v("max_vel_x_mps", max_vel_x_mps);
+    v("max_vel_x_backwards_mps", max_vel_x_backwards_mps);
+    v("max_vel_theta_radps", max_vel_theta_radps);
+    v("acc_lim_x_mps2", acc_lim_x_mps2);
+    v("acc_lim_theta_radps2", acc_lim_theta_radps2);
   }
 };
 

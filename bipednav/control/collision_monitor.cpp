@@ -313,7 +313,7 @@ CollisionMonitor::CollisionMonitor(const CollisionMonitorParams& params, double 
 }
 
 CollisionMonitor::CollisionMonitor(const CollisionMonitorParams& params, const RobotProfile& robot)
-    : CollisionMonitor(params, robot.footprint_radius_m, VelocityLimits::from_profile(robot),
+    : CollisionMonitor(params, robot.footprint_radius_m, (robot.limits.validate(), robot.limits),
                        robot.tracking_time_constant_s) {}
 
 MonitorDecision CollisionMonitor::check(const MonitorInput& in) const {

@@ -27,6 +27,20 @@ struct GoalCheckerParams {
   double stopped_timeout_s = 3.0;
 
   void validate() const;
+
+  // The fields a navigation parameters file reads and `bipednav params` prints, in this order
+  // (navigation/navigator_params_yaml.hpp).
+  template <class V>
+  void visit_fields(V& v) {
+    v("xy_tolerance_m", xy_tolerance_m);
+    v("yaw_tolerance_rad", yaw_tolerance_rad);
+    v("check_yaw", check_yaw);
+    v("stateful", stateful);
+    v("require_stopped", require_stopped);
+    v("trans_stopped_velocity_mps", trans_stopped_velocity_mps);
+    v("rot_stopped_velocity_radps", rot_stopped_velocity_radps);
+    v("stopped_timeout_s", stopped_timeout_s);
+  }
 };
 
 // Planar distance and absolute wrapped heading difference between pose and goal.

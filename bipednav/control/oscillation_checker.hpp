@@ -18,6 +18,16 @@ struct OscillationCheckerParams {
   double sign_deadband = 0.02;
 
   void validate() const;
+
+  // The fields a navigation parameters file reads and `bipednav params` prints, in this order
+  // (navigation/navigator_params_yaml.hpp).
+  template <class V>
+  void visit_fields(V& v) {
+    v("window_s", window_s);
+    v("max_sign_flips", max_sign_flips);
+    v("min_net_progress_m", min_net_progress_m);
+    v("sign_deadband", sign_deadband);
+  }
 };
 
 // Sign changes in a sequence of speeds, ignoring entries with |v| < deadband.

@@ -12,6 +12,14 @@ struct ProgressCheckerParams {
   double movement_time_allowance_s = 10.0;
 
   void validate() const;
+
+  // The fields a navigation parameters file reads and `bipednav params` prints, in this order
+  // (navigation/navigator_params_yaml.hpp).
+  template <class V>
+  void visit_fields(V& v) {
+    v("required_movement_radius_m", required_movement_radius_m);
+    v("movement_time_allowance_s", movement_time_allowance_s);
+  }
 };
 
 class ProgressChecker {

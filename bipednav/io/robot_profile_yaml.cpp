@@ -25,11 +25,8 @@ RobotProfile read_robot_profile(ParamReader& r) {
   r.get("kind", p.kind);
   r.get("footprint_radius_m", p.footprint_radius_m);
   r.get("height_m", p.height_m);
-  r.get("max_vel_x_mps", p.max_vel_x_mps);
-  r.get("max_vel_x_backwards_mps", p.max_vel_x_backwards_mps);
-  r.get("max_vel_theta_radps", p.max_vel_theta_radps);
-  r.get("acc_lim_x_mps2", p.acc_lim_x_mps2);
-  r.get("acc_lim_theta_radps2", p.acc_lim_theta_radps2);
+  auto get = [&r](const char* key, double& value) { r.get(key, value); };
+  p.limits.visit_fields(get);  // flat: the limits' keys sit at the top level
   r.get("tracking_time_constant_s", p.tracking_time_constant_s);
   r.get("sway_amplitude_m", p.sway_amplitude_m);
   r.get("step_frequency_hz", p.step_frequency_hz);

@@ -25,6 +25,19 @@ struct CorrectedOdometryParams {
   // 0 corrects every direction.
   double min_constraining_fraction = 0.003;
   void validate() const;
+
+  // The fields a navigation parameters file reads and `bipednav params` prints, in this order
+  // (navigation/navigator_params_yaml.hpp).
+  template <class V>
+  void visit_fields(V& v) {
+    v.group("gicp", gicp);
+    v("ground_band_m", ground_band_m);
+    v("min_points", min_points);
+    v("max_correction_step_m", max_correction_step_m);
+    v("max_correction_step_rad", max_correction_step_rad);
+    v("max_fitness_m2", max_fitness_m2);
+    v("min_constraining_fraction", min_constraining_fraction);
+  }
 };
 
 // The GICP information (Gauss-Newton Hessian of the Mahalanobis cost) of source matched into

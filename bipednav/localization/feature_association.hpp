@@ -19,6 +19,17 @@ struct AssociationParams {
   double min_line_ratio = 3.0;         // largest / second eigenvalue of an edge's neighbours
   double edge_weight = 0.3;            // edge rows carry the column quantisation of the corner (~ range * azimuth step)
   void validate() const;
+
+  // The fields a navigation parameters file reads and `bipednav params` prints, in this order
+  // (navigation/navigator_params_yaml.hpp).
+  template <class V>
+  void visit_fields(V& v) {
+    v("neighbours", neighbours);
+    v("max_correspondence_m", max_correspondence_m);
+    v("max_plane_deviation_m", max_plane_deviation_m);
+    v("min_line_ratio", min_line_ratio);
+    v("edge_weight", edge_weight);
+  }
 };
 
 // Where each reference point was seen from (indexed like the tree's points) and where the

@@ -23,6 +23,20 @@ struct GicpParams {
   double lm_lambda = 1e-6;  // Levenberg-Marquardt damping relative to diag(H)
   int threads = 1;          // worker threads for covariances and linearisation
   void validate() const;
+
+  // The fields a navigation parameters file reads and `bipednav params` prints, in this order
+  // (navigation/navigator_params_yaml.hpp).
+  template <class V>
+  void visit_fields(V& v) {
+    v("covariance_neighbours", covariance_neighbours);
+    v("covariance_epsilon", covariance_epsilon);
+    v("max_correspondence_m", max_correspondence_m);
+    v("max_iterations", max_iterations);
+    v("converged_translation_m", converged_translation_m);
+    v("converged_rotation_rad", converged_rotation_rad);
+    v("lm_lambda", lm_lambda);
+    v("threads", threads);
+  }
 };
 
 // Exact nearest-neighbour searches over a fixed set of points, with the bounded query GICP's

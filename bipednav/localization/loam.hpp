@@ -46,6 +46,23 @@ struct LoamParams {
   // read (the navigator's Localizer): the de-skew does not feed the pose.
   bool output_deskewed = true;
   void validate() const;
+
+  // The fields a navigation parameters file reads and `bipednav params` prints, in this order
+  // (navigation/navigator_params_yaml.hpp). T_world_lidar_initial and output_deskewed are left out:
+  // the Localizer sets them.
+  template <class V>
+  void visit_fields(V& v) {
+    v.group("features", features);
+    v.group("odometry", odometry);
+    v.group("mapping", mapping);
+    v("min_features", min_features);
+    v("planar_constant_velocity", planar_constant_velocity);
+    v("reference_from_prior_change", reference_from_prior_change);
+    v("max_prior_change_m", max_prior_change_m);
+    v("max_prior_change_rad", max_prior_change_rad);
+    v("max_prior_error_change_rad", max_prior_error_change_rad);
+    v("planar_motion", planar_motion);
+  }
 };
 
 struct LoamOutput {

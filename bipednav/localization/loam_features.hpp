@@ -26,6 +26,27 @@ struct FeatureParams {
   double min_elevation_rad = -0.2617993877991494;  // VLP-16: -15 deg
   double max_elevation_rad = 0.2617993877991494;   // VLP-16: +15 deg
   void validate() const;
+
+  // The fields a navigation parameters file reads and `bipednav params` prints, in this order
+  // (navigation/navigator_params_yaml.hpp).
+  template <class V>
+  void visit_fields(V& v) {
+    v("neighbours_per_side", neighbours_per_side);
+    v("sub_regions", sub_regions);
+    v("max_edges_per_region", max_edges_per_region);
+    v("max_planars_per_region", max_planars_per_region);
+    v("map_feature_factor", map_feature_factor);
+    v("edge_threshold", edge_threshold);
+    v("planar_threshold", planar_threshold);
+    v("min_range_m", min_range_m);
+    v("max_range_m", max_range_m);
+    v("occlusion_ratio", occlusion_ratio);
+    v("parallel_beam_ratio", parallel_beam_ratio);
+    v("max_neighbour_gap_ratio", max_neighbour_gap_ratio);
+    v("rings", rings);
+    v("min_elevation_rad", min_elevation_rad);
+    v("max_elevation_rad", max_elevation_rad);
+  }
 };
 
 // Edge and planar points of one sweep. Each set is a PointCloud carrying the points' time offsets

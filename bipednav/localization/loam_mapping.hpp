@@ -37,6 +37,23 @@ struct MappingParams {
   double gravity_weight = 1000.0;
   LmParams lm{};
   void validate() const;
+
+  // The fields a navigation parameters file reads and `bipednav params` prints, in this order
+  // (navigation/navigator_params_yaml.hpp).
+  template <class V>
+  void visit_fields(V& v) {
+    v("rate_hz", rate_hz);
+    v("edge_leaf_m", edge_leaf_m);
+    v("planar_leaf_m", planar_leaf_m);
+    v("map_radius_m", map_radius_m);
+    v.group("association", association);
+    v("correspondence_rounds", correspondence_rounds);
+    v("round_converged_translation_m", round_converged_translation_m);
+    v("round_converged_rotation_rad", round_converged_rotation_rad);
+    v("min_constraints", min_constraints);
+    v("gravity_weight", gravity_weight);
+    v.group("lm", lm);
+  }
 };
 
 struct MappingResult {

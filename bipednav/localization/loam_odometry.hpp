@@ -25,6 +25,20 @@ struct OdometryParams {
   std::size_t min_constraints = 20;  // fewer rows than this: the sweep is not matched
   LmParams lm{};
   void validate() const;
+
+  // The fields a navigation parameters file reads and `bipednav params` prints, in this order
+  // (navigation/navigator_params_yaml.hpp).
+  template <class V>
+  void visit_fields(V& v) {
+    v("scan_period_s", scan_period_s);
+    v.group("association", association);
+    v("correspondence_rounds", correspondence_rounds);
+    v("relaxation", relaxation);
+    v("round_converged_translation_m", round_converged_translation_m);
+    v("round_converged_rotation_rad", round_converged_rotation_rad);
+    v("min_constraints", min_constraints);
+    v.group("lm", lm);
+  }
 };
 
 struct OdometryResult {

@@ -31,6 +31,23 @@ struct LocalizerParams {
   double scan_position_sigma_m = 0.02;
 
   void validate() const;
+
+  // The fields a navigation parameters file reads and `bipednav params` prints, in this order
+  // (navigation/navigator_params_yaml.hpp).
+  template <class V>
+  void visit_fields(V& v) {
+    v("method", method);
+    v.group("loam", loam);
+    v("sweep_duration_s", sweep_duration_s);
+    v("max_correction_jump_m", max_correction_jump_m);
+    v("max_correction_jump_rad", max_correction_jump_rad);
+    v("unhealthy_after_bad_sweeps", unhealthy_after_bad_sweeps);
+    v("odometry_timeout_s", odometry_timeout_s);
+    v("max_odometry_speed_mps", max_odometry_speed_mps);
+    v("max_odometry_rate_radps", max_odometry_rate_radps);
+    v("odometry_drift_ratio", odometry_drift_ratio);
+    v("scan_position_sigma_m", scan_position_sigma_m);
+  }
 };
 
 // Pose estimation for the navigator: the map -> odom correction from LOAM (section 4.4), applied

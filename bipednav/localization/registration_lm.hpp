@@ -78,6 +78,18 @@ struct LmParams {
   double converged_translation_m = 1e-4;
   double converged_rotation_rad = 1e-5;
   void validate() const;
+
+  // The fields a navigation parameters file reads and `bipednav params` prints, in this order
+  // (navigation/navigator_params_yaml.hpp).
+  template <class V>
+  void visit_fields(V& v) {
+    v("max_iterations", max_iterations);
+    v("bisquare_c_m", bisquare_c_m);
+    v("initial_lambda", initial_lambda);
+    v("degenerate_min_eigenvalue", degenerate_min_eigenvalue);
+    v("converged_translation_m", converged_translation_m);
+    v("converged_rotation_rad", converged_rotation_rad);
+  }
 };
 
 struct LmSolution {

@@ -24,17 +24,6 @@ void GlobalCostmapParams::validate() const {
   obstacle_layer().validate();
 }
 
-GlobalCostmapParams GlobalCostmapParams::for_robot(const RobotProfile& robot) {
-  GlobalCostmapParams p;
-  p.inscribed_radius_m = robot.footprint_radius_m;
-  p.inflation_radius_m = std::max(p.inflation_radius_m, p.inscribed_radius_m + 0.3);
-  if (height_aware_maps_for(robot)) {  // as the local map (LocalCostmapParams::for_robot)
-    p.height_aware_clearing = true;
-    p.mark_decay_s = kHeightAwareMarkDecayS;
-  }
-  return p;
-}
-
 GridGeometry GlobalCostmap::default_geometry(const Pose2& start, const GlobalCostmapParams& params) {
   params.validate();
   if (!start.is_finite()) throw Error("global costmap: start pose is not finite");

@@ -36,11 +36,29 @@ struct GlobalCostmapParams {
   double rate_hz = 2.0;
 
   void validate() const;
-  static GlobalCostmapParams for_robot(const RobotProfile& robot);
   UnknownCostMode unknown_mode() const { return parse_unknown_cost_mode(unknown_cost_mode); }
   InflationParams inflation() const { return {inscribed_radius_m, inflation_radius_m, cost_scaling_factor}; }
   ObstacleLayerParams obstacle_layer() const {
     return {obstacle_max_range_m, raytrace_max_range_m, height_aware_clearing, decay_updates(mark_decay_s, rate_hz)};
+  }
+
+  // The fields a navigation parameters file reads and `bipednav params` prints, in this order
+  // (navigation/navigator_params_yaml.hpp).
+  template <class V>
+  void visit_fields(V& v) {
+    v("resolution_m", resolution_m);
+    v("default_size_m", default_size_m);
+    v("inscribed_radius_m", inscribed_radius_m);
+    v("inflation_radius_m", inflation_radius_m);
+    v("cost_scaling_factor", cost_scaling_factor);
+    v("obstacle_max_range_m", obstacle_max_range_m);
+    v("raytrace_max_range_m", raytrace_max_range_m);
+    v("height_aware_clearing", height_aware_clearing);
+    v("lidar_clearing", lidar_clearing);
+    v("merge_local", merge_local);
+    v("mark_decay_s", mark_decay_s);
+    v("unknown_cost_mode", unknown_cost_mode);
+    v("rate_hz", rate_hz);
   }
 };
 

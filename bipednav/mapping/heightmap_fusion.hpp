@@ -22,6 +22,19 @@ struct HeightmapFusionParams {
   double max_range_m = 10.0;                  // points farther from the sensor are ignored
 
   void validate() const;
+
+  // The fields a navigation parameters file reads and `bipednav params` prints, in this order
+  // (navigation/navigator_params_yaml.hpp).
+  template <class V>
+  void visit_fields(V& v) {
+    v("variance_per_m2", variance_per_m2);
+    v("min_observation_variance_m2", min_observation_variance_m2);
+    v("min_cell_variance_m2", min_cell_variance_m2);
+    v("max_cell_variance_m2", max_cell_variance_m2);
+    v("gate_sigma", gate_sigma);
+    v("variance_growth_factor", variance_growth_factor);
+    v("max_range_m", max_range_m);
+  }
 };
 
 // Result of fusing one observation into one cell.

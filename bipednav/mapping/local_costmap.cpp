@@ -15,20 +15,6 @@ void LocalCostmapParams::validate() const {
   obstacle_layer().validate();
 }
 
-LocalCostmapParams LocalCostmapParams::for_robot(const RobotProfile& robot) {
-  LocalCostmapParams p;
-  p.inscribed_radius_m = robot.footprint_radius_m;
-  p.inflation_radius_m = std::max(p.inflation_radius_m, p.inscribed_radius_m + 0.3);
-  if (height_aware_maps_for(robot)) {
-    // The VLP-16 (1.47 m) passes over the 0.5 m obstacles the pelvis depth cameras see: plain 2D
-    // rays would erase them as soon as the cameras look away. The heights keep them; the decay
-    // drops the low marks no camera confirms while the LiDAR keeps looking past them.
-    p.height_aware_clearing = true;
-    p.mark_decay_s = kHeightAwareMarkDecayS;
-  }
-  return p;
-}
-
 namespace {
 
 GridGeometry window_geometry(const LocalCostmapParams& p) {

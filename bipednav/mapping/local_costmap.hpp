@@ -3,7 +3,6 @@
 #include <vector>
 
 #include "bipednav/common/pose2.hpp"
-#include "bipednav/common/robot_profile.hpp"
 #include "bipednav/mapping/costmap2d.hpp"
 #include "bipednav/mapping/inflation.hpp"
 #include "bipednav/mapping/obstacle_layer.hpp"
@@ -25,12 +24,25 @@ struct LocalCostmapParams {
   double rate_hz = 10.0;
 
   void validate() const;
-  // Defaults with the inscribed radius taken from the robot's footprint; height-aware clearing with
-  // decay where height_aware_maps_for(robot) says so.
-  static LocalCostmapParams for_robot(const RobotProfile& robot);
   InflationParams inflation() const { return {inscribed_radius_m, inflation_radius_m, cost_scaling_factor}; }
   ObstacleLayerParams obstacle_layer() const {
     return {obstacle_max_range_m, raytrace_max_range_m, height_aware_clearing, decay_updates(mark_decay_s, rate_hz)};
+  }
+
+  // The fields a navigation parameters file reads and `bipednav params` prints, in this order
+  // (navigation/navigator_params_yaml.hpp).
+  template <class V>
+  void visit_fields(V& v) {
+    v("size_m", size_m);
+    v("resolution_m", resolution_m);
+    v("inscribed_radius_m", inscribed_radius_m);
+    v("inflation_radius_m", inflation_radius_m);
+    v("cost_scaling_factor", cost_scaling_factor);
+    v("obstacle_max_range_m", obstacle_max_range_m);
+    v("raytrace_max_range_m", raytrace_max_range_m);
+    v("height_aware_clearing", height_aware_clearing);
+    v("mark_decay_s", mark_decay_s);
+    v("rate_hz", rate_hz);
   }
 };
 

@@ -16,16 +16,6 @@ void ObstacleLayerParams::validate() const {
   require(mark_lifetime_updates >= 0, "mark_lifetime_updates", ">= 0 (0: marks never expire)");
 }
 
-bool height_aware_maps_for(const RobotProfile& robot) {
-  // On for wheeled robots (TurtleBot3): it keeps turtlebot3_world's low cylinders the LiDAR passes
-  // over, which ended runs in OSCILLATION. The 5 s decay, not 15 s, because camera marks of moving
-  // cubes the LiDAR passes over are kept for the lifetime. Off for walkers: Digit touched more cubes
-  // with it (15 s decay). On together with LoamParams::reference_from_prior_change (NavigatorParams::for_robot),
-  // without which a fault run ends outside the goal's heading tolerance (docs/closed-loop-log.md,
-  // 'Height-aware clearing and mark decay', 'Parameter evidence').
-  return robot.kind == "diff_drive";
-}
-
 int decay_updates(double decay_s, double rate_hz) {
   require(std::isfinite(decay_s) && decay_s >= 0.0 && decay_s <= 1e6, "mark_decay_s", "in [0, 1e6] s (0: never)");
   if (decay_s == 0.0 || !(rate_hz > 0.0) || !std::isfinite(rate_hz)) return 0;

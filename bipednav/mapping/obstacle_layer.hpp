@@ -6,7 +6,6 @@
 #include <limits>
 #include <vector>
 
-#include "bipednav/common/robot_profile.hpp"
 #include "bipednav/mapping/cell_rect.hpp"
 #include "bipednav/mapping/costmap2d.hpp"
 
@@ -41,11 +40,6 @@ struct ObstacleLayerParams {
 
   void validate() const;
 };
-
-// Whether a robot's local and global maps default to height-aware clearing with mark decay
-// (LocalCostmapParams::for_robot, GlobalCostmapParams::for_robot), and their decay time.
-bool height_aware_maps_for(const RobotProfile& robot);
-inline constexpr double kHeightAwareMarkDecayS = 5.0;  // screened against 15 s: see height_aware_maps_for
 
 // A decay time as a count of updates at `rate_hz` (at least one when decay_s > 0; 0: no decay).
 int decay_updates(double decay_s, double rate_hz);

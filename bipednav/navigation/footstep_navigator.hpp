@@ -40,6 +40,23 @@ struct FootstepNavigatorParams {
   // centimetres per step, so matches are sought within 0.1 m and a correction may move by at
   // most 3 cm / 0.03 rad per update (wall-only scenes leave directions poorly constrained).
   static localization::CorrectedOdometryParams default_odometry();
+
+  // The fields a navigation parameters file reads and `bipednav params` prints, in this order
+  // (navigation/navigator_params_yaml.hpp).
+  template <class V>
+  void visit_fields(V& v) {
+    v("gicp_correction", gicp_correction);
+    v("gicp_voxel_m", gicp_voxel_m);
+    v("replan_deviation_m", replan_deviation_m);
+    v("replan_deviation_rad", replan_deviation_rad);
+    v("obstacle_margin_m", obstacle_margin_m);
+    v("obstacle_step_m", obstacle_step_m);
+    v("max_plans", max_plans);
+    v("max_recovery_steps", max_recovery_steps);
+    v.group("planner", planner);
+    v.group("fusion", fusion);
+    v.group("odometry", odometry);
+  }
 };
 
 // What to do next: a step (the landing foot in the map frame and its action), or the end of the

@@ -51,7 +51,7 @@ NavigationServer::NavigationServer(ServerParams params, RobotProfile robot, mapp
                                    mapping::LocalCostmap& local, const planning::local::MovingObstacleTracker* moving)
     : params_(std::move(params)),
       robot_(std::move(robot)),
-      limits_(VelocityLimits::from_profile(robot_)),
+      limits_((robot_.limits.validate(), robot_.limits)),
       global_(global),
       local_(local),
       goal_checker_(params_.goal),
@@ -195,14 +195,14 @@ ActionStep NavigationServer::back_up(double distance_m, double speed_mps, bool f
   using State = ActionStep::State;
   if (first) begin_recovery("BackUp");
   cmd_ = {};
-  if (robot_.max_vel_x_backwards_mps <= 0.0)
+  if (robot_.limits.max_vel_x_backwards_mps <= 0.0)
     return end_recovery({State::FAILED, {Outcome::RECOVERY_FAILURE, "this robot cannot walk backwards"}});
   // Refuse to back into an obstacle: probe just behind the footprint.
   const Pose2 probe = view_.pose * Pose2{-(robot_.footprint_radius_m + 0.1), 0.0, 0.0};
   const auto& lc = local_.costmap();
   if (auto c = lc.geometry().world_to_cell(probe.x, probe.y); c && lc.cost(*c) >= mapping::kInscribed)
     return end_recovery({State::FAILED, {Outcome::RECOVERY_IMPASSABLE, "an obstacle is behind the robot"}});
-  const double speed = std::min(speed_mps, robot_.max_vel_x_backwards_mps);
+  const double speed = std::min(speed_mps, robot_.limits.max_vel_x_backwards_mps);
   if (distance(view_.pose, recovery_start_pose_) >= distance_m)
     return end_recovery({State::SUCCEEDED, {Outcome::SUCCESS, "backed up"}});
   if (view_.now_s - recovery_start_s_ > 2.0 * distance_m / speed + 2.0)
@@ -224,7 +224,7 @@ ActionStep NavigationServer::rotate_in_place(double angle_rad, bool first) {
   rotated_rad_ += std::abs(angle_diff(view_.pose.theta, last_yaw_));
   last_yaw_ = view_.pose.theta;
   if (rotated_rad_ >= std::abs(angle_rad)) return end_recovery({State::SUCCEEDED, {Outcome::SUCCESS, "rotated"}});
-  const double rate = 0.6 * robot_.max_vel_theta_radps;
+  const double rate = 0.6 * robot_.limits.max_vel_theta_radps;
   if (view_.now_s - recovery_start_s_ > 2.0 * std::abs(angle_rad) / rate + 2.0)
     return end_recovery({State::FAILED, {Outcome::RECOVERY_PAT_EXCEEDED, "rotating took too long"}});
   cmd_ = ramp_to({0.0, 0.0, angle_rad >= 0.0 ? rate : -rate});

@@ -60,6 +60,27 @@ struct ServerParams {
   int planning_recoveries_allowed = 6;
 
   void validate() const;
+
+  // The fields a navigation parameters file reads and `bipednav params` prints, in this order
+  // (navigation/navigator_params_yaml.hpp).
+  template <class V>
+  void visit_fields(V& v) {
+    v("global_planner", global_planner);
+    v.group("global", global);
+    v("local_planner", local_planner);
+    v.group("local", local);
+    v.group("goal", goal);
+    v("controller_goal_tolerance_fraction", controller_goal_tolerance_fraction);
+    v("min_controller_goal_tolerance_fraction", min_controller_goal_tolerance_fraction);
+    v.group("progress", progress);
+    v.group("oscillation", oscillation);
+    v("controller_failures_allowed", controller_failures_allowed);
+    v("path_check_distance_m", path_check_distance_m);
+    v("blocked_goal_timeout_s", blocked_goal_timeout_s);
+    v("relaxed_cost_weight_factor", relaxed_cost_weight_factor);
+    v("plan_clearance_sigmas", plan_clearance_sigmas);
+    v("planning_recoveries_allowed", planning_recoveries_allowed);
+  }
 };
 
 // How much farther than the inscribed radius the global planner keeps the robot's centre from

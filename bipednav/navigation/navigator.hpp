@@ -41,7 +41,7 @@ struct NavigatorParams {
   // from) the measured velocity, or, with this on, from the last command while it is the slower
   // (acceleration_reference). A walker follows its commands with a lag (0.3 s on Digit), so a
   // command clamped to the measured velocity minus one period's change brakes at about a third of
-  // the limit and walks on into a mover's lane. On for walkers (for_robot; docs/closed-loop-log.md,
+  // the limit and walks on into a mover's lane. On for Digit (config/digit.params.yaml; docs/closed-loop-log.md,
   // 'Walkers brake from their last command').
   bool brake_from_last_command = false;
   // Each local map update integrates only the newest frame of each depth camera (Nav2's observation
@@ -51,14 +51,33 @@ struct NavigatorParams {
   // after this one arrived, and the update is the local map gate's next slot. A frame whose
   // successor is late (dropped, delayed) leaves that update without the camera. At 15 Hz cameras
   // and a 10 Hz map one frame in three is skipped (perception and the local map's rays and marks).
-  // On for wheeled robots (for_robot, the fast profile: less perception and local map CPU, screened with
-  // its other two switches; alone it lost runs); off here and for walkers. Test NewestDepthOnly.*
-  // (evidence: docs/closed-loop-log.md, 'Parameter evidence').
+  // On for the TurtleBot3 (config/turtlebot3.params.yaml, the fast profile: less perception and local map CPU, screened
+  // with its other two switches; alone it lost runs); off here and for walkers. Test NewestDepthOnly.* (evidence:
+  // docs/closed-loop-log.md, 'Parameter evidence').
   bool newest_depth_only = false;
 
-  // Defaults with footprint-dependent values (inscribed radius, velocity limits) from the robot.
+  // The defaults with the values that derive from the profile (radii from footprint and sway, velocity
+  // limits, TEB's lag model, odometry-jump bounds, obstacle height); the robot's tuning is data
+  // (config/<name>.params.yaml, navigator_params_for).
   static NavigatorParams for_robot(const RobotProfile& robot);
   void validate() const;
+
+  // The fields a navigation parameters file reads and `bipednav params` prints, in this order
+  // (navigation/navigator_params_yaml.hpp).
+  template <class V>
+  void visit_fields(V& v) {
+    v("control_rate_hz", control_rate_hz);
+    v("brake_from_last_command", brake_from_last_command);
+    v("newest_depth_only", newest_depth_only);
+    v("behavior_tree", behavior_tree);
+    v.group("local_map", local_map);
+    v.group("global_map", global_map);
+    v.group("perception", perception);
+    v.group("localization", localization);
+    v.group("sensors", sensors);
+    v.group("moving_obstacles", moving_obstacles);
+    v.group("server", server);
+  }
 };
 
 // The velocity a command's acceleration limits apply from: per component, the last command when

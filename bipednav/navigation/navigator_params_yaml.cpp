@@ -7,21 +7,14 @@
 #include <type_traits>
 #include <vector>
 
-#include "bipednav/navigation/navigator_params_fields_footstep.hpp"
-#include "bipednav/navigation/navigator_params_fields_planning.hpp"
-#include "bipednav/navigation/navigator_params_fields_sensing.hpp"
-
 namespace bipednav::navigation {
 
 namespace {
 
-// One function per parameter struct lists its fields once, in the order of its declaration; the
-// same list reads a file (ParamOverlay) and writes one (ParamDump), so the two cannot disagree.
-// A visitor has operator()(key, field) for scalars, strings and Eigen vectors and
-// group(key, nested_struct) for a nested mapping.
-// The lists: navigator_params_fields_sensing.hpp, navigator_params_fields_planning.hpp (NavigatorParams)
-// and navigator_params_fields_footstep.hpp (FootstepNavigatorParams).
-using param_fields::visit_fields;
+// Each parameter struct lists its fields once, in its own header, as a member
+// `template <class V> void visit_fields(V& v)`; the same list reads a file (ParamOverlay) and
+// writes one (ParamDump), so the two cannot disagree. A visitor has operator()(key, field) for
+// scalars, strings and Eigen vectors and group(key, nested_struct) for a nested mapping.
 
 // Reads the fields present in a mapping; finish() then rejects the keys no field asked for.
 class ParamOverlay {
@@ -43,7 +36,7 @@ class ParamOverlay {
   void group(const char* key, S& nested) {
     io::ParamReader child = r_.child(key);
     ParamOverlay overlay(child);
-    visit_fields(overlay, nested);
+    nested.visit_fields(overlay);
     child.finish();
   }
 
@@ -84,7 +77,7 @@ class ParamDump {
   template <class S>
   void group(const char* key, S& nested) {
     out_ << YAML::Key << key << YAML::Value << YAML::BeginMap;
-    visit_fields(*this, nested);
+    nested.visit_fields(*this);
     out_ << YAML::EndMap;
   }
 
@@ -96,7 +89,7 @@ class ParamDump {
 template <class P>
 void overlay_and_validate(io::ParamReader& r, P& p) {
   ParamOverlay overlay(r);
-  visit_fields(overlay, p);
+  p.visit_fields(overlay);
   r.finish();
   try {
     p.validate();
@@ -117,7 +110,7 @@ std::string dump_params_yaml(const P& p) {
   YAML::Emitter out;
   out << YAML::BeginMap;
   ParamDump dump(out);
-  visit_fields(dump, fields);
+  fields.visit_fields(dump);
   out << YAML::EndMap;
   return std::string(out.c_str()) + "\n";
 }

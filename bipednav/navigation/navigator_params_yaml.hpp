@@ -19,10 +19,9 @@ namespace bipednav::navigation {
 //     local: {teb: {optim: {dynamic_obstacles: true}}}
 //
 // Every key is optional: the file is overlaid on parameters that already hold the robot's
-// defaults (NavigatorParams::for_robot). `bipednav params --robot R` prints the full layout.
-// Left out (not tunable from a file): localization.loam.T_world_lidar_initial and
-// output_deskewed (the Localizer sets them) and perception.ransac.prior_normal (taken from
-// perception.prior_ground).
+// defaults (navigator_params_for: the derived values and config/<name>.params.yaml). `bipednav params --robot R` prints
+// the full layout. Left out (not tunable from a file): localization.loam.T_world_lidar_initial and output_deskewed (the
+// Localizer sets them) and perception.ransac.prior_normal (taken from perception.prior_ground).
 //
 // The footstep navigator of the humanoids (FootstepNavigatorParams, `bipednav run` with a robot of
 // kind humanoid) reads a file of its own layout the same way, e.g.

@@ -9,6 +9,23 @@
 
 namespace bipednav::navigation {
 
+namespace {
+
+constexpr const char* kParamsSuffix = ".params.yaml";
+
+// A robot's navigation tuning (robot_params_file), not a profile.
+bool is_params_file(const std::filesystem::path& file) { return file.filename().string().ends_with(kParamsSuffix); }
+
+template <class P>
+P layered(P p, const RobotProfile& robot, const std::filesystem::path& params_file,
+          const std::filesystem::path& config_dir) {
+  if (const auto own = robot_params_file(robot, config_dir); !own.empty()) apply_navigator_params_file(own, p);
+  if (!params_file.empty()) apply_navigator_params_file(params_file, p);
+  return p;
+}
+
+}  // namespace
+
 RobotProfile load_robot(const std::string& name_or_file, const std::filesystem::path& config_dir) {
   namespace fs = std::filesystem;
   const fs::path given(name_or_file);
@@ -19,11 +36,11 @@ RobotProfile load_robot(const std::string& name_or_file, const std::filesystem::
   }
   const fs::path dir = config_dir.empty() ? fs::path(navigation::config_dir()) : config_dir;
   const fs::path file = dir / (name_or_file + ".yaml");
-  if (name_or_file.empty() || !fs::exists(file)) {
+  if (name_or_file.empty() || !fs::exists(file) || is_params_file(file)) {
     std::vector<std::string> known;
     std::error_code ec;
     for (const auto& e : fs::directory_iterator(dir, ec))
-      if (e.path().extension() == ".yaml") known.push_back(e.path().stem().string());
+      if (e.path().extension() == ".yaml" && !is_params_file(e.path())) known.push_back(e.path().stem().string());
     std::sort(known.begin(), known.end());
     std::string list;
     for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
@@ -34,10 +51,22 @@ RobotProfile load_robot(const std::string& name_or_file, const std::filesystem::
   return io::load_robot_profile(file);
 }
 
-NavigatorParams navigator_params_for(const RobotProfile& robot, const std::filesystem::path& params_file) {
-  NavigatorParams p = NavigatorParams::for_robot(robot);
-  if (!params_file.empty()) apply_navigator_params_file(params_file, p);
-  return p;
+std::filesystem::path robot_params_file(const RobotProfile& robot, const std::filesystem::path& config_dir) {
+  namespace fs = std::filesystem;
+  const fs::path dir = config_dir.empty() ? fs::path(navigation::config_dir()) : config_dir;
+  const fs::path file = dir / (robot.name + kParamsSuffix);
+  return fs::is_regular_file(file) ? file : fs::path();
+}
+
+NavigatorParams navigator_params_for(const RobotProfile& robot, const std::filesystem::path& params_file,
+                                     const std::filesystem::path& config_dir) {
+  return layered(NavigatorParams::for_robot(robot), robot, params_file, config_dir);
+}
+
+FootstepNavigatorParams footstep_navigator_params_for(const RobotProfile& robot,
+                                                      const std::filesystem::path& params_file,
+                                                      const std::filesystem::path& config_dir) {
+  return layered(FootstepNavigatorParams{}, robot, params_file, config_dir);
 }
 
 }  // namespace bipednav::navigation

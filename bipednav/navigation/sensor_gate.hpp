@@ -14,6 +14,15 @@ struct SensorGateParams {
   double sensor_timeout_s = 0.5;  // a range sensor without valid data for this long is silent
 
   void validate() const;
+
+  // The fields a navigation parameters file reads and `bipednav params` prints, in this order
+  // (navigation/navigator_params_yaml.hpp).
+  template <class V>
+  void visit_fields(V& v) {
+    v("max_age_s", max_age_s);
+    v("min_valid_ratio", min_valid_ratio);
+    v("sensor_timeout_s", sensor_timeout_s);
+  }
 };
 
 struct SensorGateCounters {

@@ -23,11 +23,26 @@ struct RansacParams {
   // many of the finite points (every k-th input point, k = ceil(size / max_points)); PlaneFit's
   // inliers and inlier_std_m are still counted on all points. A fused frame of the TurtleBot3
   // (two depth clouds and a VLP-16 sweep) has 20k-40k points; the ground's plane needs far fewer.
-  // Wheeled robots use 4000 (NavigatorParams::for_robot) for less perception CPU; the refit plane
+  // The TurtleBot3 uses 4000 (config/turtlebot3.params.yaml) for less perception CPU; the refit plane
   // can move slightly (docs/closed-loop-log.md, 'Parameter evidence').
   std::size_t max_points = 0;
 
   void validate() const;
+
+  // The fields a navigation parameters file reads and `bipednav params` prints, in this order
+  // (navigation/navigator_params_yaml.hpp). prior_normal is left out: the pipeline sets it from
+  // PerceptionParams::prior_ground.
+  template <class V>
+  void visit_fields(V& v) {
+    v("distance_threshold_m", distance_threshold_m);
+    v("success_probability", success_probability);
+    v("max_iterations", max_iterations);
+    v("use_normal_prior", use_normal_prior);
+    v("max_normal_angle_rad", max_normal_angle_rad);
+    v("refit", refit);
+    v("inlier_std", inlier_std);
+    v("max_points", max_points);
+  }
 };
 
 struct PlaneFit {

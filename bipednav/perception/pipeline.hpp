@@ -52,6 +52,27 @@ struct PerceptionParams {
     return r;
   }
   void validate() const;
+
+  // The fields a navigation parameters file reads and `bipednav params` prints, in this order
+  // (navigation/navigator_params_yaml.hpp).
+  template <class V>
+  void visit_fields(V& v) {
+    v.group("depth_voxel", depth_voxel);
+    v("depth_decimation", depth_decimation);
+    v("depth_image_width", depth_image_width);
+    v("depth_max_range_m", depth_max_range_m);
+    v("lidar_min_range_m", lidar_min_range_m);
+    v("lidar_max_range_m", lidar_max_range_m);
+    v("lidar_voxel_m", lidar_voxel_m);
+    v("deskew_lidar", deskew_lidar);
+    v.group("ransac", ransac);
+    v("prior_ground", prior_ground);
+    v("max_ground_offset_m", max_ground_offset_m);
+    v("min_ground_inliers", min_ground_inliers);
+    v("min_obstacle_height_m", min_obstacle_height_m);
+    v("obstacle_height_margin_m", obstacle_height_margin_m);
+    v("seed", seed);
+  }
 };
 
 struct PerceptionTimings {

@@ -14,6 +14,13 @@ struct VoxelGridParams {
   Eigen::Vector3d leaf_size_m{0.02, 0.02, 0.02};  // voxel edge per axis (the thesis: 0.02 m)
 
   void validate() const;
+
+  // The fields a navigation parameters file reads and `bipednav params` prints, in this order
+  // (navigation/navigator_params_yaml.hpp).
+  template <class V>
+  void visit_fields(V& v) {
+    v("leaf_size_m", leaf_size_m);
+  }
 };
 
 namespace detail {

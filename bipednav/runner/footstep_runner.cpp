@@ -30,10 +30,9 @@ void FootstepRunOptions::validate() const {
 
 bool is_footstep_robot(const RobotProfile& robot) { return robot.kind == "humanoid"; }
 
-navigation::FootstepNavigatorParams footstep_navigator_params(const std::filesystem::path& params_file) {
-  navigation::FootstepNavigatorParams p;
-  if (!params_file.empty()) navigation::apply_navigator_params_file(params_file, p);
-  return p;
+navigation::FootstepNavigatorParams footstep_navigator_params(const RobotProfile& robot,
+                                                              const std::filesystem::path& params_file) {
+  return navigation::footstep_navigator_params_for(robot, params_file);
 }
 
 namespace {

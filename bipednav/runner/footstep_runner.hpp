@@ -67,10 +67,11 @@ struct FootstepRunResult {
 
 // Whether a robot profile navigates by footsteps (kind: humanoid).
 bool is_footstep_robot(const RobotProfile& robot);
-// The footstep navigator's parameters for a run: its defaults (the same for every humanoid;
-// planner.robot picks the action set), then the navigation parameters file `params_file` in the
-// footstep layout (navigator_params_yaml.hpp; empty: none).
-navigation::FootstepNavigatorParams footstep_navigator_params(const std::filesystem::path& params_file);
+// The footstep navigator's parameters for a run of `robot`: its defaults, the robot's tuning
+// (config/<name>.params.yaml; planner.robot picks the action set), then the navigation parameters
+// file `params_file` in the footstep layout (navigation::footstep_navigator_params_for; empty: none).
+navigation::FootstepNavigatorParams footstep_navigator_params(const RobotProfile& robot,
+                                                              const std::filesystem::path& params_file);
 
 // The humanoid closed loop: head depth views (two, every second step) -> GICP-corrected kinematic
 // odometry -> Kalman heightmap -> ARA* footsteps (replanned when invalid) -> the walker executes

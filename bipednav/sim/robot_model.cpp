@@ -30,10 +30,13 @@ double RobotModel::sway_rate_mps(double t_s) const {
 const RobotState& RobotModel::step(const Twist& cmd, double dt_s) {
   if (!cmd.is_finite()) throw Error("RobotModel::step: non-finite velocity command");
   if (!(dt_s > 0.0) || !std::isfinite(dt_s)) throw Error("RobotModel::step: dt must be > 0");
-  const double v_target = std::clamp(cmd.linear_x, -profile_.max_vel_x_backwards_mps, profile_.max_vel_x_mps);
-  const double w_target = std::clamp(cmd.angular_z, -profile_.max_vel_theta_radps, profile_.max_vel_theta_radps);
-  v_ = track_first_order(v_, v_target, dt_s, profile_.tracking_time_constant_s, profile_.acc_lim_x_mps2 * dt_s);
-  w_ = track_first_order(w_, w_target, dt_s, profile_.tracking_time_constant_s, profile_.acc_lim_theta_radps2 * dt_s);
+  const double v_target =
+      std::clamp(cmd.linear_x, -profile_.limits.max_vel_x_backwards_mps, profile_.limits.max_vel_x_mps);
+  const double w_target =
+      std::clamp(cmd.angular_z, -profile_.limits.max_vel_theta_radps, profile_.limits.max_vel_theta_radps);
+  v_ = track_first_order(v_, v_target, dt_s, profile_.tracking_time_constant_s, profile_.limits.acc_lim_x_mps2 * dt_s);
+  w_ = track_first_order(w_, w_target, dt_s, profile_.tracking_time_constant_s,
+                         profile_.limits.acc_lim_theta_radps2 * dt_s);
 
   step_start_s_ = time_s_;
   step_start_nominal_ = nominal_;

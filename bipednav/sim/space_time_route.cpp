@@ -201,7 +201,7 @@ SpaceTimeRoute scenario_space_time_route(const Scenario& scenario, const RobotPr
   const Bounds& b = scenario.bounds;
   return space_time_route(scenario.world, RouteArea{{b.min_x_m, b.min_y_m}, {b.max_x_m, b.max_y_m}},
                           scenario.start.position(), scenario.goals.back().pose.position(), scenario.goal_tolerance_m,
-                          needed_clearance_m(robot), robot.max_vel_x_mps, scenario.time_limit_s, params);
+                          needed_clearance_m(robot), robot.limits.max_vel_x_mps, scenario.time_limit_s, params);
 }
 
 }  // namespace bipednav::sim

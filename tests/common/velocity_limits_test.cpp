@@ -7,16 +7,11 @@
 
 #include "bipednav/common/error.hpp"
 #include "bipednav/common/rng.hpp"
+#include "bipednav/common/robot_profile.hpp"
 #include "test_limits.hpp"
 
 namespace bipednav {
 namespace {
-
-struct TebLikeParams {
-  double max_vel_x_mps = 0.4, max_vel_x_backwards_mps = 0.2, max_vel_theta_radps = 0.9;
-  double acc_lim_x_mps2 = 0.6, acc_lim_theta_radps2 = 3.0;
-  double min_obstacle_dist_m = 0.3;  // not a limit of the command
-};
 
 VelocityLimits digit_like() { return test::forward_yaw_limits(0.5, 0.2, 0.6, 0.4, 1.0); }
 
@@ -86,19 +81,9 @@ TEST(VelocityLimits, RandomCommandsNeverExceedLimits) {
   }
 }
 
-TEST(VelocityLimits, FromProfileAndValidation) {
-  TebLikeParams teb;
-  const VelocityLimits of = VelocityLimits::forward_yaw_of(teb);
-  EXPECT_EQ(of.max_vel_x_backwards_mps, 0.2);
-  EXPECT_EQ(of.acc_lim_theta_radps2, 3.0);
-  EXPECT_EQ(of.max_vel_y_mps, 0.0);
-  RobotProfile digit;
-  digit.max_vel_x_mps = 0.4;
-  digit.max_vel_theta_radps = 0.5;
-  const VelocityLimits l = VelocityLimits::from_profile(digit);
-  EXPECT_EQ(l.max_vel_x_mps, 0.4);
-  EXPECT_EQ(l.max_vel_y_mps, 0.0);
-  EXPECT_EQ(l.acc_lim_theta_radps2, digit.acc_lim_theta_radps2);
+TEST(VelocityLimits, ProfileIsForwardYawAndValidation) {
+  // A robot profile embeds the limits with no lateral motion.
+  EXPECT_EQ(RobotProfile{}.limits.max_vel_y_mps, 0.0);
   VelocityLimits bad;
   bad.acc_lim_x_mps2 = 0.0;
   EXPECT_THROW(bad.validate(), ParamError);

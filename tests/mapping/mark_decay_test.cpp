@@ -278,20 +278,6 @@ TEST(MarkDecay, GlobalMapDecaysLidarAndMergedMarksPassedUnconfirmed) {
   EXPECT_EQ(cost(-4.75, -4.75), kLethal);  // out of the LiDAR's reach: nothing says it has gone
 }
 
-TEST(MarkDecay, HeightAwareMapsPerRobot) {
-  bipednav::RobotProfile robot;
-  for (const char* kind : {"diff_drive", "walker", "humanoid"}) {
-    robot.kind = kind;
-    const bool on = height_aware_maps_for(robot);
-    const auto l = LocalCostmapParams::for_robot(robot);
-    const auto g = GlobalCostmapParams::for_robot(robot);
-    EXPECT_EQ(l.height_aware_clearing, on) << kind;
-    EXPECT_EQ(g.height_aware_clearing, on) << kind;
-    EXPECT_EQ(l.obstacle_layer().mark_lifetime_updates, on ? decay_updates(kHeightAwareMarkDecayS, 10.0) : 0) << kind;
-    EXPECT_EQ(g.obstacle_layer().mark_lifetime_updates, on ? decay_updates(kHeightAwareMarkDecayS, 2.0) : 0) << kind;
-  }
-}
-
 TEST(MarkDecay, RejectsBadDecays) {
   LocalCostmapParams p;
   p.mark_decay_s = -1.0;

@@ -18,8 +18,8 @@ namespace {
 RobotProfile walker() {
   RobotProfile r;
   r.footprint_radius_m = 0.3;
-  r.max_vel_x_mps = 0.5, r.max_vel_x_backwards_mps = 0.25, r.max_vel_theta_radps = 0.6;
-  r.acc_lim_x_mps2 = 0.5, r.acc_lim_theta_radps2 = 1.0;
+  r.limits.max_vel_x_mps = 0.5, r.limits.max_vel_x_backwards_mps = 0.25, r.limits.max_vel_theta_radps = 0.6;
+  r.limits.acc_lim_x_mps2 = 0.5, r.limits.acc_lim_theta_radps2 = 1.0;
   return r;
 }
 

@@ -3,20 +3,33 @@
 
 #include <utility>
 
-#include "bipednav/mapping/obstacle_layer.hpp"
 #include "bipednav/navigation/navigator.hpp"
+#include "bipednav/navigation/robot_loading.hpp"
 
 using namespace bipednav;
 
-TEST(NavigatorParams, WheeledRobotsProjectLoamsReferenceWithThePriorChange) {
-  RobotProfile robot;
-  for (const char* kind : {"diff_drive", "walker", "humanoid"}) {
-    robot.kind = kind;
-    const auto p = navigation::NavigatorParams::for_robot(robot);
-    const bool wheeled = robot.kind == "diff_drive";
-    EXPECT_EQ(p.localization.loam.reference_from_prior_change, wheeled) << kind;
-    EXPECT_EQ(mapping::height_aware_maps_for(robot), wheeled) << kind;
-  }
+// The robots' tuning is data: config/<name>.params.yaml on top of the values derived from the profile.
+TEST(NavigatorParams, EachRobotsTuningComesFromItsParamsFile) {
+  const auto tb3 = navigation::navigator_params_for(navigation::load_robot("turtlebot3"));
+  EXPECT_TRUE(tb3.localization.loam.reference_from_prior_change);
+  for (const auto* m : {&tb3.local_map.height_aware_clearing, &tb3.global_map.height_aware_clearing}) EXPECT_TRUE(*m);
+  EXPECT_EQ(tb3.local_map.obstacle_layer().mark_lifetime_updates, mapping::decay_updates(5.0, 10.0));
+  EXPECT_EQ(tb3.global_map.obstacle_layer().mark_lifetime_updates, mapping::decay_updates(5.0, 2.0));
+  EXPECT_EQ(tb3.server.local_planner, "teb");
+  const auto digit = navigation::navigator_params_for(navigation::load_robot("digit"));
+  EXPECT_FALSE(digit.localization.loam.reference_from_prior_change);
+  EXPECT_FALSE(digit.local_map.height_aware_clearing);
+  EXPECT_EQ(digit.server.local_planner, "tracker");
+  EXPECT_TRUE(digit.brake_from_last_command);
+  // A profile of one's own without a params file: the structs' defaults and the derived values.
+  RobotProfile own = navigation::load_robot("digit");
+  own.name = "my_walker";
+  EXPECT_TRUE(navigation::robot_params_file(own).empty());
+  const auto mine = navigation::navigator_params_for(own);
+  EXPECT_EQ(mine.server.local_planner, navigation::ServerParams{}.local_planner);
+  EXPECT_FALSE(mine.brake_from_last_command);
+  EXPECT_EQ(mine.server.local.tracker.limits.max_vel_x_mps, own.limits.max_vel_x_mps);
+  EXPECT_EQ(mine.local_map.inscribed_radius_m, digit.local_map.inscribed_radius_m);
 }
 
 // TEB's body response model is the profile's velocity lag, whatever the kind, where the lag spans at
@@ -79,7 +92,7 @@ TEST(NavigatorParams, TheNavigatorNamesABadParameterBeforeBuildingItsStages) {
   } catch (const ParamError& e) {
     EXPECT_NE(std::string(e.what()).find("behavior_tree"), std::string::npos) << e.what();
   }
-  robot.max_vel_x_mps = -1.0;
+  robot.limits.max_vel_x_mps = -1.0;
   EXPECT_THROW(navigation::Navigator(navigation::NavigatorParams::for_robot(RobotProfile{}), robot, grid, {}),
                ParamError);
 }

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "bipednav/io/robot_profile_yaml.hpp"
+#include "bipednav/navigation/robot_loading.hpp"
 #include "test_data.hpp"
 
 using namespace bipednav;
@@ -54,7 +55,7 @@ std::string error_reading(const std::string& yaml, Params p, const std::string& 
 // Onto TurtleBot3's navigator defaults.
 template <class E>
 std::string error_of(const std::string& yaml) {
-  return error_reading<E>(yaml, NavigatorParams::for_robot(robot_named("turtlebot3")), "nav_params.yaml");
+  return error_reading<E>(yaml, navigation::navigator_params_for(robot_named("turtlebot3")), "nav_params.yaml");
 }
 
 // Onto the footstep navigator's defaults.
@@ -65,13 +66,13 @@ std::string footstep_error_of(const std::string& yaml) {
 }  // namespace
 
 // The dump of one robot's parameters, read onto the other robot's defaults, gives back every value:
-// the robot-dependent fields of for_robot() (radii, limits, planner, braking, LOAM's prior) included.
+// the robot-dependent fields (radii, limits, planner, braking, LOAM's prior) included.
 TEST(NavigatorParamsYaml, DumpReadBackGivesTheSameValuesForBothRobots) {
   const std::vector<std::string> robots{"turtlebot3", "digit"};
   for (std::size_t i = 0; i < robots.size(); ++i) {
-    const NavigatorParams want = NavigatorParams::for_robot(robot_named(robots[i]));
+    const NavigatorParams want = navigation::navigator_params_for(robot_named(robots[i]));
     const std::string text = navigation::navigator_params_yaml(want);
-    NavigatorParams got = NavigatorParams::for_robot(robot_named(robots[1 - i]));
+    NavigatorParams got = navigation::navigator_params_for(robot_named(robots[1 - i]));
     ASSERT_NE(navigation::navigator_params_yaml(got), text) << "the two robots' defaults differ";
     io::ParamReader r = io::ParamReader::from_string(text, robots[i] + ".yaml");
     navigation::read_navigator_params(r, got);
@@ -86,9 +87,10 @@ TEST(NavigatorParamsYaml, DumpReadBackGivesTheSameValuesForBothRobots) {
     EXPECT_EQ(got.perception.prior_ground, want.perception.prior_ground);
     EXPECT_EQ(got.localization.max_odometry_speed_mps, want.localization.max_odometry_speed_mps);
     EXPECT_EQ(got.localization.loam.reference_from_prior_change, want.localization.loam.reference_from_prior_change);
-    EXPECT_EQ(got.server.local.teb.limits.max_vel_x_mps, want.server.local.teb.limits.max_vel_x_mps);
+    EXPECT_EQ(got.server.local.teb.limits.velocity.max_vel_x_mps, want.server.local.teb.limits.velocity.max_vel_x_mps);
     EXPECT_EQ(got.server.local.teb.limits.min_obstacle_dist_m, want.server.local.teb.limits.min_obstacle_dist_m);
-    EXPECT_EQ(got.server.local.tracker.max_vel_theta_radps, want.server.local.tracker.max_vel_theta_radps);
+    EXPECT_EQ(got.server.local.tracker.limits.max_vel_theta_radps,
+              want.server.local.tracker.limits.max_vel_theta_radps);
     EXPECT_EQ(got.server.local.avoidance.robot_radius_m, want.server.local.avoidance.robot_radius_m);
     EXPECT_EQ(got.server.progress.movement_time_allowance_s, want.server.progress.movement_time_allowance_s);
     EXPECT_EQ(got.server.local_planner, want.server.local_planner);
@@ -100,7 +102,7 @@ TEST(NavigatorParamsYaml, DumpReadBackGivesTheSameValuesForBothRobots) {
 // tests/data/navigator_params/override.yaml names six fields: exactly those six lines of the dump change.
 TEST(NavigatorParamsYaml, AFileChangesExactlyTheFieldsItNames) {
   BIPEDNAV_REQUIRE_DATA(file, "navigator_params/override.yaml");
-  const NavigatorParams before = NavigatorParams::for_robot(robot_named("digit"));
+  const NavigatorParams before = navigation::navigator_params_for(robot_named("digit"));
   NavigatorParams p = before;
   navigation::apply_navigator_params_file(file, p);
   EXPECT_EQ(p.control_rate_hz, 20.0);

@@ -24,27 +24,30 @@ std::filesystem::path write_profile(const std::string& file_name, const std::str
 
 }  // namespace
 
-TEST(RobotLoading, AFileIsLoadedAsTheUsersOwnRobotWithItsKindsDefaults) {
+TEST(RobotLoading, AFileIsLoadedAsTheUsersOwnRobotWithTheStructsDefaults) {
   BIPEDNAV_REQUIRE_DATA(file, "robots/four_camera_walker.yaml");
   const RobotProfile r = navigation::load_robot(file.string());
   EXPECT_EQ(r.name, "my_walker");
   EXPECT_EQ(r.kind, "walker");
   EXPECT_EQ(r.footprint_radius_m, 0.3);
-  EXPECT_EQ(r.max_vel_x_mps, 0.4);
+  EXPECT_EQ(r.limits.max_vel_x_mps, 0.4);
   ASSERT_EQ(r.sensors.size(), 5u);
   ASSERT_NE(r.sensor("depth_left"), nullptr);
   EXPECT_EQ(r.sensor("depth_left")->yaw_rad, 1.571);
   EXPECT_EQ(r.sensor("depth_right")->y_m, -0.1);
-  // A walker gets the walkers' defaults (the path tracker, braking from the last command), its own limits.
+  // No config/my_walker.params.yaml: the structs' defaults (not Digit's tuning) with its own limits.
+  EXPECT_TRUE(navigation::robot_params_file(r).empty());
   const navigation::NavigatorParams p = navigation::navigator_params_for(r);
-  EXPECT_EQ(p.server.local_planner, "tracker");
-  EXPECT_TRUE(p.brake_from_last_command);
-  EXPECT_EQ(p.server.local.tracker.max_vel_x_mps, 0.4);
+  EXPECT_EQ(p.server.local_planner, navigation::ServerParams{}.local_planner);
+  EXPECT_FALSE(p.brake_from_last_command);
+  EXPECT_EQ(p.server.local.tracker.limits.max_vel_x_mps, 0.4);
 }
 
 TEST(RobotLoading, ANameIsLookedUpInTheConfigDirectory) {
   EXPECT_EQ(navigation::load_robot("digit").name, "digit");
   EXPECT_EQ(navigation::load_robot("turtlebot3").kind, "diff_drive");
+  EXPECT_EQ(navigation::robot_params_file(navigation::load_robot("digit")).filename(), "digit.params.yaml");
+  EXPECT_THROW(navigation::load_robot("digit.params"), Error);  // a robot's tuning, not a profile
   try {
     navigation::load_robot("no_such_robot");
     FAIL() << "no error";
@@ -90,6 +93,7 @@ TEST(RobotLoading, TheParametersFileOverlaysTheRobotsDefaults) {
   EXPECT_EQ(from_file.local_map.inflation_radius_m, 0.9);
   EXPECT_TRUE(from_file.server.local.teb.optim.dynamic_obstacles);
   EXPECT_EQ(from_file.brake_from_last_command, defaults.brake_from_last_command);  // not in the file
-  EXPECT_EQ(from_file.server.local.teb.limits.max_vel_x_mps, defaults.server.local.teb.limits.max_vel_x_mps);
+  EXPECT_EQ(from_file.server.local.teb.limits.velocity.max_vel_x_mps,
+            defaults.server.local.teb.limits.velocity.max_vel_x_mps);
   EXPECT_THROW(navigation::navigator_params_for(digit, file.parent_path() / "no_such_file.yaml"), FileError);
 }

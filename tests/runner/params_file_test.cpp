@@ -21,7 +21,8 @@ TEST(RunParamsFile, OverlaysTheRobotsDefaultsAndTheOptionsWin) {
   EXPECT_EQ(from_file.server.local_planner, "teb");
   EXPECT_TRUE(from_file.server.local.teb.optim.dynamic_obstacles);
   EXPECT_EQ(from_file.control_rate_hz, 20.0);
-  EXPECT_EQ(from_file.server.local.teb.limits.max_vel_x_mps, defaults.server.local.teb.limits.max_vel_x_mps);
+  EXPECT_EQ(from_file.server.local.teb.limits.velocity.max_vel_x_mps,
+            defaults.server.local.teb.limits.velocity.max_vel_x_mps);
   o.local_planner = "tracker";  // --local-planner
   const navigation::NavigatorParams with_option = runner::navigator_params(robot, o);
   EXPECT_EQ(with_option.server.local_planner, "tracker");
@@ -33,12 +34,13 @@ TEST(RunParamsFile, OverlaysTheRobotsDefaultsAndTheOptionsWin) {
 // A humanoid's `run --params FILE`: the file overlays the footstep navigator's defaults.
 TEST(RunParamsFile, OverlaysTheFootstepNavigatorsDefaults) {
   BIPEDNAV_REQUIRE_DATA(file, "navigator_params/footstep_override.yaml");
+  const RobotProfile nao = navigation::load_robot("nao");
   const navigation::FootstepNavigatorParams defaults;
-  EXPECT_EQ(navigation::navigator_params_yaml(runner::footstep_navigator_params({})),
+  EXPECT_EQ(navigation::navigator_params_yaml(runner::footstep_navigator_params(nao, {})),
             navigation::navigator_params_yaml(defaults));
-  const navigation::FootstepNavigatorParams p = runner::footstep_navigator_params(file);
+  const navigation::FootstepNavigatorParams p = runner::footstep_navigator_params(nao, file);
   EXPECT_EQ(p.replan_deviation_m, 0.05);
   EXPECT_EQ(p.planner.search.initial_epsilon, 4.0);
   EXPECT_EQ(p.planner.search.target_epsilon, defaults.planner.search.target_epsilon);
-  EXPECT_THROW(runner::footstep_navigator_params(file.parent_path() / "no_such_file.yaml"), FileError);
+  EXPECT_THROW(runner::footstep_navigator_params(nao, file.parent_path() / "no_such_file.yaml"), FileError);
 }

@@ -9,8 +9,8 @@
 using namespace bipednav;
 
 TEST(WalkerBraking, OnForWalkersOnly) {
-  EXPECT_TRUE(navigation::NavigatorParams::for_robot(navigation::load_robot("digit")).brake_from_last_command);
-  EXPECT_FALSE(navigation::NavigatorParams::for_robot(navigation::load_robot("turtlebot3")).brake_from_last_command);
+  EXPECT_TRUE(navigation::navigator_params_for(navigation::load_robot("digit")).brake_from_last_command);
+  EXPECT_FALSE(navigation::navigator_params_for(navigation::load_robot("turtlebot3")).brake_from_last_command);
 }
 
 // Seed 9: Digit heads for the person's lane while the person walks down it towards Digit's path.

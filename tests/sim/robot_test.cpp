@@ -21,11 +21,11 @@ TEST(RobotModel, DiffDriveClampsTracksAndLimitsAcceleration) {
   const RobotProfile p = load("turtlebot3");
   RobotModel m(p, Pose2{1, 2, 0});
   const RobotState& s1 = m.step(Twist{5.0, 3.0, 0.0}, 0.01);
-  EXPECT_LE(s1.velocity.linear_x, p.acc_lim_x_mps2 * 0.01 + 1e-12);  // acceleration limit
-  EXPECT_EQ(s1.velocity.linear_y, 0.0);                              // lateral ignored
+  EXPECT_LE(s1.velocity.linear_x, p.limits.acc_lim_x_mps2 * 0.01 + 1e-12);  // acceleration limit
+  EXPECT_EQ(s1.velocity.linear_y, 0.0);                                     // lateral ignored
   for (int i = 0; i < 300; ++i) m.step(Twist{5.0, 3.0, 0.0}, 0.01);
-  EXPECT_NEAR(m.state().velocity.linear_x, p.max_vel_x_mps, 1e-9);  // clamped
-  EXPECT_NEAR(m.state().pose.y, 2.0, 1e-12);                        // no lateral motion
+  EXPECT_NEAR(m.state().velocity.linear_x, p.limits.max_vel_x_mps, 1e-9);  // clamped
+  EXPECT_NEAR(m.state().pose.y, 2.0, 1e-12);                               // no lateral motion
   // First-order lag without saturation: v(t) = target (1 - exp(-t / tau)).
   RobotModel lag(p);
   for (int i = 0; i < 5; ++i) lag.step(Twist{0.01, 0, 0}, 0.01);
@@ -35,8 +35,8 @@ TEST(RobotModel, DiffDriveClampsTracksAndLimitsAcceleration) {
 TEST(RobotModel, ExactArcsAndIntraStepPoses) {
   RobotProfile p = load("turtlebot3");
   p.tracking_time_constant_s = 0.0;
-  p.acc_lim_x_mps2 = 100;
-  p.acc_lim_theta_radps2 = 100;
+  p.limits.acc_lim_x_mps2 = 100;
+  p.limits.acc_lim_theta_radps2 = 100;
   RobotModel m(p);
   // v = 0.2, w = 0.5: a circle of radius 0.4 around (0, 0.4); a quarter turn takes pi s.
   for (int i = 0; i < 100; ++i) m.step(Twist{0.2, 0, 0.5}, std::numbers::pi / 100);
@@ -54,8 +54,8 @@ TEST(RobotModel, WalkerLimitsAndSway) {
   EXPECT_EQ(p.kind, "walker");
   RobotModel m(p);
   for (int i = 0; i < 1000; ++i) m.step(Twist{-1.0, 0.0, 2.0}, 0.01);
-  EXPECT_NEAR(m.state().velocity.linear_x, -p.max_vel_x_backwards_mps, 1e-6);
-  EXPECT_NEAR(m.state().velocity.angular_z, p.max_vel_theta_radps, 1e-6);
+  EXPECT_NEAR(m.state().velocity.linear_x, -p.limits.max_vel_x_backwards_mps, 1e-6);
+  EXPECT_NEAR(m.state().velocity.angular_z, p.limits.max_vel_theta_radps, 1e-6);
   // Standing: the base sways sideways with the gait, one cycle per two steps.
   RobotModel still(p);
   double max_y = 0, min_y = 0;

@@ -48,6 +48,18 @@ struct AraStarParams {
   SearchClockKind clock = SearchClockKind::kWall;  // of time_limit_s and the reported times
 
   void validate() const;
+
+  // The fields a navigation parameters file reads and `bipednav params` prints, in this order
+  // (navigation/navigator_params_yaml.hpp). clock is left out: it only
+  // measures time_limit_s and the reported times, and the closed loop plans without a time limit.
+  template <class V>
+  void visit_fields(V& v) {
+    v("initial_epsilon", initial_epsilon);
+    v("epsilon_decrease", epsilon_decrease);
+    v("time_limit_s", time_limit_s);
+    v("target_epsilon", target_epsilon);
+    v("max_expansions", max_expansions);
+  }
 };
 
 struct AnytimeIteration {

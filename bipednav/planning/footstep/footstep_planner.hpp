@@ -30,6 +30,22 @@ struct FootstepPlannerParams {
   AraStarParams search;  // initial epsilon 8, decreasing to 1 within the time limit
 
   void validate() const;
+
+  // The fields a navigation parameters file reads and `bipednav params` prints, in this order
+  // (navigation/navigator_params_yaml.hpp).
+  template <class V>
+  void visit_fields(V& v) {
+    v("robot", robot);
+    v("planar_only", planar_only);
+    v("lattice_resolution_m", lattice_resolution_m);
+    v("theta_bins", theta_bins);
+    v("heuristic", heuristic);
+    v("goal_tolerance_m", goal_tolerance_m);
+    v("goal_tolerance_rad", goal_tolerance_rad);
+    v("landing_margin_m", landing_margin_m);
+    v("occlusion_rise_m", occlusion_rise_m);
+    v.group("search", search);
+  }
 };
 
 struct FootstepPlan {

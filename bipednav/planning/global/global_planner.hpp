@@ -32,6 +32,17 @@ struct GlobalPlannerParams {
   bool verify_changes = true;
 
   void validate() const;
+
+  // The fields a navigation parameters file reads and `bipednav params` prints, in this order
+  // (navigation/navigator_params_yaml.hpp).
+  template <class V>
+  void visit_fields(V& v) {
+    v.group("cost", cost);
+    v("allow_start_in_inscribed", allow_start_in_inscribed);
+    v("goal_tolerance_m", goal_tolerance_m);
+    v("max_planning_time_ms", max_planning_time_ms);
+    v("verify_changes", verify_changes);
+  }
 };
 
 struct PlanResult {

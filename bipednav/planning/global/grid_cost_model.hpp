@@ -30,6 +30,16 @@ struct GridCostParams {
   int min_impassable_cost = mapping::kInscribed;
 
   void validate() const;
+
+  // The fields a navigation parameters file reads and `bipednav params` prints, in this order
+  // (navigation/navigator_params_yaml.hpp). min_impassable_cost is left
+  // out: the navigation server sets it (ServerParams::plan_clearance_sigmas).
+  template <class V>
+  void visit_fields(V& v) {
+    v("cost_weight", cost_weight);
+    v("unknown_is_obstacle", unknown_is_obstacle);
+    v("unknown_cost", unknown_cost);
+  }
 };
 
 // Traversal factor of one cell value: 1 + w * cost / 252, +inf when the robot's centre may not

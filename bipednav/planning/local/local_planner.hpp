@@ -73,6 +73,15 @@ struct LocalPlannerParams {
   TrackerParams tracker;
   DynamicAvoidanceParams avoidance;
   void validate() const;
+
+  // The fields a navigation parameters file reads and `bipednav params` prints, in this order
+  // (navigation/navigator_params_yaml.hpp).
+  template <class V>
+  void visit_fields(V& v) {
+    v.group("teb", teb);
+    v.group("tracker", tracker);
+    v.group("avoidance", avoidance);
+  }
 };
 
 // The result for bad input (see plan_utils' check_inputs), or nullopt when the input is usable.

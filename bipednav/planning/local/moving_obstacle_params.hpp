@@ -51,7 +51,7 @@ struct MovingObstacleParams {
   // object's centre by up to the difference: its measurement noise grows by that much (so a track's
   // velocity does not follow the centroid of an object's far side receding as the object passes
   // under the LiDAR's lowest ring). Off here; on for walkers together with radius_floor
-  // (NavigatorParams::for_robot; evidence in docs/closed-loop-log.md, as above).
+  // (config/digit.params.yaml; evidence in docs/closed-loop-log.md, as above).
   bool partial_view_noise = false;
   // Radius floor for a shrinking, coasting or re-found track: a track's radius is the largest of
   // its blobs' bounding radii over the last radius_floor_window_s of its updates (it stays so while
@@ -61,13 +61,42 @@ struct MovingObstacleParams {
   // id, origin, hits, radius floor and its velocity as the initial state (the velocity's variance is
   // a new track's, so the blob's motion soon overrides it). Why: a cube's blob shrinking under the
   // LiDAR's lowest ring lost its track, found again just before contact with a partial view's radius
-  // and too few hits. Off here; on for walkers with partial_view_noise (NavigatorParams::for_robot);
+  // and too few hits. Off here; on for Digit with partial_view_noise (config/digit.params.yaml);
   // the TurtleBot3 was not screened with it (evidence in docs/closed-loop-log.md, as above).
   bool radius_floor = false;
   double radius_floor_window_s = 5.0;
   double reacquire_gate_m = 1.0;
 
   void validate() const;
+
+  // The fields a navigation parameters file reads and `bipednav params` prints, in this order
+  // (navigation/navigator_params_yaml.hpp).
+  template <class V>
+  void visit_fields(V& v) {
+    v("enabled", enabled);
+    v("cluster_cell_m", cluster_cell_m);
+    v("min_points", min_points);
+    v("max_blob_radius_m", max_blob_radius_m);
+    v("max_range_m", max_range_m);
+    v("gate_m", gate_m);
+    v("max_track_age_s", max_track_age_s);
+    v("measurement_noise_m", measurement_noise_m);
+    v("accel_noise_mps2", accel_noise_mps2);
+    v("max_speed_mps", max_speed_mps);
+    v("min_hits", min_hits);
+    v("min_moving_speed_mps", min_moving_speed_mps);
+    v("min_displacement_m", min_displacement_m);
+    v("latch_displacement_m", latch_displacement_m);
+    v("max_prediction_s", max_prediction_s);
+    v("global_map_margin_m", global_map_margin_m);
+    v("coast_in_blind_zone", coast_in_blind_zone);
+    v("max_coast_s", max_coast_s);
+    v("coast_max_growth_m", coast_max_growth_m);
+    v("partial_view_noise", partial_view_noise);
+    v("radius_floor", radius_floor);
+    v("radius_floor_window_s", radius_floor_window_s);
+    v("reacquire_gate_m", reacquire_gate_m);
+  }
 };
 
 }  // namespace bipednav::planning::local

@@ -34,10 +34,23 @@ struct DynamicAvoidanceParams {
   // candidate left. Cause addressed: hexagon_dynamic/turtlebot3 seed 8, the robot in the box's
   // lane between the cylinders at (-1.1, 0) and (0, 0) (0.8 m between their surfaces) stopped at
   // 45.4 s with the box 0.3 m away and was run into. 0: off (only held commands); else at least
-  // sim_step_s. On for wheeled robots (NavigatorParams::for_robot, 0.25 s).
+  // sim_step_s. On for the TurtleBot3 (config/turtlebot3.params.yaml, 0.25 s).
   double hold_step_s = 0.0;
 
   void validate() const;
+
+  // The fields a navigation parameters file reads and `bipednav params` prints, in this order
+  // (navigation/navigator_params_yaml.hpp).
+  template <class V>
+  void visit_fields(V& v) {
+    v("horizon_s", horizon_s);
+    v("robot_radius_m", robot_radius_m);
+    v("safety_margin_m", safety_margin_m);
+    v("prediction_growth_mps", prediction_growth_mps);
+    v("sim_step_s", sim_step_s);
+    v("static_check_s", static_check_s);
+    v("hold_step_s", hold_step_s);
+  }
 };
 
 // Time until the robot driving (v, w) from `pose` at now_s first comes within reach of a moving

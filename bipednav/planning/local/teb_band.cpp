@@ -34,7 +34,7 @@ TebBand init_band(const Pose2& start, const std::vector<Eigen::Vector2d>& via, c
   if ((goal.position() - pts.back()).norm() > 1e-3 || pts.size() == 1) pts.push_back(goal.position());
   double total = 0.0;
   for (std::size_t i = 1; i < pts.size(); ++i) total += (pts[i] - pts[i - 1]).norm();
-  const double step_ref = limits.max_vel_x_mps * params.dt_ref_s;
+  const double step_ref = limits.velocity.max_vel_x_mps * params.dt_ref_s;
   int n_int = std::max(params.min_samples - 1, static_cast<int>(std::ceil(total / step_ref)));
   n_int = std::min(n_int, params.max_samples - 1);
   const double step = total / n_int;
@@ -57,11 +57,11 @@ TebBand init_band(const Pose2& start, const std::vector<Eigen::Vector2d>& via, c
     band.poses.push_back({p.x(), p.y(), th});
   }
   band.poses.push_back(goal);
-  const double dt = std::max(params.dt_min_s, step / limits.max_vel_x_mps);
+  const double dt = std::max(params.dt_min_s, step / limits.velocity.max_vel_x_mps);
   band.dt_s.assign(band.poses.size() - 1, dt);
   // Rotation in place (zero length) still needs time to turn.
   if (total < 1e-3) {
-    const double turn = std::abs(angle_diff(goal.theta, start.theta)) / limits.max_vel_theta_radps;
+    const double turn = std::abs(angle_diff(goal.theta, start.theta)) / limits.velocity.max_vel_theta_radps;
     band.dt_s.assign(band.poses.size() - 1, std::max(params.dt_min_s, turn / static_cast<double>(n_int)));
     for (std::size_t k = 1; k + 1 < band.poses.size(); ++k) {
       const double f = static_cast<double>(k) / n_int;

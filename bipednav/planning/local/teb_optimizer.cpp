@@ -363,16 +363,17 @@ BandCost evaluate_band(const TebBand& band, const TebProblemInput& input, const 
     c.kinematics += w.nh * sq(h) + w.back * sq(backwards_error(s[k].x, s[k].y, s[k].theta, s[k + 1].x, s[k + 1].y));
     v[k] = linear_velocity(s[k].x, s[k].y, s[k].theta, s[k + 1].x, s[k + 1].y, dt, g);
     om[k] = angular_velocity(s[k].theta, s[k + 1].theta, dt);
-    c.velocity += w.vel_x * sq(penalty_interval(v[k], -limits.max_vel_x_backwards_mps, limits.max_vel_x_mps, eps)) +
-                  w.vel_th * sq(penalty_symmetric(om[k], limits.max_vel_theta_radps, eps));
+    c.velocity += w.vel_x * sq(penalty_interval(v[k], -limits.velocity.max_vel_x_backwards_mps,
+                                                limits.velocity.max_vel_x_mps, eps)) +
+                  w.vel_th * sq(penalty_symmetric(om[k], limits.velocity.max_vel_theta_radps, eps));
     c.time += w.time * sq(dt);
     c.duration_s += dt;
   }
   for (std::size_t k = 0; k + 1 < v.size(); ++k) {
     const double a = acceleration(v[k], v[k + 1], band.dt_s[k], band.dt_s[k + 1]);
     const double aw = acceleration(om[k], om[k + 1], band.dt_s[k], band.dt_s[k + 1]);
-    c.acceleration += w.acc_x * sq(penalty_symmetric(a, limits.acc_lim_x_mps2, eps)) +
-                      w.acc_th * sq(penalty_symmetric(aw, limits.acc_lim_theta_radps2, eps));
+    c.acceleration += w.acc_x * sq(penalty_symmetric(a, limits.velocity.acc_lim_x_mps2, eps)) +
+                      w.acc_th * sq(penalty_symmetric(aw, limits.velocity.acc_lim_theta_radps2, eps));
   }
   if (input.obstacles != nullptr) {
     std::vector<std::pair<double, int>> candidates;  // nearest_obstacles' buffer

@@ -12,11 +12,7 @@ bool nonneg(double v) { return std::isfinite(v) && v >= 0.0; }
 }  // namespace
 
 void TebLimits::validate() const {
-  require(pos(max_vel_x_mps), "max_vel_x_mps", "> 0");
-  require(nonneg(max_vel_x_backwards_mps), "max_vel_x_backwards_mps", ">= 0");
-  require(pos(max_vel_theta_radps), "max_vel_theta_radps", "> 0");
-  require(pos(acc_lim_x_mps2), "acc_lim_x_mps2", "> 0");
-  require(pos(acc_lim_theta_radps2), "acc_lim_theta_radps2", "> 0");
+  velocity.validate();
   require(nonneg(min_obstacle_dist_m), "min_obstacle_dist_m", ">= 0");
 }
 

@@ -2,19 +2,29 @@
 
 #include <string>
 
+#include "bipednav/common/velocity_limits.hpp"
+
 namespace bipednav::planning::local {
 
 // Kinematic limits of a walking robot modelled as a differential drive (thesis 5.2): forward
 // speed and yaw rate only, no lateral velocity; backwards walking allowed but slower and penalised.
 struct TebLimits {
-  double max_vel_x_mps = 0.5;
-  double max_vel_x_backwards_mps = 0.2;
-  double max_vel_theta_radps = 0.8;
-  double acc_lim_x_mps2 = 0.5;
-  double acc_lim_theta_radps2 = 1.0;
+  VelocityLimits velocity{.max_vel_x_mps = 0.5,
+                          .max_vel_x_backwards_mps = 0.2,
+                          .max_vel_theta_radps = 0.8,
+                          .acc_lim_x_mps2 = 0.5,
+                          .acc_lim_theta_radps2 = 1.0};
   double min_obstacle_dist_m = 0.35;  // rho_min of eq. 5.15, from the robot centre
 
   void validate() const;
+
+  // The fields a navigation parameters file reads and `bipednav params` prints, in this order
+  // (navigation/navigator_params_yaml.hpp).
+  template <class V>
+  void visit_fields(V& v) {
+    velocity.visit_fields(v);  // flat: the keys sit in limits
+    v("min_obstacle_dist_m", min_obstacle_dist_m);
+  }
 };
 
 // The band's temporal resolution and its re-sampling hysteresis.
@@ -28,6 +38,19 @@ struct TebBandParams {
   double reinit_goal_angle_rad = 1.57;  // ... or turns further
 
   void validate() const;
+
+  // The fields a navigation parameters file reads and `bipednav params` prints, in this order
+  // (navigation/navigator_params_yaml.hpp).
+  template <class V>
+  void visit_fields(V& v) {
+    v("dt_ref_s", dt_ref_s);
+    v("dt_hysteresis_s", dt_hysteresis_s);
+    v("min_samples", min_samples);
+    v("max_samples", max_samples);
+    v("dt_min_s", dt_min_s);
+    v("reinit_goal_dist_m", reinit_goal_dist_m);
+    v("reinit_goal_angle_rad", reinit_goal_angle_rad);
+  }
 };
 
 // Weights of the quadratic penalties (eq. 5.16-5.21) and the solver schedule.
@@ -53,8 +76,8 @@ struct TebOptimizerParams {
   // normal equations); or Ceres' Levenberg-Marquardt with automatic Jacobians and the linear solver
   // "sparse_normal_cholesky" (SuiteSparse), "dense_normal_cholesky", "dense_qr" or "dense_schur". All
   // minimise the same objective with the same trust-region schedule; banded_lm follows Ceres to rounding, so
-  // the closed loops' differences between the solvers are chance. Ceres is the struct's default; wheeled robots
-  // run banded_lm for its lower CPU (NavigatorParams::for_robot; evidence in docs/closed-loop-log.md).
+  // the closed loops' differences between the solvers are chance. Ceres is the struct's default; the TurtleBot3
+  // runs banded_lm for its lower CPU (config/turtlebot3.params.yaml; evidence in docs/closed-loop-log.md).
   // Moving obstacles in the band (teb_local_planner's include_dynamic_obstacles / EdgeDynamicObstacle):
   // for every inner pose s_i and every moving track j (LocalPlanner's tracker, MovingObstacleTracker::moving)
   // the residual sqrt(weight_dynamic_obstacle) * max{0, (r_robot + r_j + dynamic_obstacle_dist_m + eps) -
@@ -83,10 +106,42 @@ struct TebOptimizerParams {
   std::string linear_solver = "sparse_normal_cholesky";
   // Ceres-only solver setting (the Ceres linear solvers above; banded_lm ignores it): sparse_normal_cholesky's
   // factorisation, "suite_sparse" (CHOLMOD, Ceres' own default) or "eigen_sparse" (Eigen's simplicial LDLT: the
-  // same bands to rounding, less set-up per solve). Wheeled robots use eigen_sparse (NavigatorParams::for_robot).
+  // same bands to rounding, less set-up per solve). The TurtleBot3 uses eigen_sparse (config/turtlebot3.params.yaml).
   std::string ceres_sparse_library = "suite_sparse";
 
   void validate() const;
+
+  // The fields a navigation parameters file reads and `bipednav params` prints, in this order
+  // (navigation/navigator_params_yaml.hpp).
+  template <class V>
+  void visit_fields(V& v) {
+    v("weight_optimaltime", weight_optimaltime);
+    v("weight_kinematics_nh", weight_kinematics_nh);
+    v("weight_backwards", weight_backwards);
+    v("weight_max_vel_x", weight_max_vel_x);
+    v("weight_max_vel_theta", weight_max_vel_theta);
+    v("weight_acc_lim_x", weight_acc_lim_x);
+    v("weight_acc_lim_theta", weight_acc_lim_theta);
+    v("weight_obstacle", weight_obstacle);
+    v("weight_viapoint", weight_viapoint);
+    v("weight_adapt_factor", weight_adapt_factor);
+    v("penalty_epsilon", penalty_epsilon);
+    v("sign_gain", sign_gain);
+    v("no_inner_iterations", no_inner_iterations);
+    v("no_outer_iterations", no_outer_iterations);
+    v("function_tolerance", function_tolerance);
+    v("obstacles_per_pose", obstacles_per_pose);
+    v("obstacle_influence_dist_m", obstacle_influence_dist_m);
+    v("dynamic_obstacles", dynamic_obstacles);
+    v("weight_dynamic_obstacle", weight_dynamic_obstacle);
+    v("dynamic_obstacle_dist_m", dynamic_obstacle_dist_m);
+    v("dynamic_obstacle_max_prediction_s", dynamic_obstacle_max_prediction_s);
+    v("dynamic_obstacle_growth_mps", dynamic_obstacle_growth_mps);
+    v("dynamic_obstacle_lead_s", dynamic_obstacle_lead_s);
+    v("dynamic_obstacle_largest_radius", dynamic_obstacle_largest_radius);
+    v("linear_solver", linear_solver);
+    v("ceres_sparse_library", ceres_sparse_library);
+  }
 };
 
 // Converting lethal costmap cells into point, line and polygon obstacles.
@@ -97,6 +152,16 @@ struct ObstacleParams {
   int max_obstacles = 400;
 
   void validate() const;
+
+  // The fields a navigation parameters file reads and `bipednav params` prints, in this order
+  // (navigation/navigator_params_yaml.hpp).
+  template <class V>
+  void visit_fields(V& v) {
+    v("point_max_extent_m", point_max_extent_m);
+    v("line_max_width_m", line_max_width_m);
+    v("cluster_block_m", cluster_block_m);
+    v("max_obstacles", max_obstacles);
+  }
 };
 
 // Topologically distinct candidate trajectories (homotopy classes), optimised in parallel.
@@ -114,10 +179,27 @@ struct HomotopyParams {
   double signature_tolerance_rad = 1.0;
 
   void validate() const;
+
+  // The fields a navigation parameters file reads and `bipednav params` prints, in this order
+  // (navigation/navigator_params_yaml.hpp).
+  template <class V>
+  void visit_fields(V& v) {
+    v("enabled", enabled);
+    v("max_classes", max_classes);
+    v("num_threads", num_threads);
+    v("selection_hysteresis", selection_hysteresis);
+    v("corridor_halfwidth_m", corridor_halfwidth_m);
+    v("max_keypoint_obstacles", max_keypoint_obstacles);
+    v("keypoint_margin_m", keypoint_margin_m);
+    v("max_path_expansions", max_path_expansions);
+    v("roadmap_clearance_ratio", roadmap_clearance_ratio);
+    v("max_cost_ratio", max_cost_ratio);
+    v("signature_tolerance_rad", signature_tolerance_rad);
+  }
 };
 
 // How the body follows a velocity command (a walker's walking controller: the profile's
-// tracking_time_constant_s, NavigatorParams::for_robot). With time_constant_s > 0 the planner models a
+// tracking_time_constant_s, derived in NavigatorParams::for_robot). With time_constant_s > 0 the planner models a
 // first-order lag between command and body velocity: the band starts from the body's velocity (where the
 // navigator passes its braking reference, the lag's prediction from the previous command) and the command
 // sent is the one that brings the lagging body to the band's first-interval velocity within horizon_s
@@ -128,6 +210,14 @@ struct TebBodyResponse {
   double horizon_s = 0.0;        // 0: one control period
 
   void validate() const;
+
+  // The fields a navigation parameters file reads and `bipednav params` prints, in this order
+  // (navigation/navigator_params_yaml.hpp).
+  template <class V>
+  void visit_fields(V& v) {
+    v("time_constant_s", time_constant_s);
+    v("horizon_s", horizon_s);
+  }
 };
 
 // The whole TEB planner.
@@ -152,6 +242,28 @@ struct TebParams {
   int oscillation_window = 20;  // commands in the oscillation detector's buffer
 
   void validate() const;
+
+  // The fields a navigation parameters file reads and `bipednav params` prints, in this order
+  // (navigation/navigator_params_yaml.hpp).
+  template <class V>
+  void visit_fields(V& v) {
+    v.group("limits", limits);
+    v.group("band", band);
+    v.group("optim", optim);
+    v.group("obstacles", obstacles);
+    v.group("homotopy", homotopy);
+    v.group("response", response);
+    v("lookahead_m", lookahead_m);
+    v("window_margin_m", window_margin_m);
+    v("via_point_separation_m", via_point_separation_m);
+    v("xy_goal_tolerance_m", xy_goal_tolerance_m);
+    v("yaw_goal_tolerance_rad", yaw_goal_tolerance_rad);
+    v("xy_goal_release_m", xy_goal_release_m);
+    v("rotate_gain", rotate_gain);
+    v("control_period_s", control_period_s);
+    v("feasibility_check_poses", feasibility_check_poses);
+    v("oscillation_window", oscillation_window);
+  }
 };
 
 }  // namespace bipednav::planning::local

@@ -20,7 +20,8 @@ Twist band_command(const TebBand& band) {
 TebPlanner::TebPlanner(TebParams params)
     : params_((params.validate(), std::move(params))),
       homotopy_(params_),
-      oscillation_(params_.oscillation_window, params_.limits.max_vel_x_mps, params_.limits.max_vel_theta_radps) {}
+      oscillation_(params_.oscillation_window, params_.limits.velocity.max_vel_x_mps,
+                   params_.limits.velocity.max_vel_theta_radps) {}
 
 void TebPlanner::reset() {
   homotopy_.reset();
@@ -30,7 +31,7 @@ void TebPlanner::reset() {
   last_cmd_ = body_ = Twist{};
 }
 
-VelocityLimits TebPlanner::command_limits() const { return VelocityLimits::forward_yaw_of(params_.limits); }
+VelocityLimits TebPlanner::command_limits() const { return params_.limits.velocity; }
 
 Twist TebPlanner::body_velocity(const Twist& given) {
   if (!models_lag()) return given;
@@ -106,9 +107,9 @@ LocalPlanResult TebPlanner::plan(const Pose2& T_map_base, const Twist& current_v
   LocalPlanResult r;
   r.trajectory.frame_id = global_plan.frame_id;
   const Pose2 robot{T_map_base.x, T_map_base.y, normalize_angle(T_map_base.theta)};
-  const GoalApproach ga = approach_goal(robot, global_plan.poses.back(), xy_goal_tolerance(params_.xy_goal_tolerance_m),
-                                        params_.yaw_goal_tolerance_rad, params_.rotate_gain,
-                                        params_.limits.max_vel_theta_radps, params_.xy_goal_release_m, &holding_goal_);
+  const GoalApproach ga = approach_goal(
+      robot, global_plan.poses.back(), xy_goal_tolerance(params_.xy_goal_tolerance_m), params_.yaw_goal_tolerance_rad,
+      params_.rotate_gain, params_.limits.velocity.max_vel_theta_radps, params_.xy_goal_release_m, &holding_goal_);
   if (ga.near) {
     // Turn on the spot to the goal yaw; the band is not needed any more.
     homotopy_.reset();

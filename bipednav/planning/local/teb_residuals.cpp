@@ -117,14 +117,15 @@ void edge_jacobian(const TebResidualContext& c, const double* a, const double* b
   }
   // Velocity limits.
   const double wv = std::sqrt(c.w->vel_x);
-  r[2] = wv * penalty_interval(iv.v, -L.max_vel_x_backwards_mps, L.max_vel_x_mps, eps);
-  const double sv = wv * penalty_interval_slope(iv.v, -L.max_vel_x_backwards_mps, L.max_vel_x_mps, eps);
+  r[2] = wv * penalty_interval(iv.v, -L.velocity.max_vel_x_backwards_mps, L.velocity.max_vel_x_mps, eps);
+  const double sv =
+      wv * penalty_interval_slope(iv.v, -L.velocity.max_vel_x_backwards_mps, L.velocity.max_vel_x_mps, eps);
   if (sv != 0.0) {
     for (int j = 0; j < 7; ++j) J[14 + j] = sv * iv.dv[static_cast<std::size_t>(j)];
   }
   const double ww = std::sqrt(c.w->vel_th);
-  r[3] = ww * penalty_symmetric(iv.w, L.max_vel_theta_radps, eps);
-  const double sw = ww * penalty_symmetric_slope(iv.w, L.max_vel_theta_radps, eps);
+  r[3] = ww * penalty_symmetric(iv.w, L.velocity.max_vel_theta_radps, eps);
+  const double sw = ww * penalty_symmetric_slope(iv.w, L.velocity.max_vel_theta_radps, eps);
   if (sw != 0.0) {
     for (int j = 0; j < 7; ++j) J[21 + j] = sw * iv.dw[static_cast<std::size_t>(j)];
   }
@@ -152,8 +153,8 @@ void acc_jacobian(const TebResidualContext& c, const IntervalVelocity& iv1, cons
     Ji[9] += -k * d1[6] - slope * acc / s;
     Ji[10] += k * d2[6] - slope * acc / s;
   };
-  row(iv1.v, iv2.v, iv1.dv, iv2.dv, std::sqrt(c.w->acc_x), c.limits->acc_lim_x_mps2, &r[0], J);
-  row(iv1.w, iv2.w, iv1.dw, iv2.dw, std::sqrt(c.w->acc_th), c.limits->acc_lim_theta_radps2, &r[1], J + 11);
+  row(iv1.v, iv2.v, iv1.dv, iv2.dv, std::sqrt(c.w->acc_x), c.limits->velocity.acc_lim_x_mps2, &r[0], J);
+  row(iv1.w, iv2.w, iv1.dw, iv2.dw, std::sqrt(c.w->acc_th), c.limits->velocity.acc_lim_theta_radps2, &r[1], J + 11);
 }
 
 void start_acc_jacobian(const TebResidualContext& c, const Twist& v0, const IntervalVelocity& iv, double dt, double* r,
@@ -169,8 +170,8 @@ void start_acc_jacobian(const TebResidualContext& c, const Twist& v0, const Inte
     for (int j = 0; j < 7; ++j) Ji[j] = slope * dq[static_cast<std::size_t>(j)] / dt;
     Ji[6] -= slope * acc / dt;
   };
-  row(iv.v, v0.linear_x, iv.dv, std::sqrt(c.w->acc_x), c.limits->acc_lim_x_mps2, &r[0], J);
-  row(iv.w, v0.angular_z, iv.dw, std::sqrt(c.w->acc_th), c.limits->acc_lim_theta_radps2, &r[1], J + 7);
+  row(iv.v, v0.linear_x, iv.dv, std::sqrt(c.w->acc_x), c.limits->velocity.acc_lim_x_mps2, &r[0], J);
+  row(iv.w, v0.angular_z, iv.dw, std::sqrt(c.w->acc_th), c.limits->velocity.acc_lim_theta_radps2, &r[1], J + 7);
 }
 
 double dynamic_obstacle_jacobian(const TebResidualContext& c, const TebMovingObstacle& o, double t_s, double x,

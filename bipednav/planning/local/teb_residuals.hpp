@@ -77,8 +77,8 @@ void edge_residuals(const TebResidualContext& c, const T* a, const T* b, const T
   const T w = angular_velocity(a[2], b[2], dt[0]);
   r[0] = sqrt(c.w->nh) * nonholonomic_error(ha, hb, dx, dy);
   r[1] = sqrt(c.w->back) * backwards_error(ha, dx, dy);
-  r[2] = sqrt(c.w->vel_x) * penalty_interval(v, -L.max_vel_x_backwards_mps, L.max_vel_x_mps, eps);
-  r[3] = sqrt(c.w->vel_th) * penalty_symmetric(w, L.max_vel_theta_radps, eps);
+  r[2] = sqrt(c.w->vel_x) * penalty_interval(v, -L.velocity.max_vel_x_backwards_mps, L.velocity.max_vel_x_mps, eps);
+  r[3] = sqrt(c.w->vel_th) * penalty_symmetric(w, L.velocity.max_vel_theta_radps, eps);
   r[4] = sqrt(c.w->time) * time_error(dt[0]);
 }
 
@@ -91,9 +91,10 @@ void acc_residuals(const TebResidualContext& c, const T* a, const T* b, const T*
   const T v2 = linear_velocity(b[0], b[1], b[2], d[0], d[1], dt2[0], g);
   const T w1 = angular_velocity(a[2], b[2], dt1[0]);
   const T w2 = angular_velocity(b[2], d[2], dt2[0]);
-  r[0] = sqrt(c.w->acc_x) * penalty_symmetric(acceleration(v1, v2, dt1[0], dt2[0]), c.limits->acc_lim_x_mps2, eps);
-  r[1] =
-      sqrt(c.w->acc_th) * penalty_symmetric(acceleration(w1, w2, dt1[0], dt2[0]), c.limits->acc_lim_theta_radps2, eps);
+  r[0] = sqrt(c.w->acc_x) *
+         penalty_symmetric(acceleration(v1, v2, dt1[0], dt2[0]), c.limits->velocity.acc_lim_x_mps2, eps);
+  r[1] = sqrt(c.w->acc_th) *
+         penalty_symmetric(acceleration(w1, w2, dt1[0], dt2[0]), c.limits->velocity.acc_lim_theta_radps2, eps);
 }
 
 // Acceleration of the first interval from the robot's current velocity v0. 2 residuals.
@@ -103,8 +104,9 @@ void start_acc_residuals(const TebResidualContext& c, const Twist& v0, const T* 
   const double eps = c.params->penalty_epsilon;
   const T v = linear_velocity(a[0], a[1], a[2], b[0], b[1], dt[0], c.params->sign_gain);
   const T w = angular_velocity(a[2], b[2], dt[0]);
-  r[0] = sqrt(c.w->acc_x) * penalty_symmetric(T((v - T(v0.linear_x)) / dt[0]), c.limits->acc_lim_x_mps2, eps);
-  r[1] = sqrt(c.w->acc_th) * penalty_symmetric(T((w - T(v0.angular_z)) / dt[0]), c.limits->acc_lim_theta_radps2, eps);
+  r[0] = sqrt(c.w->acc_x) * penalty_symmetric(T((v - T(v0.linear_x)) / dt[0]), c.limits->velocity.acc_lim_x_mps2, eps);
+  r[1] = sqrt(c.w->acc_th) *
+         penalty_symmetric(T((w - T(v0.angular_z)) / dt[0]), c.limits->velocity.acc_lim_theta_radps2, eps);
 }
 
 // eq. 5.15 / 5.19: one pose against one obstacle. 1 residual.

@@ -12,11 +12,7 @@ namespace bipednav::planning::local {
 void TrackerParams::validate() const {
   const auto pos = [](double v) { return std::isfinite(v) && v > 0.0; };
   require(pos(lookahead_m), "lookahead_m", "> 0");
-  require(pos(max_vel_x_mps), "max_vel_x_mps", "> 0");
-  require(pos(max_vel_theta_radps), "max_vel_theta_radps", "> 0");
-  require(std::isfinite(max_vel_x_backwards_mps) && max_vel_x_backwards_mps >= 0.0, "max_vel_x_backwards_mps", ">= 0");
-  require(pos(acc_lim_x_mps2), "acc_lim_x_mps2", "> 0");
-  require(pos(acc_lim_theta_radps2), "acc_lim_theta_radps2", "> 0");
+  limits.validate();
   require(pos(rotate_in_place_angle_rad), "rotate_in_place_angle_rad", "> 0");
   require(pos(xy_goal_tolerance_m), "xy_goal_tolerance_m", "> 0");
   require(pos(yaw_goal_tolerance_rad), "yaw_goal_tolerance_rad", "> 0");
@@ -30,13 +26,13 @@ Twist pure_pursuit_command(const Eigen::Vector2d& target_in_base, double dist_to
   Twist t;
   const double alpha = std::atan2(target_in_base.y(), target_in_base.x());
   if (std::abs(alpha) > p.rotate_in_place_angle_rad) {
-    t.angular_z = std::clamp(p.rotate_gain * alpha, -p.max_vel_theta_radps, p.max_vel_theta_radps);
+    t.angular_z = std::clamp(p.rotate_gain * alpha, -p.limits.max_vel_theta_radps, p.limits.max_vel_theta_radps);
     return t;
   }
   const double l2 = std::max(target_in_base.squaredNorm(), 1e-6);
   const double kappa = 2.0 * target_in_base.y() / l2;
-  double v = std::min(p.max_vel_x_mps, std::max(0.05, dist_to_goal_m));  // slow down on the last metre
-  if (std::abs(kappa * v) > p.max_vel_theta_radps) v = p.max_vel_theta_radps / std::abs(kappa);
+  double v = std::min(p.limits.max_vel_x_mps, std::max(0.05, dist_to_goal_m));  // slow down on the last metre
+  if (std::abs(kappa * v) > p.limits.max_vel_theta_radps) v = p.limits.max_vel_theta_radps / std::abs(kappa);
   t.linear_x = v;
   t.angular_z = kappa * v;
   return t;
@@ -67,7 +63,7 @@ PathTracker::PathTracker(TrackerParams params) : params_(std::move(params)) { pa
 LocalPlanResult PathTracker::compute(const Pose2& T_map_base, const Twist& current_velocity, const Path& global_plan,
                                      const mapping::Costmap2D& local_costmap, double now_s) {
   LocalPlanResult r = follow(T_map_base, current_velocity, global_plan, local_costmap);
-  const VelocityLimits lim = VelocityLimits::forward_yaw_of(params_);
+  const VelocityLimits lim = params_.limits;
   yield(r, T_map_base, current_velocity, local_costmap, lim, params_.control_period_s, now_s);
   return r;
 }
@@ -77,12 +73,12 @@ LocalPlanResult PathTracker::follow(const Pose2& T_map_base, const Twist& curren
   if (auto bad = reject_bad_inputs(T_map_base, current_velocity, global_plan, local_costmap)) return *bad;
   LocalPlanResult r;
   r.trajectory.frame_id = global_plan.frame_id;
-  VelocityLimits lim = VelocityLimits::forward_yaw_of(params_);
+  VelocityLimits lim = params_.limits;
   lim.max_vel_x_backwards_mps = 0.0;
   const Pose2& goal = global_plan.poses.back();
   const GoalApproach ga =
       approach_goal(T_map_base, goal, xy_goal_tolerance(params_.xy_goal_tolerance_m), params_.yaw_goal_tolerance_rad,
-                    params_.rotate_gain, params_.max_vel_theta_radps, params_.xy_goal_release_m, &holding_goal_);
+                    params_.rotate_gain, params_.limits.max_vel_theta_radps, params_.xy_goal_release_m, &holding_goal_);
   Twist desired = ga.cmd;
   r.goal_reached = ga.reached;
   if (!ga.near) {
@@ -118,8 +114,9 @@ bool PathTracker::escape(LocalPlanResult& r, const Pose2& T_map_base, const Twis
   // Away from the nearest lethal cell (any direction when the robot sits on its centre).
   const Eigen::Vector2d away = T_map_base.position() - nearest;
   const double away_yaw = away.norm() > 1e-9 ? std::atan2(away.y(), away.x()) : T_map_base.theta;
-  const VelocityLimits lim = VelocityLimits::forward_yaw_of(params_);
-  const double vb = params_.max_vel_x_backwards_mps, vf = params_.max_vel_x_mps, wm = params_.max_vel_theta_radps;
+  const VelocityLimits lim = params_.limits;
+  const double vb = params_.limits.max_vel_x_backwards_mps, vf = params_.limits.max_vel_x_mps,
+               wm = params_.limits.max_vel_theta_radps;
   // Candidates: a grid of backing, turning and forward commands within one period's acceleration.
   // Score: the clearance gained at the end of the arc, then (to pick a turn on the spot) how
   // squarely the robot ends up facing away, then closeness to the tracker's command.

@@ -110,7 +110,7 @@ TEST(PlanUtils, ApproachGoalHoldsTheGoalUntilTheReleaseDistance) {
 TEST(PathTracker, PurePursuitCurvature) {
   TrackerParams p;
   const Twist t = pure_pursuit_command({1.0, 0.0}, 5.0, p);
-  EXPECT_DOUBLE_EQ(t.linear_x, p.max_vel_x_mps);
+  EXPECT_DOUBLE_EQ(t.linear_x, p.limits.max_vel_x_mps);
   EXPECT_DOUBLE_EQ(t.angular_z, 0.0);
   const Twist u = pure_pursuit_command({0.6, 0.2}, 5.0, p);  // kappa = 2 * 0.2 / 0.4 = 1
   EXPECT_NEAR(u.angular_z / u.linear_x, 1.0, 1e-12);

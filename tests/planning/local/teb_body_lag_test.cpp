@@ -20,11 +20,11 @@ constexpr double kPeriodS = 0.1;     // control period
 
 TebParams digit_teb(bool lag_model) {
   TebParams p;
-  p.limits.max_vel_x_mps = 0.5;
-  p.limits.max_vel_x_backwards_mps = 0.25;
-  p.limits.max_vel_theta_radps = 0.6;
-  p.limits.acc_lim_x_mps2 = 0.5;
-  p.limits.acc_lim_theta_radps2 = 1.0;
+  p.limits.velocity.max_vel_x_mps = 0.5;
+  p.limits.velocity.max_vel_x_backwards_mps = 0.25;
+  p.limits.velocity.max_vel_theta_radps = 0.6;
+  p.limits.velocity.acc_lim_x_mps2 = 0.5;
+  p.limits.velocity.acc_lim_theta_radps2 = 1.0;
   p.limits.min_obstacle_dist_m = 0.5;  // Digit's inscribed radius 0.38 m + 0.12 m
   p.control_period_s = kPeriodS;
   if (lag_model) p.response.time_constant_s = kDigitLagS;
@@ -76,10 +76,10 @@ LagRun run_lagging_unicycle(TebPlanner& planner, const Path& plan, const mapping
     run.cmds.push_back(r.cmd);
     run.outcomes.push_back(r.result.outcome);
     for (int s = 0; s < static_cast<int>(std::lround(kPeriodS / kBodyStepS)); ++s) {
-      body.linear_x =
-          track_first_order(body.linear_x, r.cmd.linear_x, kBodyStepS, kDigitLagS, lim.acc_lim_x_mps2 * kBodyStepS);
+      body.linear_x = track_first_order(body.linear_x, r.cmd.linear_x, kBodyStepS, kDigitLagS,
+                                        lim.velocity.acc_lim_x_mps2 * kBodyStepS);
       body.angular_z = track_first_order(body.angular_z, r.cmd.angular_z, kBodyStepS, kDigitLagS,
-                                         lim.acc_lim_theta_radps2 * kBodyStepS);
+                                         lim.velocity.acc_lim_theta_radps2 * kBodyStepS);
       pose = integrate_arc(pose, body.linear_x, body.angular_z, kBodyStepS);
     }
     for (const auto& d : discs)

@@ -320,7 +320,7 @@ TEST(TebDynamicObstacles, CrossingObstacleOpensThePredictedClearance) {
 // segment (lead_s) and the growing bound the band keeps the bound from the obstacle's next lead_s of travel.
 TEST(TebDynamicObstacles, LeadAndGrowthKeepTheBandOutOfTheObstaclesNextStretch) {
   TebLimits lim;
-  lim.max_vel_x_mps = 0.26;
+  lim.velocity.max_vel_x_mps = 0.26;
   TebBandParams bp;
   const Pose2 start{0, 0, 0}, goal{3.0, 0.0, 0.0};
   TebOptimizerParams plain;

@@ -55,7 +55,7 @@ TEST(TebOptimizer, TimeOptimalBandRespectsVelocityLimit) {
   // Time-optimal: close to 3 m at 0.5 m/s, not much faster (the velocity penalty).
   EXPECT_NEAR(band.duration_s(), 6.0, 0.6);
   const Twist cmd = band_command(band);
-  EXPECT_LT(cmd.linear_x, lim.max_vel_x_mps * 1.1);
+  EXPECT_LT(cmd.linear_x, lim.velocity.max_vel_x_mps * 1.1);
 }
 
 }  // namespace bipednav::planning::local

@@ -52,11 +52,12 @@ void expect_within_limits(const std::vector<Twist>& cmds, const TebParams& p) {
   for (const auto& c : cmds) {
     ASSERT_TRUE(c.is_finite());
     EXPECT_EQ(c.linear_y, 0.0);
-    EXPECT_LE(c.linear_x, p.limits.max_vel_x_mps + tol);
-    EXPECT_GE(c.linear_x, -p.limits.max_vel_x_backwards_mps - tol);
-    EXPECT_LE(std::abs(c.angular_z), p.limits.max_vel_theta_radps + tol);
-    EXPECT_LE(std::abs(c.linear_x - prev.linear_x), p.limits.acc_lim_x_mps2 * p.control_period_s + tol);
-    EXPECT_LE(std::abs(c.angular_z - prev.angular_z), p.limits.acc_lim_theta_radps2 * p.control_period_s + tol);
+    EXPECT_LE(c.linear_x, p.limits.velocity.max_vel_x_mps + tol);
+    EXPECT_GE(c.linear_x, -p.limits.velocity.max_vel_x_backwards_mps - tol);
+    EXPECT_LE(std::abs(c.angular_z), p.limits.velocity.max_vel_theta_radps + tol);
+    EXPECT_LE(std::abs(c.linear_x - prev.linear_x), p.limits.velocity.acc_lim_x_mps2 * p.control_period_s + tol);
+    EXPECT_LE(std::abs(c.angular_z - prev.angular_z),
+              p.limits.velocity.acc_lim_theta_radps2 * p.control_period_s + tol);
     prev = c;
   }
 }

@@ -84,7 +84,7 @@ TEST(TebResiduals, EdgeJacobianMatchesAutodiff) {
     double dt = s.u(0.05, 0.8);
     switch (trial % 5) {
       case 1:  // linear velocity just past the forward limit's kink
-        dt = len / (f.lim.max_vel_x_mps - eps + (trial % 2 ? 1e-7 : -1e-7));
+        dt = len / (f.lim.velocity.max_vel_x_mps - eps + (trial % 2 ? 1e-7 : -1e-7));
         b[0] = a[0] + len * std::cos(a[2]), b[1] = a[1] + len * std::sin(a[2]);
         break;
       case 2:  // forward projection near zero (backwards kink, smooth sign's steep part)
@@ -92,7 +92,7 @@ TEST(TebResiduals, EdgeJacobianMatchesAutodiff) {
         b[1] = a[1] + len * std::sin(a[2] + M_PI / 2 + 1e-6 * (trial % 3 - 1));
         break;
       case 3:  // angular velocity at its kink
-        b[2] = a[2] + (f.lim.max_vel_theta_radps - eps + 1e-7) * dt;
+        b[2] = a[2] + (f.lim.velocity.max_vel_theta_radps - eps + 1e-7) * dt;
         break;
       case 4:  // coincident positions (safe_norm floor)
         b[0] = a[0], b[1] = a[1];
@@ -125,7 +125,7 @@ TEST(TebResiduals, AccelerationJacobiansMatchAutodiff) {
       // Put the linear acceleration next to its kink (1e-7 on either side; at the kink itself the two
       // roundings may fall on different sides): choose dt2 so that 2 (v2 - v1) / (dt1 + dt2) = target.
       const double side = trial % 4 == 1 ? 1e-7 : -1e-7;
-      const double target = (f.lim.acc_lim_x_mps2 - f.op.penalty_epsilon + side) * (trial % 2 ? 1.0 : -1.0);
+      const double target = (f.lim.velocity.acc_lim_x_mps2 - f.op.penalty_epsilon + side) * (trial % 2 ? 1.0 : -1.0);
       // acc(dt2) = 2 (n2 sg2 / dt2 - v1) / (dt1 + dt2): solve for dt2 by bisection on [0.001, 100].
       const IntervalVelocity unit = interval_velocity(b, d, 1.0, f.op.sign_gain);  // n2 sg2
       const auto acc_of = [&](double t) { return acceleration(iv1.v, unit.v / t, dt1, t) - target; };
@@ -288,8 +288,8 @@ TEST(TebResiduals, EdgeResidualsSharedHeadingsMatchPerTermTrig) {
     EXPECT_TRUE(bits(r[0], sqrt(f.w.nh) * nh)) << trial;
     EXPECT_TRUE(bits(r[1], sqrt(f.w.back) * back)) << trial;
     const double eps = f.op.penalty_epsilon;
-    EXPECT_TRUE(
-        bits(r[2], sqrt(f.w.vel_x) * penalty_interval(v, -f.lim.max_vel_x_backwards_mps, f.lim.max_vel_x_mps, eps)))
+    EXPECT_TRUE(bits(r[2], sqrt(f.w.vel_x) * penalty_interval(v, -f.lim.velocity.max_vel_x_backwards_mps,
+                                                              f.lim.velocity.max_vel_x_mps, eps)))
         << trial;
     // The double forms (evaluate_band's) give the Jets' values (no quotient in these two).
     double rd[5];
