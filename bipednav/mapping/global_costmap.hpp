@@ -48,12 +48,7 @@ struct GlobalCostmapParams {
   void visit_fields(V& v) {
     v("resolution_m", resolution_m);
     v("default_size_m", default_size_m);
-    v("inscribed_radius_m", inscribed_radius_m);
-    v("inflation_radius_m", inflation_radius_m);
-    v("cost_scaling_factor", cost_scaling_factor);
-    v("obstacle_max_range_m", obstacle_max_range_m);
-    v("raytrace_max_range_m", raytrace_max_range_m);
-    v("height_aware_clearing", height_aware_clearing);
+    visit_layer_fields(v, *this);
     v("lidar_clearing", lidar_clearing);
     v("merge_local", merge_local);
     v("mark_decay_s", mark_decay_s);

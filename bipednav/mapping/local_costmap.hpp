@@ -9,6 +9,18 @@
 
 namespace bipednav::mapping {
 
+// The inflation and obstacle-layer fields that both costmaps' parameters have (their inflation() and
+// obstacle_layer()), listed once for their visit_fields.
+template <class V, class Costmap>
+void visit_layer_fields(V& v, Costmap& p) {
+  v("inscribed_radius_m", p.inscribed_radius_m);
+  v("inflation_radius_m", p.inflation_radius_m);
+  v("cost_scaling_factor", p.cost_scaling_factor);
+  v("obstacle_max_range_m", p.obstacle_max_range_m);
+  v("raytrace_max_range_m", p.raytrace_max_range_m);
+  v("height_aware_clearing", p.height_aware_clearing);
+}
+
 // The local map of section 4.5.2: a rolling window centred on the robot.
 struct LocalCostmapParams {
   double size_m = 8.0;
@@ -35,12 +47,7 @@ struct LocalCostmapParams {
   void visit_fields(V& v) {
     v("size_m", size_m);
     v("resolution_m", resolution_m);
-    v("inscribed_radius_m", inscribed_radius_m);
-    v("inflation_radius_m", inflation_radius_m);
-    v("cost_scaling_factor", cost_scaling_factor);
-    v("obstacle_max_range_m", obstacle_max_range_m);
-    v("raytrace_max_range_m", raytrace_max_range_m);
-    v("height_aware_clearing", height_aware_clearing);
+    visit_layer_fields(v, *this);
     v("mark_decay_s", mark_decay_s);
     v("rate_hz", rate_hz);
   }

@@ -22,8 +22,10 @@ struct TrackerParams {
   double static_margin_m = 0.15;
   double static_age_s = 4.0;
   // A cell's lethal spell survives gaps up to this long (the map's ray clearing empties wall cells
-  // now and then; StaticStructure).
-  double static_gap_s = 5.0;
+  // now and then; StaticStructure). Not much longer: a person pacing or walking a loop comes back
+  // to the same cells every few seconds, and with 5 s its cells became static structure and the
+  // person untracked (docs/closed-loop-log.md, "Tracking module").
+  double static_gap_s = 1.0;
   // Besides, the points' own persistent cells (PersistentCells, cluster_cell_m): hit without a
   // break longer than persistent_gap_s for persistent_span_s, kept until unhit for
   // persistent_memory_s. Points on a proven mover (mover_proof_m; within its radius plus
