@@ -9,6 +9,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "apps/cli_json.hpp"
@@ -38,55 +39,31 @@ struct BenchTrackingArgs {
   bool json = false;
 };
 
-// TrackerParams' numeric fields by name, for --variant.
-void set_tracker_field(tracking::TrackerParams& p, const std::string& key, const std::string& value) {
-  const std::map<std::string, double*> reals{{"static_margin_m", &p.static_margin_m},
-                                             {"static_age_s", &p.static_age_s},
-                                             {"static_gap_s", &p.static_gap_s},
-                                             {"persistent_span_s", &p.persistent_span_s},
-                                             {"persistent_gap_s", &p.persistent_gap_s},
-                                             {"persistent_memory_s", &p.persistent_memory_s},
-                                             {"mover_margin_m", &p.mover_margin_m},
-                                             {"max_range_m", &p.max_range_m},
-                                             {"cluster_cell_m", &p.cluster_cell_m},
-                                             {"max_cluster_radius_m", &p.max_cluster_radius_m},
-                                             {"point_noise_m", &p.point_noise_m},
-                                             {"near_surface_quantile", &p.near_surface_quantile},
-                                             {"shape_noise_ratio", &p.shape_noise_ratio},
-                                             {"lateral_noise_ratio", &p.lateral_noise_ratio},
-                                             {"accel_psd_m2ps3", &p.accel_psd_m2ps3},
-                                             {"turn_rate_psd_rad2ps3", &p.turn_rate_psd_rad2ps3},
-                                             {"imm_turn_accel_psd_m2ps3", &p.imm_turn_accel_psd_m2ps3},
-                                             {"imm_switch_rate_hz", &p.imm_switch_rate_hz},
-                                             {"initial_speed_std_mps", &p.initial_speed_std_mps},
-                                             {"initial_turn_rate_std_radps", &p.initial_turn_rate_std_radps},
-                                             {"gate_chi2", &p.gate_chi2},
-                                             {"max_unseen_in_view_s", &p.max_unseen_in_view_s},
-                                             {"max_unseen_out_of_view_s", &p.max_unseen_out_of_view_s},
-                                             {"max_position_std_m", &p.max_position_std_m},
-                                             {"radius_memory_s", &p.radius_memory_s},
-                                             {"mover_speed_mps", &p.mover_speed_mps},
-                                             {"mover_window_s", &p.mover_window_s},
-                                             {"mover_significance", &p.mover_significance},
-                                             {"mover_proof_m", &p.mover_proof_m},
-                                             {"mover_min_height_span_m", &p.mover_min_height_span_m},
-                                             {"mover_vacated_radius_m", &p.mover_vacated_radius_m}};
-  const std::map<std::string, int*> ints{{"min_cluster_points", &p.min_cluster_points},
-                                         {"confirm_hits", &p.confirm_hits},
-                                         {"confirm_window", &p.confirm_window}};
-  try {
-    if (key == "motion_model") {
-      p.motion_model = value;
-    } else if (reals.count(key)) {
-      *reals.at(key) = std::stod(value);
-    } else if (ints.count(key)) {
-      *ints.at(key) = std::stoi(value);
-    } else {
-      throw CLI::ValidationError("--variant", "no tracker parameter '" + key + "'");
-    }
-  } catch (const std::logic_error&) {  // std::stod / std::stoi
-    throw CLI::ValidationError("--variant", "'" + key + "=" + value + "' is not a number");
+// Sets the TrackerParams field named `key` from `value` (TrackerParams::visit_fields).
+struct TrackerFieldSetter {
+  const std::string &key, &value;
+  bool found = false;
+
+  void operator()(const char* name, std::string& field) {
+    if (name == key) field = value, found = true;
   }
+  template <class T>
+  void operator()(const char* name, T& field) {
+    if (name != key) return;
+    found = true;
+    try {
+      field = std::is_integral_v<T> ? static_cast<T>(std::stoi(value)) : static_cast<T>(std::stod(value));
+    } catch (const std::logic_error&) {  // std::stod / std::stoi
+      throw CLI::ValidationError("--variant", "'" + key + "=" + value + "' is not a number");
+    }
+  }
+};
+
+// TrackerParams' fields by name, for --variant.
+void set_tracker_field(tracking::TrackerParams& p, const std::string& key, const std::string& value) {
+  TrackerFieldSetter setter{key, value};
+  p.visit_fields(setter);
+  if (!setter.found) throw CLI::ValidationError("--variant", "no tracker parameter '" + key + "'");
 }
 
 // The trackers under test: the constant-velocity and IMM filters with their defaults, then each

@@ -106,6 +106,48 @@ struct TrackerParams {
 
   void validate() const;
   MotionModel model() const { return parse_motion_model(motion_model); }
+
+  // Every field by name, in declaration order: v(key, field) (`bench tracking --variant`).
+  template <class V>
+  void visit_fields(V& v) {
+    v("static_margin_m", static_margin_m);
+    v("static_age_s", static_age_s);
+    v("static_gap_s", static_gap_s);
+    v("persistent_span_s", persistent_span_s);
+    v("persistent_gap_s", persistent_gap_s);
+    v("persistent_memory_s", persistent_memory_s);
+    v("mover_margin_m", mover_margin_m);
+    v("max_range_m", max_range_m);
+    v("cluster_cell_m", cluster_cell_m);
+    v("min_cluster_points", min_cluster_points);
+    v("max_cluster_radius_m", max_cluster_radius_m);
+    v("near_surface_quantile", near_surface_quantile);
+    v("point_noise_m", point_noise_m);
+    v("shape_noise_ratio", shape_noise_ratio);
+    v("lateral_noise_ratio", lateral_noise_ratio);
+    v("motion_model", motion_model);
+    v("accel_psd_m2ps3", accel_psd_m2ps3);
+    v("turn_rate_psd_rad2ps3", turn_rate_psd_rad2ps3);
+    v("imm_turn_accel_psd_m2ps3", imm_turn_accel_psd_m2ps3);
+    v("imm_switch_rate_hz", imm_switch_rate_hz);
+    v("initial_speed_std_mps", initial_speed_std_mps);
+    v("initial_turn_rate_std_radps", initial_turn_rate_std_radps);
+    v("gate_chi2", gate_chi2);
+    v("confirm_hits", confirm_hits);
+    v("confirm_window", confirm_window);
+    v("max_unseen_in_view_s", max_unseen_in_view_s);
+    v("max_unseen_out_of_view_s", max_unseen_out_of_view_s);
+    v("max_position_std_m", max_position_std_m);
+    v("radius_memory_s", radius_memory_s);
+    v("mover_speed_mps", mover_speed_mps);
+    v("mover_window_s", mover_window_s);
+    v("mover_significance", mover_significance);
+    v("mover_proof_m", mover_proof_m);
+    v("mover_min_height_span_m", mover_min_height_span_m);
+    v("mover_vacated_radius_m", mover_vacated_radius_m);
+    v("horizon_s", horizon_s);
+    v("prediction_step_s", prediction_step_s);
+  }
 };
 
 }  // namespace bipednav::tracking
