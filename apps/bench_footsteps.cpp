@@ -26,7 +26,7 @@ namespace bipednav::app {
 
 namespace {
 
-using namespace footstep;
+using namespace planning::footstep;
 
 // Mean, standard deviation and median.
 nlohmann::json stats(std::vector<double> v) {

@@ -20,7 +20,7 @@ namespace bipednav::app {
 
 namespace {
 
-using namespace footstep;
+using namespace planning::footstep;
 
 // The heightmap with the planned feet on top (runner/footstep_drawing.hpp).
 void draw_plan(const std::filesystem::path& file, const mapping::Heightmap& map, const FootstepPlanner& planner,

@@ -98,12 +98,13 @@ void draw_run(const std::string& out, const mapping::Costmap2D& map, const Path&
 
 // The global plan the local planner follows: D* Lite on the map inflated with the global
 // costmap's defaults, as the navigation server would hand it over.
-planning::PlanResult global_plan(const mapping::Costmap2D& map, const Pose2& start, const Pose2& goal) {
+planning::global::PlanResult global_plan(const mapping::Costmap2D& map, const Pose2& start, const Pose2& goal) {
   mapping::GlobalCostmapParams cp;
   cp.resolution_m = map.resolution_m();
   mapping::GlobalCostmap costmap(map.geometry(), cp);
   costmap.set_occupancy(map);
-  planning::PlanResult r = planning::make_global_planner("dstar_lite", {})->plan(costmap.costmap(), start, goal, {});
+  planning::global::PlanResult r =
+      planning::global::make_global_planner("dstar_lite", {})->plan(costmap.costmap(), start, goal, {});
   if (!r.path.empty()) r.path.poses.back().theta = goal.theta;
   return r;
 }
@@ -117,7 +118,7 @@ bool local_plan(const PlanOptions& o) {
   params.teb.homotopy.num_threads = o.threads;
   params.validate();
   std::unique_ptr<LocalPlanner> planner = planning::local::make_local_planner(o.planner, params, nullptr);
-  const planning::PlanResult global = global_plan(map, start, goal);
+  const planning::global::PlanResult global = global_plan(map, start, goal);
   nlohmann::json j;
   j["planner"] = o.planner;
   j["global_plan"] = {{"outcome", std::string(outcome_name(global.result.outcome))},

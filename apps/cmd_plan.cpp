@@ -41,7 +41,7 @@ struct GridOptions {
   bool unknown_is_obstacle = false, json_out = false;
 };
 
-void write_plan_png(const std::string& file, const mapping::Costmap2D& map, const planning::PlanResult& r,
+void write_plan_png(const std::string& file, const mapping::Costmap2D& map, const planning::global::PlanResult& r,
                     const Pose2& start, const Pose2& goal, const std::string& planner) {
   using viz::LegendMark;
   const viz::CostColors palette;
@@ -77,11 +77,11 @@ bool run_grid(const GridOptions& o) {
   const mapping::Costmap2D prior = mapping::read_map_server(o.map);
   mapping::GlobalCostmap costmap(prior.geometry(), o.inflation.params(prior.resolution_m()));
   costmap.set_occupancy(prior);
-  planning::GlobalPlannerParams pp;
+  planning::global::GlobalPlannerParams pp;
   pp.cost.cost_weight = o.cost_weight;
   pp.cost.unknown_is_obstacle = o.unknown_is_obstacle;
-  auto planner = planning::make_global_planner(o.planner, pp);
-  const planning::PlanResult r = planner->plan(costmap.costmap(), start, goal, {});
+  auto planner = planning::global::make_global_planner(o.planner, pp);
+  const planning::global::PlanResult r = planner->plan(costmap.costmap(), start, goal, {});
   if (!o.out.empty()) write_plan_png(o.out, costmap.costmap(), r, start, goal, o.planner);
   json poses = json::array();
   for (const auto& p : r.path.poses) poses.push_back(pose_json(p));
@@ -104,7 +104,7 @@ bool run_grid(const GridOptions& o) {
   return r.result.ok();
 }
 
-json movingai_json(const std::vector<planning::MovingAiRowResult>& rows, const std::string& planner) {
+json movingai_json(const std::vector<planning::global::MovingAiRowResult>& rows, const std::string& planner) {
   json out = json::array();
   double max_err = 0.0, total_ms = 0.0;
   int solved = 0;
@@ -135,8 +135,8 @@ bool run_movingai(const std::string& map_file, const std::string& scen_file, con
                   bool json_out) {
   const auto map = io::read_movingai_map(map_file);
   const auto problems = io::read_movingai_scen(scen_file);
-  auto planner = planning::make_global_planner(planner_name, {});
-  const auto rows = planning::run_movingai(map, problems, *planner);
+  auto planner = planning::global::make_global_planner(planner_name, {});
+  const auto rows = planning::global::run_movingai(map, problems, *planner);
   json j = movingai_json(rows, planner_name);
   const auto& s = j["summary"];
   const bool all_solved = s["solved"].get<std::size_t>() == s["rows"].get<std::size_t>();
@@ -171,8 +171,8 @@ json movingai_first_plans(const fs::path& dir) {
     const auto problems = io::read_movingai_scen(dir / "scen" / (std::string(name) + ".map.scen"));
     json entry = {{"map", name}, {"rows", problems.size()}};
     for (const char* planner_name : {"dstar_lite", "astar"}) {
-      auto planner = planning::make_global_planner(planner_name, {});
-      const auto rows = planning::run_movingai(map, problems, *planner);
+      auto planner = planning::global::make_global_planner(planner_name, {});
+      const auto rows = planning::global::run_movingai(map, problems, *planner);
       double sum = 0.0, mx = 0.0, err = 0.0;
       for (const auto& r : rows) {
         sum += r.time_ms;
@@ -191,9 +191,9 @@ json movingai_first_plans(const fs::path& dir) {
 
 // Returns whether the benchmark met its goals (the exit status).
 bool run_bench(const std::string& movingai_dir, int max_replans) {
-  planning::ReplanBenchParams p;
+  planning::global::ReplanBenchParams p;
   p.max_replans = max_replans;
-  const planning::ReplanStats s = planning::run_replan_benchmark(p);
+  const planning::global::ReplanStats s = planning::global::run_replan_benchmark(p);
   const double goal_exp = 10.0, goal_time = 5.0;
   json j = {{"world", "three_rooms 6 x 30 m at 0.1 m, obstacles revealed within 3 m"},
             {"replans", s.replans},

@@ -2,7 +2,7 @@
 
 #include "bipednav/common/error.hpp"
 
-namespace bipednav::planning {
+namespace bipednav::planning::global {
 
 mapping::Costmap2D movingai_costmap(const io::MovingAiMap& map) {
   mapping::GridGeometry g;
@@ -38,4 +38,4 @@ std::vector<MovingAiRowResult> run_movingai(const io::MovingAiMap& map,
   return out;
 }
 
-}  // namespace bipednav::planning
+}  // namespace bipednav::planning::global

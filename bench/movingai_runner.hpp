@@ -9,7 +9,7 @@
 #include "bipednav/mapping/costmap2d.hpp"
 #include "bipednav/planning/global/global_planner.hpp"
 
-namespace bipednav::planning {
+namespace bipednav::planning::global {
 
 // A Moving AI map as a costmap with unit cell costs: resolution 1 m, origin (0, 0), cell (x, y)
 // = tile (x, y) (rows are not flipped), passable tiles kFree, all others kLethal.
@@ -31,4 +31,4 @@ struct MovingAiRowResult {
 std::vector<MovingAiRowResult> run_movingai(const io::MovingAiMap& map,
                                             const std::vector<io::MovingAiProblem>& problems, GlobalPlanner& planner);
 
-}  // namespace bipednav::planning
+}  // namespace bipednav::planning::global

@@ -7,7 +7,7 @@
 #include "bipednav/common/error.hpp"
 #include "bipednav/planning/global/global_planner_factory.hpp"
 
-namespace bipednav::planning {
+namespace bipednav::planning::global {
 
 namespace {
 
@@ -167,4 +167,4 @@ ReplanStats run_replan_benchmark(const ReplanBenchParams& params) {
   return st;
 }
 
-}  // namespace bipednav::planning
+}  // namespace bipednav::planning::global

@@ -15,20 +15,20 @@ namespace {
 using namespace bipednav::bt;
 using namespace bipednav::navigation;
 
-BtFactory make_factory() {
-  BtFactory f;
+Factory make_factory() {
+  Factory f;
   for (const BtLeafSpec& s : navigation_leaf_specs()) {
     const std::size_t salt = s.id.size();
-    if (s.kind == BtNodeKind::Condition) {
+    if (s.kind == NodeKind::Condition) {
       f.register_simple_condition(
-          s.id, [salt](BtNode&, double now_s) { return (static_cast<std::size_t>(now_s * 10.0) + salt) % 3 != 0; },
+          s.id, [salt](Node&, double now_s) { return (static_cast<std::size_t>(now_s * 10.0) + salt) % 3 != 0; },
           s.ports);
     } else {
       f.register_simple_action(
           s.id,
-          [salt](BtNode&, double now_s, bool first) {
-            if (first) return BtStatus::RUNNING;
-            return (static_cast<std::size_t>(now_s * 10.0) + salt) % 2 == 0 ? BtStatus::SUCCESS : BtStatus::FAILURE;
+          [salt](Node&, double now_s, bool first) {
+            if (first) return Status::RUNNING;
+            return (static_cast<std::size_t>(now_s * 10.0) + salt) % 2 == 0 ? Status::SUCCESS : Status::FAILURE;
           },
           {}, s.ports);
     }
@@ -40,7 +40,7 @@ BtFactory make_factory() {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace bipednav;
-  static const BtFactory factory = make_factory();
+  static const Factory factory = make_factory();
   std::string xml(fuzz::as_text(data, size));
   const auto first = xml.find_first_not_of(" \t\r\n");
   std::string name = "<xml string>";

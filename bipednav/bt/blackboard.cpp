@@ -80,28 +80,28 @@ std::string_view bt_type_name(BtType t) {
   return "?";
 }
 
-BtType bt_type_of(const BtValue& v) {
+BtType bt_type_of(const Value& v) {
   static constexpr BtType kTypes[] = {BtType::Any,    BtType::Bool,  BtType::Int, BtType::Double,
                                       BtType::String, BtType::Pose2, BtType::Path};
   return kTypes[v.index()];
 }
 
-std::optional<BtValue> bt_parse_literal(const std::string& text, BtType type) {
+std::optional<Value> bt_parse_literal(const std::string& text, BtType type) {
   switch (type) {
     case BtType::Any:
     case BtType::String:
-      return BtValue(text);
+      return Value(text);
     case BtType::Bool:
-      if (auto b = parse_bool(text)) return BtValue(*b);
+      if (auto b = parse_bool(text)) return Value(*b);
       return std::nullopt;
     case BtType::Int:
-      if (auto i = parse_int(text)) return BtValue(*i);
+      if (auto i = parse_int(text)) return Value(*i);
       return std::nullopt;
     case BtType::Double:
-      if (auto d = parse_double(text)) return BtValue(*d);
+      if (auto d = parse_double(text)) return Value(*d);
       return std::nullopt;
     case BtType::Pose2:
-      if (auto p = parse_pose(text)) return BtValue(*p);
+      if (auto p = parse_pose(text)) return Value(*p);
       return std::nullopt;
     case BtType::Path:
       return std::nullopt;
@@ -109,10 +109,10 @@ std::optional<BtValue> bt_parse_literal(const std::string& text, BtType type) {
   return std::nullopt;
 }
 
-BtValue bt_convert(const BtValue& v, BtType type, const std::string& what) {
+Value bt_convert(const Value& v, BtType type, const std::string& what) {
   const BtType have = bt_type_of(v);
   if (have == type || type == BtType::Any) return v;
-  if (have == BtType::Int && type == BtType::Double) return BtValue(static_cast<double>(std::get<int>(v)));
+  if (have == BtType::Int && type == BtType::Double) return Value(static_cast<double>(std::get<int>(v)));
   if (have == BtType::String) {
     if (auto parsed = bt_parse_literal(std::get<std::string>(v), type)) return *parsed;
     throw Error(what + ": cannot convert \"" + std::get<std::string>(v) + "\" to " + std::string(bt_type_name(type)));
@@ -138,7 +138,7 @@ std::pair<const Blackboard*, std::string> Blackboard::resolve(const std::string&
   return {this, key};
 }
 
-void Blackboard::set_value(const std::string& key, BtValue value) {
+void Blackboard::set_value(const std::string& key, Value value) {
   const auto [bb_const, k] = resolve(key);
   auto* bb = const_cast<Blackboard*>(bb_const);  // resolve only walks blackboards this one owns a path to
   auto it = bb->entries_.find(k);
@@ -152,7 +152,7 @@ void Blackboard::set_value(const std::string& key, BtValue value) {
   it->second = std::move(value);
 }
 
-const BtValue* Blackboard::find(const std::string& key) const {
+const Value* Blackboard::find(const std::string& key) const {
   const auto [bb, k] = resolve(key);
   const auto it = bb->entries_.find(k);
   return it == bb->entries_.end() ? nullptr : &it->second;

@@ -15,12 +15,12 @@
 namespace bipednav::bt {
 
 // The value types a blackboard entry or a port may hold.
-using BtValue = std::variant<std::monostate, bool, int, double, std::string, Pose2, Path>;
+using Value = std::variant<std::monostate, bool, int, double, std::string, Pose2, Path>;
 
 enum class BtType { Any, Bool, Int, Double, String, Pose2, Path };
 
 std::string_view bt_type_name(BtType t);
-BtType bt_type_of(const BtValue& v);
+BtType bt_type_of(const Value& v);
 
 template <class T>
 constexpr BtType bt_type() {
@@ -42,11 +42,11 @@ constexpr BtType bt_type() {
 
 // Parses a literal port value ("0.3", "true", "1;2;0.5" for a Pose2 as x;y;theta).
 // Returns nullopt when `text` is not a valid literal of `type` (Path has no literal form).
-std::optional<BtValue> bt_parse_literal(const std::string& text, BtType type);
+std::optional<Value> bt_parse_literal(const std::string& text, BtType type);
 
 // Converts `v` to `type`: identical types pass, strings are parsed, int widens to double.
 // Throws Error naming `what` when the value cannot be converted.
-BtValue bt_convert(const BtValue& v, BtType type, const std::string& what);
+Value bt_convert(const Value& v, BtType type, const std::string& what);
 
 // True for a port value of the form "{key}"; `key` receives the key.
 bool bt_is_reference(const std::string& port_value, std::string* key = nullptr);
@@ -60,24 +60,24 @@ class Blackboard {
   static std::shared_ptr<Blackboard> create(std::shared_ptr<Blackboard> parent = nullptr);
 
   // Writes `value`; an existing entry keeps its type (std::monostate entries take any type).
-  void set_value(const std::string& key, BtValue value);
+  void set_value(const std::string& key, Value value);
   template <class T>
   void set(const std::string& key, T value) {
     if constexpr (std::is_convertible_v<T, std::string> && !std::is_same_v<T, std::string>)
-      set_value(key, BtValue(std::string(value)));
+      set_value(key, Value(std::string(value)));
     else
-      set_value(key, BtValue(std::move(value)));
+      set_value(key, Value(std::move(value)));
   }
 
   // The raw entry after remapping, or nullptr when absent.
-  const BtValue* find(const std::string& key) const;
+  const Value* find(const std::string& key) const;
   bool has(const std::string& key) const { return find(key) != nullptr; }
   void erase(const std::string& key);
 
   // The value converted to T; nullopt when absent; Error when it cannot be converted.
   template <class T>
   std::optional<T> get(const std::string& key) const {
-    const BtValue* v = find(key);
+    const Value* v = find(key);
     if (v == nullptr || std::holds_alternative<std::monostate>(*v)) return std::nullopt;
     return std::get<T>(bt_convert(*v, bt_type<T>(), "blackboard key '" + key + "'"));
   }
@@ -93,7 +93,7 @@ class Blackboard {
   std::pair<const Blackboard*, std::string> resolve(const std::string& key) const;
 
   std::shared_ptr<Blackboard> parent_;
-  std::map<std::string, BtValue> entries_;
+  std::map<std::string, Value> entries_;
   std::map<std::string, std::string> remap_;
   bool autoremap_ = false;
 };

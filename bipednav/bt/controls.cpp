@@ -6,18 +6,18 @@
 
 namespace bipednav::bt {
 
-BtStatus BtSequentialNode::finish(BtStatus s) {
+Status SequentialNode::finish(Status s) {
   halt_children();
   current_ = 0;
   return s;
 }
 
-BtStatus BtSequentialNode::tick(double now_s) {
-  const BtStatus all_done = stop_on_ == BtStatus::FAILURE ? BtStatus::SUCCESS : BtStatus::FAILURE;
+Status SequentialNode::tick(double now_s) {
+  const Status all_done = stop_on_ == Status::FAILURE ? Status::SUCCESS : Status::FAILURE;
   for (std::size_t i = reactive_ ? 0 : current_; i < child_count(); ++i) {
-    const BtStatus s = child(i).execute_tick(now_s);
+    const Status s = child(i).execute_tick(now_s);
     if (s == stop_on_) return finish(s);
-    if (s == BtStatus::RUNNING) {
+    if (s == Status::RUNNING) {
       if (reactive_)
         for (std::size_t j = 0; j < child_count(); ++j)
           if (j != i) halt_child(j);
@@ -28,19 +28,19 @@ BtStatus BtSequentialNode::tick(double now_s) {
   return finish(all_done);
 }
 
-void BtSequentialNode::halt() { finish(BtStatus::IDLE); }
+void SequentialNode::halt() { finish(Status::IDLE); }
 
-BtParallel::BtParallel(BtNodeConfig config) : BtControlNode(std::move(config)) {
+Parallel::Parallel(NodeConfig config) : ControlNode(std::move(config)) {
   success_threshold_ = std::get<int>(bt_literal_param(this->config(), "success_count", BtType::Int));
   failure_threshold_ = std::get<int>(bt_literal_param(this->config(), "failure_count", BtType::Int));
 }
 
-std::size_t BtParallel::threshold(int t) const {
+std::size_t Parallel::threshold(int t) const {
   const auto n = static_cast<int>(child_count());
   return static_cast<std::size_t>(t < 0 ? std::max(n + t + 1, 0) : t);
 }
 
-void BtParallel::validate_children() const {
+void Parallel::validate_children() const {
   const std::size_t n = child_count();
   for (const int t : {success_threshold_, failure_threshold_})
     if (t == 0 || threshold(t) > n || threshold(t) == 0)
@@ -50,60 +50,60 @@ void BtParallel::validate_children() const {
                           " children");
 }
 
-void BtParallel::clear() {
+void Parallel::clear() {
   completed_.clear();
   successes_ = failures_ = 0;
 }
 
-BtStatus BtParallel::tick(double now_s) {
+Status Parallel::tick(double now_s) {
   const std::size_t n = child_count();
   const std::size_t need_success = threshold(success_threshold_);
   const std::size_t need_failure = threshold(failure_threshold_);
   for (std::size_t i = 0; i < n; ++i) {
     if (completed_.count(i) != 0) continue;
-    const BtStatus s = child(i).execute_tick(now_s);
-    if (s == BtStatus::SUCCESS) ++successes_;
-    if (s == BtStatus::FAILURE) ++failures_;
-    if (s != BtStatus::RUNNING) completed_.insert(i);
+    const Status s = child(i).execute_tick(now_s);
+    if (s == Status::SUCCESS) ++successes_;
+    if (s == Status::FAILURE) ++failures_;
+    if (s != Status::RUNNING) completed_.insert(i);
     if (successes_ >= need_success) {
       clear();
       halt_children();
-      return BtStatus::SUCCESS;
+      return Status::SUCCESS;
     }
     if (failures_ >= need_failure || n - failures_ < need_success) {
       clear();
       halt_children();
-      return BtStatus::FAILURE;
+      return Status::FAILURE;
     }
   }
-  return BtStatus::RUNNING;
+  return Status::RUNNING;
 }
 
-void BtParallel::halt() {
+void Parallel::halt() {
   clear();
   halt_children();
 }
 
-BtRecoveryNode::BtRecoveryNode(BtNodeConfig config) : BtControlNode(std::move(config)) {
+RecoveryNode::RecoveryNode(NodeConfig config) : ControlNode(std::move(config)) {
   retries_max_ = std::get<int>(bt_literal_param(this->config(), "number_of_retries", BtType::Int));
   if (retries_max_ < 0)
     throw FileError(this->config().file, std::to_string(this->config().line),
                     "RecoveryNode: number_of_retries must be >= 0, got " + std::to_string(retries_max_));
 }
 
-BtStatus BtRecoveryNode::tick(double now_s) {
+Status RecoveryNode::tick(double now_s) {
   while (true) {
-    const BtStatus s = child(current_).execute_tick(now_s);
-    if (s == BtStatus::RUNNING) return s;
+    const Status s = child(current_).execute_tick(now_s);
+    if (s == Status::RUNNING) return s;
     if (current_ == 0) {
-      if (s == BtStatus::SUCCESS || retries_ >= retries_max_) {
+      if (s == Status::SUCCESS || retries_ >= retries_max_) {
         halt();
         return s;
       }
       halt_child(0);
       current_ = 1;
     } else {
-      if (s == BtStatus::FAILURE) {
+      if (s == Status::FAILURE) {
         halt();
         return s;
       }
@@ -114,19 +114,19 @@ BtStatus BtRecoveryNode::tick(double now_s) {
   }
 }
 
-void BtRecoveryNode::halt() {
+void RecoveryNode::halt() {
   retries_ = 0;
   current_ = 0;
   halt_children();
 }
 
-BtStatus BtRoundRobin::tick(double now_s) {
+Status RoundRobin::tick(double now_s) {
   const std::size_t n = child_count();
   while (failures_ < n) {
-    const BtStatus s = child(current_).execute_tick(now_s);
-    if (s == BtStatus::RUNNING) return s;
+    const Status s = child(current_).execute_tick(now_s);
+    if (s == Status::RUNNING) return s;
     current_ = (current_ + 1) % n;
-    if (s == BtStatus::SUCCESS) {
+    if (s == Status::SUCCESS) {
       failures_ = 0;
       halt_children();
       return s;
@@ -135,10 +135,10 @@ BtStatus BtRoundRobin::tick(double now_s) {
   }
   failures_ = 0;
   halt_children();
-  return BtStatus::FAILURE;
+  return Status::FAILURE;
 }
 
-void BtRoundRobin::halt() {
+void RoundRobin::halt() {
   failures_ = 0;
   halt_children();
 }

@@ -8,10 +8,10 @@
 // and RoundRobin. Parents reset (halt) their children whenever they complete.
 namespace bipednav::bt {
 
-class BtControlNode : public BtNode {
+class ControlNode : public Node {
  public:
-  using BtNode::BtNode;
-  BtNodeKind kind() const override { return BtNodeKind::Control; }
+  using Node::Node;
+  NodeKind kind() const override { return NodeKind::Control; }
 
  protected:
   void halt() override { halt_children(); }
@@ -25,19 +25,19 @@ class BtControlNode : public BtNode {
 //  - reactive (ReactiveSequence, ReactiveFallback): every tick starts from the first child;
 //    a RUNNING child halts all other children, so an earlier child that changes its result
 //    halts the later running one.
-class BtSequentialNode final : public BtControlNode {
+class SequentialNode final : public ControlNode {
  public:
-  BtSequentialNode(BtNodeConfig config, BtStatus stop_on, bool reactive)
-      : BtControlNode(std::move(config)), stop_on_(stop_on), reactive_(reactive) {}
+  SequentialNode(NodeConfig config, Status stop_on, bool reactive)
+      : ControlNode(std::move(config)), stop_on_(stop_on), reactive_(reactive) {}
 
  protected:
-  BtStatus tick(double now_s) override;
+  Status tick(double now_s) override;
   void halt() override;
 
  private:
-  BtStatus finish(BtStatus s);
+  Status finish(Status s);
 
-  BtStatus stop_on_;
+  Status stop_on_;
   bool reactive_;
   std::size_t current_ = 0;
 };
@@ -45,14 +45,14 @@ class BtSequentialNode final : public BtControlNode {
 // Ticks every unfinished child each tick; SUCCESS once success_count children succeeded,
 // FAILURE once failure_count failed (or success became impossible). Negative thresholds
 // count from the number of children (-1 = all). Completion halts the still-running children.
-class BtParallel final : public BtControlNode {
+class Parallel final : public ControlNode {
  public:
-  explicit BtParallel(BtNodeConfig config);
+  explicit Parallel(NodeConfig config);
   // Checks the thresholds against the number of children (called once the children exist).
   void validate_children() const;
 
  protected:
-  BtStatus tick(double now_s) override;
+  Status tick(double now_s) override;
   void halt() override;
 
  private:
@@ -69,12 +69,12 @@ class BtParallel final : public BtControlNode {
 // Nav2's RecoveryNode: child 0 is the main task, child 1 the recovery. When the main task
 // fails, the recovery runs; if it succeeds the main task is retried, at most
 // number_of_retries times. A failing recovery fails the node.
-class BtRecoveryNode final : public BtControlNode {
+class RecoveryNode final : public ControlNode {
  public:
-  explicit BtRecoveryNode(BtNodeConfig config);
+  explicit RecoveryNode(NodeConfig config);
 
  protected:
-  BtStatus tick(double now_s) override;
+  Status tick(double now_s) override;
   void halt() override;
 
  private:
@@ -85,12 +85,12 @@ class BtRecoveryNode final : public BtControlNode {
 
 // Nav2's RoundRobin: each activation starts at the child after the one that last succeeded,
 // so consecutive recoveries cycle through the children. FAILURE when all children failed.
-class BtRoundRobin final : public BtControlNode {
+class RoundRobin final : public ControlNode {
  public:
-  using BtControlNode::BtControlNode;
+  using ControlNode::ControlNode;
 
  protected:
-  BtStatus tick(double now_s) override;
+  Status tick(double now_s) override;
   void halt() override;
 
  private:

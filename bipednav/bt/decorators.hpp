@@ -7,53 +7,53 @@
 // simulated clock) and the SubTree node; the engine's built-in leaves are in leaves.hpp.
 namespace bipednav::bt {
 
-class BtDecoratorNode : public BtNode {
+class DecoratorNode : public Node {
  public:
-  using BtNode::BtNode;
-  BtNodeKind kind() const override { return BtNodeKind::Decorator; }
+  using Node::Node;
+  NodeKind kind() const override { return NodeKind::Decorator; }
 
  protected:
   void halt() override { halt_children(); }
 };
 
 // SUCCESS <-> FAILURE; RUNNING passes.
-class BtInverter final : public BtDecoratorNode {
+class Inverter final : public DecoratorNode {
  public:
-  using BtDecoratorNode::BtDecoratorNode;
+  using DecoratorNode::DecoratorNode;
 
  protected:
-  BtStatus tick(double now_s) override;
+  Status tick(double now_s) override;
 };
 
 // Any completed child status becomes `forced_` (SUCCESS or FAILURE); RUNNING passes.
-class BtForceStatus final : public BtDecoratorNode {
+class ForceStatus final : public DecoratorNode {
  public:
-  BtForceStatus(BtNodeConfig config, BtStatus forced) : BtDecoratorNode(std::move(config)), forced_(forced) {}
+  ForceStatus(NodeConfig config, Status forced) : DecoratorNode(std::move(config)), forced_(forced) {}
 
  protected:
-  BtStatus tick(double now_s) override;
+  Status tick(double now_s) override;
 
  private:
-  BtStatus forced_;
+  Status forced_;
 };
 
 // RUNNING while the child succeeds or runs (the child restarts after each SUCCESS); FAILURE
 // when it fails.
-class BtKeepRunningUntilFailure final : public BtDecoratorNode {
+class KeepRunningUntilFailure final : public DecoratorNode {
  public:
-  using BtDecoratorNode::BtDecoratorNode;
+  using DecoratorNode::DecoratorNode;
 
  protected:
-  BtStatus tick(double now_s) override;
+  Status tick(double now_s) override;
 };
 
 // Restarts a failing child up to num_attempts times in total (-1: without limit).
-class BtRetryUntilSuccessful final : public BtDecoratorNode {
+class RetryUntilSuccessful final : public DecoratorNode {
  public:
-  explicit BtRetryUntilSuccessful(BtNodeConfig config);
+  explicit RetryUntilSuccessful(NodeConfig config);
 
  protected:
-  BtStatus tick(double now_s) override;
+  Status tick(double now_s) override;
   void halt() override;
 
  private:
@@ -64,40 +64,40 @@ class BtRetryUntilSuccessful final : public BtDecoratorNode {
 // Ticks the child at most hz times per second of simulated time; once started the child is
 // ticked every tick until it completes. While throttled, returns the child's last result, so
 // it can sit in a ReactiveSequence beside a running action without halting it.
-class BtRateController final : public BtDecoratorNode {
+class RateController final : public DecoratorNode {
  public:
-  explicit BtRateController(BtNodeConfig config);
+  explicit RateController(NodeConfig config);
 
  protected:
-  BtStatus tick(double now_s) override;
+  Status tick(double now_s) override;
   void halt() override;
 
  private:
   RateGate gate_;
-  BtStatus last_child_result_ = BtStatus::SUCCESS;
+  Status last_child_result_ = Status::SUCCESS;
 };
 
 // RUNNING for delay_msec of simulated time after activation, then behaves like the child.
-class BtDelay final : public BtDecoratorNode {
+class Delay final : public DecoratorNode {
  public:
-  explicit BtDelay(BtNodeConfig config);
+  explicit Delay(NodeConfig config);
 
  protected:
-  BtStatus tick(double now_s) override;
+  Status tick(double now_s) override;
   void halt() override;
 
  private:
-  BtSimTimer timer_;
+  SimTimer timer_;
 };
 
 // The root of another BehaviorTree, on its own (remapped) blackboard; status passes through.
-class BtSubTreeNode final : public BtNode {
+class SubTreeNode final : public Node {
  public:
-  using BtNode::BtNode;
-  BtNodeKind kind() const override { return BtNodeKind::SubTree; }
+  using Node::Node;
+  NodeKind kind() const override { return NodeKind::SubTree; }
 
  protected:
-  BtStatus tick(double now_s) override { return child(0).execute_tick(now_s); }
+  Status tick(double now_s) override { return child(0).execute_tick(now_s); }
   void halt() override { halt_children(); }
 };
 

@@ -8,50 +8,50 @@ namespace bipednav::bt {
 // SetBlackboard, and the navigation tree's GoalUpdated condition.
 
 // AlwaysSuccess / AlwaysFailure.
-class BtConstantLeaf final : public BtNode {
+class ConstantLeaf final : public Node {
  public:
-  BtConstantLeaf(BtNodeConfig config, BtStatus result) : BtNode(std::move(config)), result_(result) {}
-  BtNodeKind kind() const override { return BtNodeKind::Action; }
+  ConstantLeaf(NodeConfig config, Status result) : Node(std::move(config)), result_(result) {}
+  NodeKind kind() const override { return NodeKind::Action; }
 
  protected:
-  BtStatus tick(double) override { return result_; }
+  Status tick(double) override { return result_; }
 
  private:
-  BtStatus result_;
+  Status result_;
 };
 
 // Sleep msec="N" (BehaviorTree.CPP v4's built-in): RUNNING for msec of simulated time after
 // activation, then SUCCESS; a halt restarts the count. A timer that is no recovery (the safety
 // gate's wait for sensor health; the Wait recovery is an MBF recovery with an outcome code).
-class BtSleep final : public BtNode {
+class Sleep final : public Node {
  public:
-  explicit BtSleep(BtNodeConfig config);
-  BtNodeKind kind() const override { return BtNodeKind::Action; }
+  explicit Sleep(NodeConfig config);
+  NodeKind kind() const override { return NodeKind::Action; }
 
  protected:
-  BtStatus tick(double now_s) override;
+  Status tick(double now_s) override;
   void halt() override;
 
  private:
-  BtSimTimer timer_;
+  SimTimer timer_;
 };
 
 // SetBlackboard value="42"|"{other_key}" output_key="key": copies a literal (as a string)
 // or another entry (keeping its type) into output_key. Fails when the source is absent.
-class BtSetBlackboard final : public BtNode {
+class SetBlackboard final : public Node {
  public:
-  using BtNode::BtNode;
-  BtNodeKind kind() const override { return BtNodeKind::Action; }
+  using Node::Node;
+  NodeKind kind() const override { return NodeKind::Action; }
 
  protected:
-  BtStatus tick(double now_s) override;
+  Status tick(double now_s) override;
 };
 
 // GoalUpdated goal="{goal}" active_goal="{active_goal}": SUCCESS while both are set and
 // differ (a new goal arrived since the running navigation copied it to active_goal).
-class BtGoalUpdated final : public BtCondition {
+class GoalUpdated final : public Condition {
  public:
-  using BtCondition::BtCondition;
+  using Condition::Condition;
 
  protected:
   bool check(double now_s) override;

@@ -4,82 +4,82 @@
 
 namespace bipednav::bt {
 
-std::string_view bt_status_name(BtStatus s) {
+std::string_view bt_status_name(Status s) {
   switch (s) {
-    case BtStatus::IDLE:
+    case Status::IDLE:
       return "IDLE";
-    case BtStatus::RUNNING:
+    case Status::RUNNING:
       return "RUNNING";
-    case BtStatus::SUCCESS:
+    case Status::SUCCESS:
       return "SUCCESS";
-    case BtStatus::FAILURE:
+    case Status::FAILURE:
       return "FAILURE";
   }
   return "?";
 }
 
-std::string_view bt_kind_name(BtNodeKind k) {
+std::string_view bt_kind_name(NodeKind k) {
   switch (k) {
-    case BtNodeKind::Action:
+    case NodeKind::Action:
       return "Action";
-    case BtNodeKind::Condition:
+    case NodeKind::Condition:
       return "Condition";
-    case BtNodeKind::Control:
+    case NodeKind::Control:
       return "Control";
-    case BtNodeKind::Decorator:
+    case NodeKind::Decorator:
       return "Decorator";
-    case BtNodeKind::SubTree:
+    case NodeKind::SubTree:
       return "SubTree";
   }
   return "?";
 }
 
-BtStatus BtNode::execute_tick(double now_s) {
+Status Node::execute_tick(double now_s) {
   last_tick_s_ = now_s;
-  const BtStatus s = tick(now_s);
-  if (s == BtStatus::IDLE) throw Error(describe() + ": tick() returned IDLE");
+  const Status s = tick(now_s);
+  if (s == Status::IDLE) throw Error(describe() + ": tick() returned IDLE");
   last_result_ = s;
   set_status(s, now_s);
   return s;
 }
 
-void BtNode::halt_node() {
-  if (status_ == BtStatus::RUNNING) halt();
-  set_status(BtStatus::IDLE, last_tick_s_);
+void Node::halt_node() {
+  if (status_ == Status::RUNNING) halt();
+  set_status(Status::IDLE, last_tick_s_);
 }
 
-void BtNode::halt_children() {
+void Node::halt_children() {
   for (auto& c : children_) c->halt_node();
 }
 
-void BtNode::set_status(BtStatus s, double now_s) {
+void Node::set_status(Status s, double now_s) {
   if (s == status_) return;
-  const BtStatus previous = status_;
+  const Status previous = status_;
   status_ = s;
   if (config_.context != nullptr && config_.context->observer) config_.context->observer(*this, previous, s, now_s);
 }
 
-std::string BtNode::describe() const {
+std::string Node::describe() const {
   std::string d = config_.id;
   if (config_.name != config_.id) d += " '" + config_.name + "'";
   if (!config_.file.empty()) d += " (" + config_.file + ":" + std::to_string(config_.line) + ")";
   return d;
 }
 
-std::optional<BtValue> BtNode::input_value(const std::string& port, BtType type) const {
+std::optional<Value> Node::input_value(const std::string& port, BtType type) const {
   const auto it = config_.ports.find(port);
   if (it == config_.ports.end()) return std::nullopt;
   std::string key;
   if (bt_is_reference(it->second, &key)) {
     if (!config_.blackboard) return std::nullopt;
-    const BtValue* v = config_.blackboard->find(key);
+    const Value* v = config_.blackboard->find(key);
     if (v == nullptr || std::holds_alternative<std::monostate>(*v)) return std::nullopt;
     return bt_convert(*v, type, describe() + ": port '" + port + "' ({" + key + "})");
   }
-  return bt_convert(BtValue(it->second), type, describe() + ": port '" + port + "'");
+  return bt_convert(Value(it->second), type, describe() + ": port '" + port + "'");
 }
 
-void BtNode::write_output(const std::string& port, BtValue value) {
+void Node::write_output(const std::string& port, Value value) {
   const auto it = config_.ports.find(port);
   std::string key;
   if (it == config_.ports.end() || !bt_is_reference(it->second, &key))
@@ -87,7 +87,7 @@ void BtNode::write_output(const std::string& port, BtValue value) {
   config_.blackboard->set_value(key, std::move(value));
 }
 
-BtValue bt_literal_param(const BtNodeConfig& config, const std::string& port, BtType type) {
+Value bt_literal_param(const NodeConfig& config, const std::string& port, BtType type) {
   const auto it = config.ports.find(port);
   const std::string where = std::to_string(config.line);
   if (it == config.ports.end()) throw FileError(config.file, where, config.id + ": missing attribute '" + port + "'");
@@ -99,25 +99,23 @@ BtValue bt_literal_param(const BtNodeConfig& config, const std::string& port, Bt
   return *v;
 }
 
-BtStatus BtStatefulAction::tick(double now_s) {
-  return status() == BtStatus::RUNNING ? on_running(now_s) : on_start(now_s);
-}
+Status StatefulAction::tick(double now_s) { return status() == Status::RUNNING ? on_running(now_s) : on_start(now_s); }
 
-int bt_int_param(const BtNodeConfig& config, const std::string& port) {
+int bt_int_param(const NodeConfig& config, const std::string& port) {
   return std::get<int>(bt_literal_param(config, port, BtType::Int));
 }
 
-void bt_param_error(const BtNodeConfig& config, const std::string& what) {
+void bt_param_error(const NodeConfig& config, const std::string& what) {
   throw FileError(config.file, std::to_string(config.line), config.id + ": " + what);
 }
 
-BtSimTimer::BtSimTimer(const BtNodeConfig& config, const std::string& msec_port) {
+SimTimer::SimTimer(const NodeConfig& config, const std::string& msec_port) {
   const int ms = bt_int_param(config, msec_port);
   if (ms < 0) bt_param_error(config, msec_port + " must be >= 0");
   duration_s_ = ms * 1e-3;
 }
 
-bool BtSimTimer::elapsed(double now_s) {
+bool SimTimer::elapsed(double now_s) {
   if (!started_) {
     started_ = true;
     start_s_ = now_s;

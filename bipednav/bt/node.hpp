@@ -12,80 +12,80 @@
 
 namespace bipednav::bt {
 
-enum class BtStatus { IDLE, RUNNING, SUCCESS, FAILURE };
-std::string_view bt_status_name(BtStatus s);
+enum class Status { IDLE, RUNNING, SUCCESS, FAILURE };
+std::string_view bt_status_name(Status s);
 
-enum class BtNodeKind { Action, Condition, Control, Decorator, SubTree };
-std::string_view bt_kind_name(BtNodeKind k);
+enum class NodeKind { Action, Condition, Control, Decorator, SubTree };
+std::string_view bt_kind_name(NodeKind k);
 
-enum class BtPortDir { Input, Output };
+enum class PortDir { Input, Output };
 
 // One declared port of a node type. Input ports without a default are required in the XML.
-struct BtPortSpec {
+struct PortSpec {
   std::string name;
-  BtPortDir dir = BtPortDir::Input;
+  PortDir dir = PortDir::Input;
   BtType type = BtType::Any;
   std::optional<std::string> default_value;  // literal or "{key}"
 
-  static BtPortSpec input(std::string n, BtType t, std::optional<std::string> def = std::nullopt) {
-    return {std::move(n), BtPortDir::Input, t, std::move(def)};
+  static PortSpec input(std::string n, BtType t, std::optional<std::string> def = std::nullopt) {
+    return {std::move(n), PortDir::Input, t, std::move(def)};
   }
   // Output ports default to the blackboard key of the same name ("{name}").
-  static BtPortSpec output(std::string n, BtType t) {
+  static PortSpec output(std::string n, BtType t) {
     std::string def = "{" + n + "}";
-    return {std::move(n), BtPortDir::Output, t, std::move(def)};
+    return {std::move(n), PortDir::Output, t, std::move(def)};
   }
 };
-using BtPorts = std::vector<BtPortSpec>;
+using Ports = std::vector<PortSpec>;
 
 // Called on every status change of every node (for logs, the HTML replay and the run figure).
-class BtNode;
-using BtObserver = std::function<void(const BtNode& node, BtStatus previous, BtStatus current, double now_s)>;
+class Node;
+using Observer = std::function<void(const Node& node, Status previous, Status current, double now_s)>;
 
 // Per-tree state the nodes share: the observer. Owned by the BehaviorTree.
-struct BtTreeContext {
-  BtObserver observer;
+struct TreeContext {
+  Observer observer;
 };
 
 // Everything a node learns from the XML: its type ID, instance name, path in the tree,
 // port values (attribute text, defaults filled in), the blackboard of its (sub)tree.
-struct BtNodeConfig {
+struct NodeConfig {
   std::string id;    // node type ("FollowPath", "Sequence")
   std::string name;  // the `name` attribute, else the ID
   std::string path;  // "Navigate/RestartOnGoalUpdate/.../FollowPath"
   std::string file;  // XML source and line, for messages
   int line = 0;
   std::map<std::string, std::string> ports;
-  BtPorts port_specs;
+  Ports port_specs;
   std::shared_ptr<Blackboard> blackboard;
-  BtTreeContext* context = nullptr;
+  TreeContext* context = nullptr;
 };
 
 // Base of every node. Parents call execute_tick(); halt_node() stops a RUNNING node and
 // leaves it IDLE. Subclasses implement tick() and, if they keep state across ticks, halt().
-class BtNode {
+class Node {
  public:
-  explicit BtNode(BtNodeConfig config) : config_(std::move(config)) {}
-  virtual ~BtNode() = default;
-  BtNode(const BtNode&) = delete;
-  BtNode& operator=(const BtNode&) = delete;
+  explicit Node(NodeConfig config) : config_(std::move(config)) {}
+  virtual ~Node() = default;
+  Node(const Node&) = delete;
+  Node& operator=(const Node&) = delete;
 
-  virtual BtNodeKind kind() const = 0;
+  virtual NodeKind kind() const = 0;
 
-  BtStatus execute_tick(double now_s);
+  Status execute_tick(double now_s);
   // Halts this node if RUNNING (recursively), then resets it to IDLE.
   void halt_node();
 
-  BtStatus status() const { return status_; }
+  Status status() const { return status_; }
   // The last non-IDLE status tick() returned (kept after the parent resets the node).
-  BtStatus last_result() const { return last_result_; }
+  Status last_result() const { return last_result_; }
   double last_tick_s() const { return last_tick_s_; }
-  const BtNodeConfig& config() const { return config_; }
+  const NodeConfig& config() const { return config_; }
   const std::string& name() const { return config_.name; }
   const std::string& id() const { return config_.id; }
   const std::string& path() const { return config_.path; }
-  const std::vector<std::unique_ptr<BtNode>>& children() const { return children_; }
-  void add_child(std::unique_ptr<BtNode> child) { children_.push_back(std::move(child)); }
+  const std::vector<std::unique_ptr<Node>>& children() const { return children_; }
+  void add_child(std::unique_ptr<Node> child) { children_.push_back(std::move(child)); }
 
   // The input port's value: a literal converted to T, or the referenced blackboard entry.
   // nullopt when the port is unset or the blackboard key is absent; Error on a bad value.
@@ -105,48 +105,48 @@ class BtNode {
   // Writes the output port's blackboard entry (the port must reference "{key}").
   template <class T>
   void set_output(const std::string& port, T value) {
-    write_output(port, BtValue(std::move(value)));
+    write_output(port, Value(std::move(value)));
   }
 
   std::string describe() const;  // "FollowPath 'name' (file:line)"
 
  protected:
-  virtual BtStatus tick(double now_s) = 0;
+  virtual Status tick(double now_s) = 0;
   // Called by halt_node() only while RUNNING; stop what the node started.
   virtual void halt() {}
   void halt_children();
   void halt_child(std::size_t i) { children_[i]->halt_node(); }
-  BtNode& child(std::size_t i) { return *children_[i]; }
+  Node& child(std::size_t i) { return *children_[i]; }
   std::size_t child_count() const { return children_.size(); }
-  void set_status(BtStatus s, double now_s);
+  void set_status(Status s, double now_s);
 
  private:
-  std::optional<BtValue> input_value(const std::string& port, BtType type) const;
-  void write_output(const std::string& port, BtValue value);
+  std::optional<Value> input_value(const std::string& port, BtType type) const;
+  void write_output(const std::string& port, Value value);
 
-  BtNodeConfig config_;
-  std::vector<std::unique_ptr<BtNode>> children_;
-  BtStatus status_ = BtStatus::IDLE;
-  BtStatus last_result_ = BtStatus::IDLE;
+  NodeConfig config_;
+  std::vector<std::unique_ptr<Node>> children_;
+  Status status_ = Status::IDLE;
+  Status last_result_ = Status::IDLE;
   double last_tick_s_ = 0.0;
 };
 
 // A synchronous check: SUCCESS when check() is true, FAILURE otherwise, never RUNNING.
-class BtCondition : public BtNode {
+class Condition : public Node {
  public:
-  using BtNode::BtNode;
-  BtNodeKind kind() const override { return BtNodeKind::Condition; }
+  using Node::Node;
+  NodeKind kind() const override { return NodeKind::Condition; }
 
  protected:
   virtual bool check(double now_s) = 0;
-  BtStatus tick(double now_s) final { return check(now_s) ? BtStatus::SUCCESS : BtStatus::FAILURE; }
+  Status tick(double now_s) final { return check(now_s) ? Status::SUCCESS : Status::FAILURE; }
 };
 
 // A condition given as a function (convenient for bindings that just read the server).
-class BtLambdaCondition final : public BtCondition {
+class LambdaCondition final : public Condition {
  public:
-  using Fn = std::function<bool(BtNode& self, double now_s)>;
-  BtLambdaCondition(BtNodeConfig config, Fn fn) : BtCondition(std::move(config)), fn_(std::move(fn)) {}
+  using Fn = std::function<bool(Node& self, double now_s)>;
+  LambdaCondition(NodeConfig config, Fn fn) : Condition(std::move(config)), fn_(std::move(fn)) {}
 
  protected:
   bool check(double now_s) override { return fn_(*this, now_s); }
@@ -157,33 +157,33 @@ class BtLambdaCondition final : public BtCondition {
 
 // A long action spanning ticks (BehaviorTree.CPP's StatefulActionNode): on_start() on the
 // first tick, on_running() on later ticks while RUNNING, on_halted() when preempted.
-class BtStatefulAction : public BtNode {
+class StatefulAction : public Node {
  public:
-  using BtNode::BtNode;
-  BtNodeKind kind() const override { return BtNodeKind::Action; }
+  using Node::Node;
+  NodeKind kind() const override { return NodeKind::Action; }
 
  protected:
-  virtual BtStatus on_start(double now_s) = 0;
-  virtual BtStatus on_running(double now_s) = 0;
+  virtual Status on_start(double now_s) = 0;
+  virtual Status on_running(double now_s) = 0;
   virtual void on_halted() = 0;
 
-  BtStatus tick(double now_s) final;
+  Status tick(double now_s) final;
   void halt() final { on_halted(); }
 };
 
 // A stateful action given as functions: `step(self, now_s, first)` is called with first=true
 // on the tick that starts the action and false on later ticks while it is RUNNING;
 // `halted(self)` when it is preempted (may be empty).
-class BtLambdaAction final : public BtStatefulAction {
+class LambdaAction final : public StatefulAction {
  public:
-  using StepFn = std::function<BtStatus(BtNode& self, double now_s, bool first)>;
-  using HaltFn = std::function<void(BtNode& self)>;
-  BtLambdaAction(BtNodeConfig config, StepFn step, HaltFn halted)
-      : BtStatefulAction(std::move(config)), step_(std::move(step)), halted_(std::move(halted)) {}
+  using StepFn = std::function<Status(Node& self, double now_s, bool first)>;
+  using HaltFn = std::function<void(Node& self)>;
+  LambdaAction(NodeConfig config, StepFn step, HaltFn halted)
+      : StatefulAction(std::move(config)), step_(std::move(step)), halted_(std::move(halted)) {}
 
  protected:
-  BtStatus on_start(double now_s) override { return step_(*this, now_s, true); }
-  BtStatus on_running(double now_s) override { return step_(*this, now_s, false); }
+  Status on_start(double now_s) override { return step_(*this, now_s, true); }
+  Status on_running(double now_s) override { return step_(*this, now_s, false); }
   void on_halted() override {
     if (halted_) halted_(*this);
   }
@@ -195,17 +195,17 @@ class BtLambdaAction final : public BtStatefulAction {
 
 // The literal value of a built-in node's parameter port (defaults already filled in).
 // Throws FileError naming the XML line when it is missing or not a literal of `type`.
-BtValue bt_literal_param(const BtNodeConfig& config, const std::string& port, BtType type);
+Value bt_literal_param(const NodeConfig& config, const std::string& port, BtType type);
 // The same for an Int port.
-int bt_int_param(const BtNodeConfig& config, const std::string& port);
+int bt_int_param(const NodeConfig& config, const std::string& port);
 // Throws FileError naming the node's XML line: a parameter that parsed but makes no sense.
-[[noreturn]] void bt_param_error(const BtNodeConfig& config, const std::string& what);
+[[noreturn]] void bt_param_error(const NodeConfig& config, const std::string& what);
 
 // Delay's and Sleep's clock: simulated time counted from the first call of elapsed() after
 // construction or restart(), read from the node's msec port (an int >= 0).
-class BtSimTimer {
+class SimTimer {
  public:
-  BtSimTimer(const BtNodeConfig& config, const std::string& msec_port);
+  SimTimer(const NodeConfig& config, const std::string& msec_port);
   bool elapsed(double now_s);
   void restart() { started_ = false; }
 

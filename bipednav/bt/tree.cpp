@@ -7,17 +7,17 @@
 namespace bipednav::bt {
 namespace {
 
-void visit(const BtNode& n, int depth, const std::function<void(const BtNode&, int)>& fn) {
+void visit(const Node& n, int depth, const std::function<void(const Node&, int)>& fn) {
   fn(n, depth);
   for (const auto& c : n.children()) visit(*c, depth + 1, fn);
 }
 
-bool is_leaf(const BtNode& n) { return n.children().empty(); }
+bool is_leaf(const Node& n) { return n.children().empty(); }
 
 }  // namespace
 
-BehaviorTree::BehaviorTree(std::unique_ptr<BtNode> root, std::shared_ptr<Blackboard> blackboard,
-                           std::unique_ptr<BtTreeContext> context, std::string main_tree_id)
+BehaviorTree::BehaviorTree(std::unique_ptr<Node> root, std::shared_ptr<Blackboard> blackboard,
+                           std::unique_ptr<TreeContext> context, std::string main_tree_id)
     : context_(std::move(context)),
       root_(std::move(root)),
       blackboard_(std::move(blackboard)),
@@ -25,50 +25,50 @@ BehaviorTree::BehaviorTree(std::unique_ptr<BtNode> root, std::shared_ptr<Blackbo
   if (!root_ || !blackboard_ || !context_) throw Error("BehaviorTree: needs a root, a blackboard and a context");
 }
 
-BtStatus BehaviorTree::tick(double now_s) {
+Status BehaviorTree::tick(double now_s) {
   if (!std::isfinite(now_s)) throw Error("BehaviorTree::tick: time is not finite");
   if (now_s < last_now_s_)
     throw Error("BehaviorTree::tick: time went backwards (" + std::to_string(now_s) + " s after " +
                 std::to_string(last_now_s_) + " s)");
   last_now_s_ = now_s;
-  if (root_->status() != BtStatus::RUNNING) root_->halt_node();
+  if (root_->status() != Status::RUNNING) root_->halt_node();
   return root_->execute_tick(now_s);
 }
 
 void BehaviorTree::halt() { root_->halt_node(); }
 
-std::vector<const BtNode*> BehaviorTree::running_leaves() const {
-  std::vector<const BtNode*> out;
-  visit(*root_, 0, [&](const BtNode& n, int) {
-    if (is_leaf(n) && n.status() == BtStatus::RUNNING) out.push_back(&n);
+std::vector<const Node*> BehaviorTree::running_leaves() const {
+  std::vector<const Node*> out;
+  visit(*root_, 0, [&](const Node& n, int) {
+    if (is_leaf(n) && n.status() == Status::RUNNING) out.push_back(&n);
   });
   return out;
 }
 
 std::string BehaviorTree::active_leaf() const {
-  const BtNode* best = nullptr;
-  visit(*root_, 0, [&](const BtNode& n, int) {
-    if (!is_leaf(n) || n.last_result() == BtStatus::IDLE) return;
-    if (n.status() == BtStatus::RUNNING) {
-      if (best == nullptr || best->status() != BtStatus::RUNNING) best = &n;
-    } else if (best == nullptr || (best->status() != BtStatus::RUNNING && n.last_tick_s() >= best->last_tick_s())) {
+  const Node* best = nullptr;
+  visit(*root_, 0, [&](const Node& n, int) {
+    if (!is_leaf(n) || n.last_result() == Status::IDLE) return;
+    if (n.status() == Status::RUNNING) {
+      if (best == nullptr || best->status() != Status::RUNNING) best = &n;
+    } else if (best == nullptr || (best->status() != Status::RUNNING && n.last_tick_s() >= best->last_tick_s())) {
       best = &n;
     }
   });
   return best == nullptr ? std::string() : best->path();
 }
 
-std::vector<BtNodeState> BehaviorTree::snapshot() const {
-  std::vector<BtNodeState> out;
-  visit(*root_, 0, [&](const BtNode& n, int depth) {
+std::vector<NodeState> BehaviorTree::snapshot() const {
+  std::vector<NodeState> out;
+  visit(*root_, 0, [&](const Node& n, int depth) {
     out.push_back({n.path(), n.id(), n.name(), n.kind(), n.status(), n.last_result(), n.last_tick_s(), depth});
   });
   return out;
 }
 
-const BtNode* BehaviorTree::find(const std::string& path) const {
-  const BtNode* found = nullptr;
-  visit(*root_, 0, [&](const BtNode& n, int) {
+const Node* BehaviorTree::find(const std::string& path) const {
+  const Node* found = nullptr;
+  visit(*root_, 0, [&](const Node& n, int) {
     if (found == nullptr && n.path() == path) found = &n;
   });
   return found;

@@ -10,13 +10,13 @@
 namespace bipednav::bt {
 
 // The state of one node, for introspection (HTML replay, run figure, logs).
-struct BtNodeState {
+struct NodeState {
   std::string path;
   std::string id;
   std::string name;
-  BtNodeKind kind = BtNodeKind::Action;
-  BtStatus status = BtStatus::IDLE;
-  BtStatus last_result = BtStatus::IDLE;
+  NodeKind kind = NodeKind::Action;
+  Status status = Status::IDLE;
+  Status last_result = Status::IDLE;
   double last_tick_s = 0.0;
   int depth = 0;
 };
@@ -25,40 +25,40 @@ struct BtNodeState {
 // Ticked on the caller's (simulated) clock; never reads the wall clock.
 class BehaviorTree {
  public:
-  BehaviorTree(std::unique_ptr<BtNode> root, std::shared_ptr<Blackboard> blackboard,
-               std::unique_ptr<BtTreeContext> context, std::string main_tree_id);
+  BehaviorTree(std::unique_ptr<Node> root, std::shared_ptr<Blackboard> blackboard, std::unique_ptr<TreeContext> context,
+               std::string main_tree_id);
   BehaviorTree(BehaviorTree&&) noexcept = default;
   BehaviorTree& operator=(BehaviorTree&&) noexcept = default;
 
   // One tick of the whole tree at time now_s (non-decreasing). After the root completed,
   // the next tick starts it afresh.
-  BtStatus tick(double now_s);
+  Status tick(double now_s);
   // Halts every RUNNING node (actions get on_halted()) and resets the tree to IDLE.
   void halt();
-  BtStatus status() const { return root_->status(); }
+  Status status() const { return root_->status(); }
 
   const std::shared_ptr<Blackboard>& blackboard() const { return blackboard_; }
-  BtNode& root() { return *root_; }
-  const BtNode& root() const { return *root_; }
+  Node& root() { return *root_; }
+  const Node& root() const { return *root_; }
   const std::string& main_tree_id() const { return main_tree_id_; }
 
   // Called on every node status change, with the tick's time.
-  void set_observer(BtObserver observer) { context_->observer = std::move(observer); }
+  void set_observer(Observer observer) { context_->observer = std::move(observer); }
 
   // The RUNNING leaves (several under a Parallel), in depth-first order.
-  std::vector<const BtNode*> running_leaves() const;
+  std::vector<const Node*> running_leaves() const;
   // Path of the first RUNNING leaf, or of the last leaf ticked when none is running.
   std::string active_leaf() const;
   // Every node in depth-first order.
-  std::vector<BtNodeState> snapshot() const;
+  std::vector<NodeState> snapshot() const;
   // The node with this path, or nullptr.
-  const BtNode* find(const std::string& path) const;
+  const Node* find(const std::string& path) const;
   // An indented text dump of the snapshot ("Sequence [RUNNING]").
   std::string to_string() const;
 
  private:
-  std::unique_ptr<BtTreeContext> context_;
-  std::unique_ptr<BtNode> root_;
+  std::unique_ptr<TreeContext> context_;
+  std::unique_ptr<Node> root_;
   std::shared_ptr<Blackboard> blackboard_;
   std::string main_tree_id_;
   double last_now_s_ = -1e300;

@@ -39,29 +39,28 @@ std::string join(const std::vector<std::string>& v, const std::string& sep) {
 // Builds nodes from the parsed document; one instance per load.
 class XmlTreeBuilder {
  public:
-  XmlTreeBuilder(std::string file, const BtFactory& factory, BtTreeContext* context)
+  XmlTreeBuilder(std::string file, const Factory& factory, TreeContext* context)
       : file_(std::move(file)), factory_(factory), context_(context) {}
 
   std::string collect_trees(const XMLElement& root);
   std::string root_name(const std::string& id) const { return display_name(*trees_.at(id)->FirstChildElement()); }
-  std::unique_ptr<BtNode> build_tree(const std::string& id, const std::shared_ptr<Blackboard>& bb,
-                                     const std::string& path, int depth);
+  std::unique_ptr<Node> build_tree(const std::string& id, const std::shared_ptr<Blackboard>& bb,
+                                   const std::string& path, int depth);
 
  private:
   [[noreturn]] void fail(const XMLElement& e, const std::string& what) const {
     throw FileError(file_, std::to_string(e.GetLineNum()), what);
   }
-  std::unique_ptr<BtNode> build_node(const XMLElement& e, const std::shared_ptr<Blackboard>& bb,
-                                     const std::string& path, int depth);
-  std::unique_ptr<BtNode> build_subtree(const XMLElement& e, const std::shared_ptr<Blackboard>& bb,
-                                        const std::string& path, int depth);
-  std::map<std::string, std::string> read_ports(const XMLElement& e, const std::string& id,
-                                                const BtNodeType& type) const;
-  void check_children(const XMLElement& e, const std::string& id, const BtNodeType& type) const;
+  std::unique_ptr<Node> build_node(const XMLElement& e, const std::shared_ptr<Blackboard>& bb, const std::string& path,
+                                   int depth);
+  std::unique_ptr<Node> build_subtree(const XMLElement& e, const std::shared_ptr<Blackboard>& bb,
+                                      const std::string& path, int depth);
+  std::map<std::string, std::string> read_ports(const XMLElement& e, const std::string& id, const NodeType& type) const;
+  void check_children(const XMLElement& e, const std::string& id, const NodeType& type) const;
 
   std::string file_;
-  const BtFactory& factory_;
-  BtTreeContext* context_;
+  const Factory& factory_;
+  TreeContext* context_;
   std::map<std::string, const XMLElement*> trees_;
   std::vector<std::string> stack_;  // SubTree IDs being expanded, to detect recursion
   std::size_t nodes_ = 0;           // built so far, against kMaxNodes
@@ -95,8 +94,8 @@ std::string XmlTreeBuilder::collect_trees(const XMLElement& root) {
   return trees_.begin()->first;
 }
 
-std::unique_ptr<BtNode> XmlTreeBuilder::build_tree(const std::string& id, const std::shared_ptr<Blackboard>& bb,
-                                                   const std::string& path, int depth) {
+std::unique_ptr<Node> XmlTreeBuilder::build_tree(const std::string& id, const std::shared_ptr<Blackboard>& bb,
+                                                 const std::string& path, int depth) {
   stack_.push_back(id);
   auto node = build_node(*trees_.at(id)->FirstChildElement(), bb, path, depth);
   stack_.pop_back();
@@ -104,7 +103,7 @@ std::unique_ptr<BtNode> XmlTreeBuilder::build_tree(const std::string& id, const 
 }
 
 std::map<std::string, std::string> XmlTreeBuilder::read_ports(const XMLElement& e, const std::string& id,
-                                                              const BtNodeType& type) const {
+                                                              const NodeType& type) const {
   std::map<std::string, std::string> ports;
   const bool generic = kGenericTags.count(e.Name()) != 0;
   std::vector<std::string> names;
@@ -113,7 +112,7 @@ std::map<std::string, std::string> XmlTreeBuilder::read_ports(const XMLElement& 
     const std::string key = a->Name();
     if (key == "name" || (generic && key == "ID")) continue;
     const auto spec =
-        std::find_if(type.ports.begin(), type.ports.end(), [&](const BtPortSpec& p) { return p.name == key; });
+        std::find_if(type.ports.begin(), type.ports.end(), [&](const PortSpec& p) { return p.name == key; });
     if (spec == type.ports.end())
       fail(e, id + ": unknown attribute '" + key + "'; expected " +
                   (names.empty() ? "none besides name" : "one of: " + join(names, ", ")));
@@ -128,7 +127,7 @@ std::map<std::string, std::string> XmlTreeBuilder::read_ports(const XMLElement& 
     const std::string& v = ports[p.name];
     std::string key;
     const bool ref = bt_is_reference(v, &key);
-    if (p.dir != BtPortDir::Input && !ref)
+    if (p.dir != PortDir::Input && !ref)
       fail(e, id + ": output port '" + p.name + "' must be a blackboard key \"{key}\", found \"" + v + "\"");
     if (ref && key.find_first_of("{} ") != std::string::npos)
       fail(e, id + ": port '" + p.name + "' has a malformed key \"" + v + "\"");
@@ -139,7 +138,7 @@ std::map<std::string, std::string> XmlTreeBuilder::read_ports(const XMLElement& 
   return ports;
 }
 
-void XmlTreeBuilder::check_children(const XMLElement& e, const std::string& id, const BtNodeType& type) const {
+void XmlTreeBuilder::check_children(const XMLElement& e, const std::string& id, const NodeType& type) const {
   int n = 0;
   for (const XMLElement* c = e.FirstChildElement(); c != nullptr; c = c->NextSiblingElement()) ++n;
   const bool ok = n >= type.min_children && (type.max_children < 0 || n <= type.max_children);
@@ -152,8 +151,8 @@ void XmlTreeBuilder::check_children(const XMLElement& e, const std::string& id, 
               std::to_string(n));
 }
 
-std::unique_ptr<BtNode> XmlTreeBuilder::build_node(const XMLElement& e, const std::shared_ptr<Blackboard>& bb,
-                                                   const std::string& path, int depth) {
+std::unique_ptr<Node> XmlTreeBuilder::build_node(const XMLElement& e, const std::shared_ptr<Blackboard>& bb,
+                                                 const std::string& path, int depth) {
   if (depth > kMaxDepth) fail(e, "tree deeper than " + std::to_string(kMaxDepth) + " levels");
   if (++nodes_ > kMaxNodes)
     fail(e, "tree expands to more than " + std::to_string(kMaxNodes) + " nodes (SubTrees nested and repeated?)");
@@ -165,12 +164,12 @@ std::unique_ptr<BtNode> XmlTreeBuilder::build_node(const XMLElement& e, const st
     if (attr == nullptr) fail(e, "<" + tag + "> needs an ID attribute");
     id = attr;
   }
-  const BtNodeType* type = factory_.find(id);
+  const NodeType* type = factory_.find(id);
   if (type == nullptr)
     fail(e, "unknown node type '" + id +
                 "'; expected a built-in node or one of the registered leaves: " + join(factory_.ids(), ", "));
   check_children(e, id, *type);
-  BtNodeConfig cfg;
+  NodeConfig cfg;
   cfg.id = id;
   cfg.name = e.Attribute("name") != nullptr ? e.Attribute("name") : id;
   cfg.path = path;
@@ -180,7 +179,7 @@ std::unique_ptr<BtNode> XmlTreeBuilder::build_node(const XMLElement& e, const st
   cfg.port_specs = type->ports;
   cfg.blackboard = bb;
   cfg.context = context_;
-  std::unique_ptr<BtNode> node;
+  std::unique_ptr<Node> node;
   try {
     node = type->build(cfg);
   } catch (const FileError&) {
@@ -195,12 +194,12 @@ std::unique_ptr<BtNode> XmlTreeBuilder::build_node(const XMLElement& e, const st
     const int k = seen[name]++;
     node->add_child(build_node(*c, bb, cfg.path + "/" + name + (k > 0 ? "#" + std::to_string(k) : ""), depth + 1));
   }
-  if (auto* parallel = dynamic_cast<BtParallel*>(node.get())) parallel->validate_children();
+  if (auto* parallel = dynamic_cast<Parallel*>(node.get())) parallel->validate_children();
   return node;
 }
 
-std::unique_ptr<BtNode> XmlTreeBuilder::build_subtree(const XMLElement& e, const std::shared_ptr<Blackboard>& bb,
-                                                      const std::string& path, int depth) {
+std::unique_ptr<Node> XmlTreeBuilder::build_subtree(const XMLElement& e, const std::shared_ptr<Blackboard>& bb,
+                                                    const std::string& path, int depth) {
   const char* id_attr = e.Attribute("ID");
   if (id_attr == nullptr) fail(e, "<SubTree> needs an ID attribute");
   const std::string id = id_attr;
@@ -209,7 +208,7 @@ std::unique_ptr<BtNode> XmlTreeBuilder::build_subtree(const XMLElement& e, const
     fail(e, "recursive SubTree '" + id + "' (" + join(stack_, " -> ") + " -> " + id + ")");
   if (e.FirstChildElement() != nullptr) fail(e, "<SubTree> must not have child elements");
   auto child_bb = Blackboard::create(bb);
-  BtNodeConfig cfg;
+  NodeConfig cfg;
   cfg.id = "SubTree";
   cfg.name = e.Attribute("name") != nullptr ? e.Attribute("name") : id;
   cfg.path = path;
@@ -232,10 +231,10 @@ std::unique_ptr<BtNode> XmlTreeBuilder::build_subtree(const XMLElement& e, const
     if (bt_is_reference(value, &parent_key))
       child_bb->remap(key, parent_key);
     else
-      child_bb->set_value(key, BtValue(value));
+      child_bb->set_value(key, Value(value));
     cfg.ports[key] = value;
   }
-  auto node = std::make_unique<BtSubTreeNode>(cfg);
+  auto node = std::make_unique<SubTreeNode>(cfg);
   node->add_child(
       build_tree(id, child_bb, cfg.path + "/" + display_name(*trees_.at(id)->FirstChildElement()), depth + 1));
   return node;
@@ -243,7 +242,7 @@ std::unique_ptr<BtNode> XmlTreeBuilder::build_subtree(const XMLElement& e, const
 
 }  // namespace
 
-BehaviorTree load_tree_xml(const std::string& path_or_xml, const BtFactory& factory,
+BehaviorTree load_tree_xml(const std::string& path_or_xml, const Factory& factory,
                            std::shared_ptr<Blackboard> blackboard) {
   const auto first = path_or_xml.find_first_not_of(" \t\r\n");
   const bool is_text = first != std::string::npos && path_or_xml[first] == '<';
@@ -260,7 +259,7 @@ BehaviorTree load_tree_xml(const std::string& path_or_xml, const BtFactory& fact
                         (doc.ErrorStr() ? std::string(" (") + doc.ErrorStr() + ")" : ""));
   const XMLElement* root = doc.RootElement();
   if (root == nullptr) throw FileError(file, "", "no root element; expected <root BTCPP_format=\"4\">");
-  auto context = std::make_unique<BtTreeContext>();
+  auto context = std::make_unique<TreeContext>();
   XmlTreeBuilder builder(file, factory, context.get());
   const std::string main_id = builder.collect_trees(*root);
   if (!blackboard) blackboard = Blackboard::create();

@@ -17,7 +17,7 @@ namespace bipednav::bt {
 // Throws FileError naming the file, the line and what was expected for malformed XML, an
 // unknown node type or attribute, a missing or malformed port, a wrong number of children,
 // an unknown SubTree ID or a recursive SubTree.
-BehaviorTree load_tree_xml(const std::string& path_or_xml, const BtFactory& factory,
+BehaviorTree load_tree_xml(const std::string& path_or_xml, const Factory& factory,
                            std::shared_ptr<Blackboard> blackboard = nullptr);
 
 }  // namespace bipednav::bt

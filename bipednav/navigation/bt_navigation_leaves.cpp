@@ -4,9 +4,9 @@ namespace bipednav::navigation {
 namespace {
 
 std::vector<BtLeafSpec> make_specs() {
-  using P = bt::BtPortSpec;
-  const auto C = bt::BtNodeKind::Condition;
-  const auto A = bt::BtNodeKind::Action;
+  using P = bt::PortSpec;
+  const auto C = bt::NodeKind::Condition;
+  const auto A = bt::NodeKind::Action;
   const P goal = P::input("goal", bt::BtType::Pose2, "{goal}");
   const P error_code = P::output("error_code", bt::BtType::Int);
   return {
@@ -62,13 +62,13 @@ std::vector<BtLeafSpec> make_specs() {
 
 std::vector<BtLeafSpec> navigation_leaf_specs() { return make_specs(); }
 
-bt::BtPorts bt_leaf_ports(const std::string& id) {
+bt::Ports bt_leaf_ports(const std::string& id) {
   for (const auto& s : navigation_leaf_specs())
     if (s.id == id) return s.ports;
   throw Error("bt_leaf_ports: '" + id + "' is not a leaf of the default navigation tree");
 }
 
-std::vector<std::string> unbound_navigation_leaves(const bt::BtFactory& factory) {
+std::vector<std::string> unbound_navigation_leaves(const bt::Factory& factory) {
   std::vector<std::string> out;
   for (const auto& s : navigation_leaf_specs())
     if (!factory.has(s.id)) out.push_back(s.id);

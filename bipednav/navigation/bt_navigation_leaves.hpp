@@ -12,8 +12,8 @@ namespace bipednav::navigation {
 
 struct BtLeafSpec {
   std::string id;
-  bt::BtNodeKind kind = bt::BtNodeKind::Action;
-  bt::BtPorts ports;
+  bt::NodeKind kind = bt::NodeKind::Action;
+  bt::Ports ports;
   std::string meaning;  // what the binding must do
 };
 
@@ -23,9 +23,9 @@ struct BtLeafSpec {
 std::vector<BtLeafSpec> navigation_leaf_specs();
 
 // The ports of one of these leaves; throws Error for an unknown ID.
-bt::BtPorts bt_leaf_ports(const std::string& id);
+bt::Ports bt_leaf_ports(const std::string& id);
 
 // IDs of navigation_leaf_specs() that `factory` does not know yet (empty when all bound).
-std::vector<std::string> unbound_navigation_leaves(const bt::BtFactory& factory);
+std::vector<std::string> unbound_navigation_leaves(const bt::Factory& factory);
 
 }  // namespace bipednav::navigation

@@ -9,8 +9,8 @@
 
 namespace bipednav::navigation {
 
-using footstep::Footstep;
-using footstep::FootstepPlan;
+using planning::footstep::Footstep;
+using planning::footstep::FootstepPlan;
 
 void FootstepNavigatorParams::validate() const {
   planner.validate();
@@ -24,8 +24,8 @@ void FootstepNavigatorParams::validate() const {
   require(obstacle_step_m > 0.0, "obstacle_step_m", "> 0");
 }
 
-footstep::FootstepPlannerParams FootstepNavigatorParams::default_planner() {
-  footstep::FootstepPlannerParams p;
+planning::footstep::FootstepPlannerParams FootstepNavigatorParams::default_planner() {
+  planning::footstep::FootstepPlannerParams p;
   p.robot = "nao";
   p.goal_tolerance_m = 0.05;
   p.goal_tolerance_rad = 0.15;
@@ -174,7 +174,7 @@ bool FootstepNavigator::recover(const Footstep& stance, std::optional<double> sw
   for (const auto& s : safe) {  // other action sets: their planar actions
     if (std::find(candidates.begin(), candidates.end(), &s) != candidates.end()) continue;
     for (const auto& a : planner_.lattice().actions().actions)
-      if (a.name == s.first && a.kind == footstep::ActionKind::kPlanar) candidates.push_back(&s);
+      if (a.name == s.first && a.kind == planning::footstep::ActionKind::kPlanar) candidates.push_back(&s);
   }
   if (candidates.empty()) return false;
   const std::pair<std::string, Footstep>* step = candidates.front();
@@ -209,7 +209,7 @@ StepDecision FootstepNavigator::next(const Footstep& odom_stance, const std::opt
   if (odom_swing) swing_z = to_map(*odom_swing).z_m;
   const double half = planner_.lattice().actions().body.nominal_separation_m / 2.0;
   // The body centre as the planner defines it: half a separation from the stance foot.
-  const Pose2 body = stance.pose * Pose2{0.0, stance.foot == footstep::Foot::kLeft ? -half : half, 0.0};
+  const Pose2 body = stance.pose * Pose2{0.0, stance.foot == planning::footstep::Foot::kLeft ? -half : half, 0.0};
   const bool finished = !plan_.steps.empty() && cursor_ + 1 >= plan_.steps.size();
   if (finished && distance(body, goal_) <= params_.planner.goal_tolerance_m + params_.replan_deviation_m &&
       std::abs(angle_diff(body.theta, goal_.theta)) <= params_.planner.goal_tolerance_rad) {

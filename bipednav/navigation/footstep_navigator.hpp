@@ -17,7 +17,7 @@ namespace bipednav::navigation {
 // a Kalman heightmap in the odometry frame, ARA* footstep plans, replanning when new map data
 // invalidates the plan or the robot deviates from it.
 struct FootstepNavigatorParams {
-  footstep::FootstepPlannerParams planner = default_planner();
+  planning::footstep::FootstepPlannerParams planner = default_planner();
   mapping::HeightmapFusionParams fusion;
   localization::CorrectedOdometryParams odometry = default_odometry();
   bool gicp_correction = true;         // false: plain kinematic odometry
@@ -35,7 +35,7 @@ struct FootstepNavigatorParams {
   void validate() const;
   // Deterministic planning in the loop: the first ARA* solution with epsilon 3 and no time
   // limit, capped by expansions (a run is reproducible bit for bit).
-  static footstep::FootstepPlannerParams default_planner();
+  static planning::footstep::FootstepPlannerParams default_planner();
   // GICP between the views of consecutive stances: the kinematic odometry is good to a few
   // centimetres per step, so matches are sought within 0.1 m and a correction may move by at
   // most 3 cm / 0.03 rad per update (wall-only scenes leave directions poorly constrained).
@@ -70,8 +70,8 @@ struct DepthView {
 struct StepDecision {
   bool done = false;
   Result result;
-  footstep::Footstep target;
-  const footstep::FootstepAction* action = nullptr;
+  planning::footstep::Footstep target;
+  const planning::footstep::FootstepAction* action = nullptr;
   bool replanned = false;
 };
 
@@ -89,43 +89,43 @@ class FootstepNavigator {
   // other foot: a swing foot that stands higher than the stance foot (mid-way down a step) keeps
   // its lifted height on the way to its landing, and the plans from here check the first step so
   // (FootstepPlanner::plan's swing_z_m).
-  StepDecision next(const footstep::Footstep& odom_stance,
-                    const std::optional<footstep::Footstep>& odom_swing = std::nullopt);
+  StepDecision next(const planning::footstep::Footstep& odom_stance,
+                    const std::optional<planning::footstep::Footstep>& odom_swing = std::nullopt);
 
   // Odometry frame -> map frame: the x, y, yaw part of the GICP correction (height, roll and
   // pitch of the kinematic odometry come from the leg kinematics and the IMU, which do not drift;
   // GICP on scenes of mostly planar walls leaves them poorly constrained).
-  footstep::Footstep to_map(const footstep::Footstep& odom) const;
+  planning::footstep::Footstep to_map(const planning::footstep::Footstep& odom) const;
   SE3 T_map_odom() const { return se3_from_pose2(pose2_from_se3(odometry_.correction())); }
   const mapping::Heightmap& map() const { return fusion_.map(); }
-  const footstep::FootstepPlan& plan() const { return plan_; }
+  const planning::footstep::FootstepPlan& plan() const { return plan_; }
   // plan().steps[plan_cursor()] is the stance foot (after next() returned a step: its target).
   std::size_t plan_cursor() const { return cursor_; }
   std::size_t plans() const { return plans_; }
   std::size_t corrections() const { return corrections_; }
   std::size_t recoveries() const { return recoveries_; }  // corrective steps taken
-  const footstep::FootstepPlanner& planner() const { return planner_; }
+  const planning::footstep::FootstepPlanner& planner() const { return planner_; }
 
  private:
-  bool close_to_plan(const footstep::Footstep& stance) const;  // plan_.steps[cursor_] must exist
+  bool close_to_plan(const planning::footstep::Footstep& stance) const;  // plan_.steps[cursor_] must exist
   // `swing_z`: the swing foot's height in the map frame, if known.
-  bool needs_replan(const footstep::Footstep& stance, std::optional<double> swing_z);
-  Result replan(const footstep::Footstep& stance, std::optional<double> swing_z);
+  bool needs_replan(const planning::footstep::Footstep& stance, std::optional<double> swing_z);
+  Result replan(const planning::footstep::Footstep& stance, std::optional<double> swing_z);
   // A corrective step from `stance` after a failed plan (plan_ becomes that one step); false
   // when no planar step is safe.
-  bool recover(const footstep::Footstep& stance, std::optional<double> swing_z);
-  footstep::FootstepPlan remaining() const;
+  bool recover(const planning::footstep::Footstep& stance, std::optional<double> swing_z);
+  planning::footstep::FootstepPlan remaining() const;
   const mapping::Heightmap& planning_map();  // the heightmap with the obstacle margin
 
   FootstepNavigatorParams params_;
-  footstep::FootstepPlanner planner_;
+  planning::footstep::FootstepPlanner planner_;
   mapping::HeightmapFusion fusion_;
   localization::CorrectedOdometry odometry_;
   perception::VoxelGrid voxel_;
   Pose2 goal_;
   bool has_goal_ = false, map_changed_ = false, planning_map_stale_ = true;
   mapping::Heightmap planning_map_;
-  footstep::FootstepPlan plan_;
+  planning::footstep::FootstepPlan plan_;
   std::size_t cursor_ = 0;  // plan_.steps[cursor_] is the current stance foot
   std::size_t plans_ = 0, corrections_ = 0, recoveries_ = 0, recoveries_in_row_ = 0;
 };

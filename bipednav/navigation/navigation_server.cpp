@@ -64,10 +64,10 @@ NavigationServer::NavigationServer(ServerParams params, RobotProfile robot, mapp
 }
 
 void NavigationServer::make_global_planner(bool relaxed) {
-  planning::GlobalPlannerParams p = params_.global;
+  planning::global::GlobalPlannerParams p = params_.global;
   if (relaxed) p.cost.cost_weight *= params_.relaxed_cost_weight_factor;
   p.cost.min_impassable_cost = impassable_cost_;
-  global_planner_ = planning::make_global_planner(params_.global_planner, p);
+  global_planner_ = planning::global::make_global_planner(params_.global_planner, p);
   relaxed_ = relaxed;
   pending_changes_.clear();
 }
@@ -93,10 +93,10 @@ bool NavigationServer::admit_planning_recovery() {
 int NavigationServer::plan_impassable_cost() const {
   const mapping::InflationParams inflation = global_.params().inflation();
   const double allowance_m = plan_clearance_allowance_m(params_, view_.position_sigma_m);
-  return planning::min_impassable_cost(inflation.inscribed_radius_m + allowance_m, inflation);
+  return planning::global::min_impassable_cost(inflation.inscribed_radius_m + allowance_m, inflation);
 }
 
-planning::PlanResult NavigationServer::get_path(const Pose2& goal) {
+planning::global::PlanResult NavigationServer::get_path(const Pose2& goal) {
   // A changed clearance changes which cells are passable everywhere: a fresh search.
   if (const int c = plan_impassable_cost(); c != impassable_cost_) {
     impassable_cost_ = c;
@@ -275,10 +275,10 @@ Result NavigationServer::goal_valid(const Pose2& goal) const {
   // A goal too near an obstacle for the planner (inscribed, or within its clearance allowance) with
   // a cell it may enter within its goal tolerance stays valid: the path ends there
   // (GlobalPlannerParams::goal_tolerance_m).
-  planning::GlobalPlannerParams planner = params_.global;
+  planning::global::GlobalPlannerParams planner = params_.global;
   planner.cost.min_impassable_cost = plan_impassable_cost();
   if (cost == mapping::kLethal ||
-      (cost >= planner.cost.min_impassable_cost && !planning::goal_search_cell(map, goal, planner)))
+      (cost >= planner.cost.min_impassable_cost && !planning::global::goal_search_cell(map, goal, planner)))
     return {Outcome::BLOCKED_GOAL, "the goal lies in or too close to an obstacle"};
   return {Outcome::SUCCESS, ""};
 }

@@ -21,7 +21,7 @@ namespace bipednav::navigation {
 
 struct ServerParams {
   std::string global_planner = "dstar_lite";  // dstar_lite | astar
-  planning::GlobalPlannerParams global;
+  planning::global::GlobalPlannerParams global;
   std::string local_planner = "teb";  // teb | tracker
   planning::local::LocalPlannerParams local;
   control::GoalCheckerParams goal;
@@ -137,7 +137,7 @@ class NavigationServer {
   void add_global_changes(const mapping::ChangeSet& changes);
 
   // get_path: a global path from the robot to `goal` (outcomes 50-65).
-  planning::PlanResult get_path(const Pose2& goal);
+  planning::global::PlanResult get_path(const Pose2& goal);
   // exe_path: one control cycle following `path` (outcomes 100-118); `first` on the first cycle.
   ActionStep exe_path(const Path& path, bool first);
   // The xy tolerance the local planner aims at this tick (see min_controller_goal_tolerance_fraction).
@@ -172,7 +172,7 @@ class NavigationServer {
   const planning::local::LocalPlanner& local_planner() const { return *local_planner_; }
   // The robot's command limits (the recoveries ramp within them).
   const VelocityLimits& velocity_limits() const { return limits_; }
-  const planning::PlanResult& last_plan() const { return last_plan_; }
+  const planning::global::PlanResult& last_plan() const { return last_plan_; }
   std::size_t plans() const { return plans_; }
   std::size_t recoveries() const { return recoveries_; }
   // The latest recoveries (at most kRecoveryLogSize, oldest first) with their outcomes.
@@ -199,7 +199,7 @@ class NavigationServer {
   VelocityLimits limits_;
   mapping::GlobalCostmap& global_;
   mapping::LocalCostmap& local_;
-  std::unique_ptr<planning::GlobalPlanner> global_planner_;
+  std::unique_ptr<planning::global::GlobalPlanner> global_planner_;
   std::unique_ptr<planning::local::LocalPlanner> local_planner_;
   control::GoalChecker goal_checker_;
   control::ProgressChecker progress_;
@@ -208,7 +208,7 @@ class NavigationServer {
   mapping::ChangeSet pending_changes_;
   Twist cmd_;
   Path trajectory_;
-  planning::PlanResult last_plan_;
+  planning::global::PlanResult last_plan_;
   int ctrl_failures_ = 0;
   double blocked_since_s_ = -1.0;
   bool relaxed_ = false;

@@ -75,8 +75,8 @@ Navigator::Navigator(NavigatorParams params, RobotProfile robot, const mapping::
   moving_.set_visibility(tracking::SensorVisibility(robot_, visibility));
 }
 
-bt::BtFactory Navigator::leaf_factory() {
-  bt::BtFactory factory;
+bt::Factory Navigator::leaf_factory() {
+  bt::Factory factory;
   register_leaves(factory);
   return factory;
 }
@@ -320,14 +320,14 @@ void Navigator::control() {
     return;
   }
   Stopwatch sw;
-  const bt::BtStatus s = tree_.tick(now_s_);
+  const bt::Status s = tree_.tick(now_s_);
   status_.active_leaf = tree_.active_leaf();
   if (auto p = tree_.blackboard()->get<Path>("path"); p && *p != global_path_) {
     global_path_ = std::move(*p);
     ++global_path_version_;
   }
   cmd_ = yield_to_moving_obstacles(server_.command());
-  if (s == bt::BtStatus::SUCCESS || s == bt::BtStatus::FAILURE) finish(s);
+  if (s == bt::Status::SUCCESS || s == bt::Status::FAILURE) finish(s);
   timings_.control_ms = sw.elapsed_ms();
 }
 
@@ -354,10 +354,10 @@ std::string Navigator::weak_estimate_note() const {
   return buf;
 }
 
-void Navigator::finish(bt::BtStatus s) {
+void Navigator::finish(bt::Status s) {
   server_.stop();
   cmd_ = {};
-  if (s == bt::BtStatus::SUCCESS) {
+  if (s == bt::Status::SUCCESS) {
     status_.state = NavState::SUCCEEDED;
     status_.result = {Outcome::SUCCESS, "goal reached" + weak_estimate_note()};
     return;

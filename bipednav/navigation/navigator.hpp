@@ -190,10 +190,10 @@ class Navigator {
   Twist yield_to_moving_obstacles(const Twist& cmd) const;
   Twist reference_velocity() const;  // see NavigatorParams::brake_from_last_command
   void control();
-  void register_leaves(bt::BtFactory& factory);
-  bt::BtFactory leaf_factory();  // the engine's nodes and this navigator's leaves
+  void register_leaves(bt::Factory& factory);
+  bt::Factory leaf_factory();  // the engine's nodes and this navigator's leaves
   bool sensors_alive() const;
-  void finish(bt::BtStatus status);
+  void finish(bt::Status status);
   std::string weak_estimate_note() const;  // empty unless the position estimate is weak at the goal
   bool depth_superseded(const SensorFrame& frame, const Admission& admitted, std::size_t i);
   bool depth_superseded(const std::string& camera, double stamp_s, double now_s, bool newer_in_step);

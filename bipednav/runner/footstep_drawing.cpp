@@ -31,16 +31,17 @@ HeightRange draw_heightmap(viz::Canvas& c, const mapping::Heightmap& map) {
   return hi >= lo ? HeightRange{lo, hi} : HeightRange{};
 }
 
-void draw_footsteps(viz::Canvas& c, const footstep::BodyModel& body, const std::vector<footstep::Footstep>& steps,
-                    const std::vector<std::string>& actions, double fill_alpha, double line_px) {
+void draw_footsteps(viz::Canvas& c, const planning::footstep::BodyModel& body,
+                    const std::vector<planning::footstep::Footstep>& steps, const std::vector<std::string>& actions,
+                    double fill_alpha, double line_px) {
   for (std::size_t i = 0; i < steps.size(); ++i) {
-    const footstep::Footstep& f = steps[i];
+    const planning::footstep::Footstep& f = steps[i];
     std::vector<Eigen::Vector2d> corners;
     for (auto [sx, sy] : {std::pair{1, 1}, {-1, 1}, {-1, -1}, {1, -1}})
       corners.push_back(f.pose.transform({sx * body.foot_length_m / 2, sy * body.foot_width_m / 2}));
     const std::string* action = i > 0 && i - 1 < actions.size() ? &actions[i - 1] : nullptr;
     const bool special = action && (action->rfind("step_", 0) == 0 || *action == "t_step");
-    const viz::Color col = f.foot == footstep::Foot::kLeft ? viz::colors::kBlue : viz::colors::kRed;
+    const viz::Color col = f.foot == planning::footstep::Foot::kLeft ? viz::colors::kBlue : viz::colors::kRed;
     c.polygon(corners, {col.r, col.g, col.b, fill_alpha}, special ? viz::colors::kOrange : col,
               special ? 2.0 * line_px : line_px);
   }

@@ -21,8 +21,9 @@ struct HeightRange {
 HeightRange draw_heightmap(viz::Canvas& c, const mapping::Heightmap& map);
 // Footprints of placed feet: left blue, right red, the landings of 3D actions (step-over / onto /
 // down, T-step) outlined in orange. `actions[i]` leads to `steps[i + 1]` (may be shorter).
-void draw_footsteps(viz::Canvas& c, const footstep::BodyModel& body, const std::vector<footstep::Footstep>& steps,
-                    const std::vector<std::string>& actions, double fill_alpha = 0.35, double line_px = 1.5);
+void draw_footsteps(viz::Canvas& c, const planning::footstep::BodyModel& body,
+                    const std::vector<planning::footstep::Footstep>& steps, const std::vector<std::string>& actions,
+                    double fill_alpha = 0.35, double line_px = 1.5);
 // The goal: a green circle with its heading.
 void draw_goal(viz::Canvas& c, const Pose2& goal);
 // The start: a grey circle with its heading.

@@ -11,8 +11,8 @@ namespace bipednav::runner {
 
 namespace {
 
-viz::ReplayFoot replay_foot(const footstep::Footstep& f, double t_s, std::string action) {
-  return {t_s, f.foot == footstep::Foot::kLeft, f.pose, std::move(action)};
+viz::ReplayFoot replay_foot(const planning::footstep::Footstep& f, double t_s, std::string action) {
+  return {t_s, f.foot == planning::footstep::Foot::kLeft, f.pose, std::move(action)};
 }
 
 bool same_heights(const std::vector<float>& a, const std::vector<float>& b) {  // bitwise: NaN marks unknown
@@ -46,7 +46,8 @@ std::string FootstepReplayRecorder::kind_of(const std::string& action) const {
 void FootstepReplayRecorder::record(const sim::HumanoidWalker& walker, const navigation::FootstepNavigator& nav,
                                     const navigation::StepDecision& d) {
   if (kinds_.empty())
-    for (const auto& a : nav.planner().lattice().actions().actions) kinds_[a.name] = footstep::action_kind_name(a.kind);
+    for (const auto& a : nav.planner().lattice().actions().actions)
+      kinds_[a.name] = planning::footstep::action_kind_name(a.kind);
   const double t = walker.time_s();
   const auto& heights = nav.map().heights();
   if (heights_.empty() || !same_heights(heights_.back().heights, heights))
@@ -63,7 +64,7 @@ void FootstepReplayRecorder::record(const sim::HumanoidWalker& walker, const nav
   } else {
     f.state = "ACTIVE";
     f.active_node = kind_of(d.action->name);
-    const footstep::FootstepPlan& plan = nav.plan();
+    const planning::footstep::FootstepPlan& plan = nav.plan();
     for (std::size_t j = nav.plan_cursor(); j < plan.steps.size(); ++j)
       f.plan.push_back(
           replay_foot(plan.steps[j], t, j > 0 && j - 1 < plan.actions.size() ? kind_of(plan.actions[j - 1]) : ""));

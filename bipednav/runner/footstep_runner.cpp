@@ -80,9 +80,10 @@ struct Loop {
     nav.observe(views, walker.T_odom_base());
   }
 
-  void record(const sim::StepExecution& e, const footstep::FootstepAction& a, bool replanned) {
+  void record(const sim::StepExecution& e, const planning::footstep::FootstepAction& a, bool replanned) {
     const Pose2 before = out.steps.empty() ? scenario.start : out.steps.back().body;
-    const footstep::Footstep est = nav.to_map(walker.odom_stance()), est_other = nav.to_map(walker.odom_swing());
+    const planning::footstep::Footstep est = nav.to_map(walker.odom_stance()),
+                                       est_other = nav.to_map(walker.odom_swing());
     ExecutedStep s{walker.time_s(),
                    e.landed,
                    a.name,
@@ -122,7 +123,7 @@ struct Loop {
         bar.finish();
         return d.result;
       }
-      const footstep::Footstep stance = nav.to_map(walker.odom_stance());
+      const planning::footstep::Footstep stance = nav.to_map(walker.odom_stance());
       const sim::StepExecution e =
           walker.step({stance.pose.inverse() * d.target.pose, d.action->duration_s, d.action->peak_m, d.action->name});
       record(e, *d.action, d.replanned);
@@ -175,7 +176,7 @@ FootstepRunResult run_footstep_scenario(const sim::Scenario& scenario, const Foo
   }
   r.replans = loop.nav.plans() > 0 ? loop.nav.plans() - 1 : 0;
   const Pose2 body = loop.walker.body_pose();
-  const footstep::Footstep est = loop.nav.to_map(loop.walker.odom_stance());
+  const planning::footstep::Footstep est = loop.nav.to_map(loop.walker.odom_stance());
   r.localization_error_m = distance(sim::body_between(est.pose, loop.nav.to_map(loop.walker.odom_swing()).pose), body);
   r.goal_error_m = distance(out.goal, body);
   r.goal_error_rad = std::abs(angle_diff(out.goal.theta, body.theta));
@@ -190,7 +191,7 @@ void write_footstep_figure(const std::filesystem::path& file, const FootstepRunR
   viz::Canvas c(footstep_canvas(run.map.geometry(), true));
   const HeightRange heights = draw_heightmap(c, run.map);
   draw_footsteps(c, run.body, run.last_plan.steps, run.last_plan.actions, 0.08, 0.7);
-  std::vector<footstep::Footstep> feet = run.start_feet;
+  std::vector<planning::footstep::Footstep> feet = run.start_feet;
   std::vector<std::string> actions = {""};
   for (const auto& s : run.steps) feet.push_back(s.foot), actions.push_back(s.action);
   draw_footsteps(c, run.body, feet, actions);

@@ -41,7 +41,7 @@ struct FootstepRunOptions {
 // One executed step (ground truth, and the navigator's estimate of the body).
 struct ExecutedStep {
   double t_s = 0.0;
-  footstep::Footstep foot;  // where the swing foot really landed
+  planning::footstep::Footstep foot;  // where the swing foot really landed
   std::string action;
   Pose2 body, estimated_body;
   Pose2 odometry_body;    // the body from the leg odometry alone (its frame is the world at the start)
@@ -51,13 +51,13 @@ struct ExecutedStep {
 
 struct FootstepRunResult {
   RunResult summary;  // the fields shared with the wheeled runs (no snapshots)
-  std::vector<footstep::Footstep> start_feet;
+  std::vector<planning::footstep::Footstep> start_feet;
   std::vector<ExecutedStep> steps;
-  footstep::FootstepPlan first_plan, last_plan;
+  planning::footstep::FootstepPlan first_plan, last_plan;
   std::vector<sim::BodyContact> contacts;  // ground-truth whole-body collisions
   Twist first_contact_velocity;            // the body's mean velocity over the step of the first contact
   mapping::Heightmap map;                  // the navigator's heightmap at the end
-  footstep::BodyModel body;
+  planning::footstep::BodyModel body;
   Pose2 start, goal;
   double max_body_z_m = 0.0;
   std::size_t views = 0, corrections = 0;

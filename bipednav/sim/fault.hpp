@@ -3,10 +3,7 @@
 #include <string>
 
 #include "bipednav/common/pose2.hpp"
-
-namespace bipednav::io {
-class ParamReader;
-}
+#include "bipednav/io/param_reader.hpp"
 
 namespace bipednav::sim {
 

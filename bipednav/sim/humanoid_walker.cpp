@@ -136,7 +136,7 @@ StepExecution HumanoidWalker::step(const StepCommand& cmd) {
   // of the planner's previous action), then on to the landing pose (this action's downward
   // phase), and drops onto the terrain. A trailing foot higher than the stance foot (on the step
   // the stance foot came down from) stays that much higher on the way to the landing
-  // (footstep::build_inverse_heightmap's swing lift) rather than dropping at the via point.
+  // (planning::footstep::build_inverse_heightmap's swing lift) rather than dropping at the via point.
   const double half = cmd.duration_s / 2.0;
   // The body is checked above the sole that supported it in the planner's model of each phase.
   sweep({sw.pose, via, sw.z_m + std::max(last_peak_m_, cmd.peak_m), sw.z_m}, st.pose, time_s_, half, out);

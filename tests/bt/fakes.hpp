@@ -13,8 +13,8 @@
 namespace bipednav::bt::test {
 
 struct ActionScript {
-  int running_ticks = 0;                // ticks returning RUNNING before the result
-  BtStatus result = BtStatus::SUCCESS;  // returned afterwards
+  int running_ticks = 0;            // ticks returning RUNNING before the result
+  Status result = Status::SUCCESS;  // returned afterwards
 };
 
 struct Harness {
@@ -29,17 +29,17 @@ struct Harness {
   }
 };
 
-class ScriptedAction final : public BtStatefulAction {
+class ScriptedAction final : public StatefulAction {
  public:
-  ScriptedAction(const BtNodeConfig& cfg, Harness& h) : BtStatefulAction(cfg), h_(h) {}
+  ScriptedAction(const NodeConfig& cfg, Harness& h) : StatefulAction(cfg), h_(h) {}
 
  protected:
-  BtStatus on_start(double) override {
+  Status on_start(double) override {
     h_.log.push_back("start " + name());
     left_ = script().running_ticks;
     return step();
   }
-  BtStatus on_running(double) override {
+  Status on_running(double) override {
     h_.log.push_back("run " + name());
     return step();
   }
@@ -50,7 +50,7 @@ class ScriptedAction final : public BtStatefulAction {
     const auto it = h_.actions.find(name());
     return it == h_.actions.end() ? ActionScript{} : it->second;
   }
-  BtStatus step() { return left_-- > 0 ? BtStatus::RUNNING : script().result; }
+  Status step() { return left_-- > 0 ? Status::RUNNING : script().result; }
 
   Harness& h_;
   int left_ = 0;
@@ -59,26 +59,26 @@ class ScriptedAction final : public BtStatefulAction {
 // Registers "Cond" (condition) and "Act" (action), both without ports, plus "Writer"
 // (writes its literal input `value` as a double to output `out`) and "Reader" (SUCCESS
 // when its input `in` equals `expect`).
-inline BtFactory make_test_factory(Harness& h) {
-  BtFactory f;
-  f.register_simple_condition("Cond", [&h](BtNode& self, double) {
+inline Factory make_test_factory(Harness& h) {
+  Factory f;
+  f.register_simple_condition("Cond", [&h](Node& self, double) {
     h.log.push_back("check " + self.name());
     const auto it = h.conditions.find(self.name());
     return it == h.conditions.end() || it->second;
   });
-  f.register_action("Act", [&h](const BtNodeConfig& cfg) { return std::make_unique<ScriptedAction>(cfg, h); });
+  f.register_action("Act", [&h](const NodeConfig& cfg) { return std::make_unique<ScriptedAction>(cfg, h); });
   f.register_simple_condition("Writer",
-                              [](BtNode& self, double) {
+                              [](Node& self, double) {
                                 self.set_output("out", self.input<double>("value"));
                                 return true;
                               },
-                              {BtPortSpec::input("value", BtType::Double), BtPortSpec::output("out", BtType::Double)});
+                              {PortSpec::input("value", BtType::Double), PortSpec::output("out", BtType::Double)});
   f.register_simple_condition("Reader",
-                              [](BtNode& self, double) {
+                              [](Node& self, double) {
                                 const auto v = self.get_input<double>("in");
                                 return v && *v == self.input<double>("expect");
                               },
-                              {BtPortSpec::input("in", BtType::Double), BtPortSpec::input("expect", BtType::Double)});
+                              {PortSpec::input("in", BtType::Double), PortSpec::input("expect", BtType::Double)});
   return f;
 }
 

@@ -71,28 +71,28 @@ constexpr const char* kSubtreeXml = R"(<root BTCPP_format="4" main_tree_to_execu
 
 TEST(BtSubTree, ExplicitRemappingAutoremapAndIsolation) {
   Harness h;
-  const BtFactory f = make_test_factory(h);
+  const Factory f = make_test_factory(h);
   auto tree = load_tree_xml(kSubtreeXml, f);
-  EXPECT_EQ(tree.tick(0.0), BtStatus::SUCCESS);
+  EXPECT_EQ(tree.tick(0.0), Status::SUCCESS);
   EXPECT_EQ(tree.blackboard()->get<double>("result"), 2.5);  // written through the remapped port
   EXPECT_EQ(tree.blackboard()->get<double>("shared"), 7.0);  // autoremap writes to the parent
   EXPECT_FALSE(tree.blackboard()->has("out"));               // the subtree's own key stays inside
   EXPECT_FALSE(tree.blackboard()->has("value"));
   ASSERT_NE(tree.find("Main/Sequence/Produce/Writer"), nullptr);
-  EXPECT_EQ(tree.find("Main/Sequence/Produce")->kind(), BtNodeKind::SubTree);
+  EXPECT_EQ(tree.find("Main/Sequence/Produce")->kind(), NodeKind::SubTree);
   EXPECT_NE(tree.find("Main/Sequence/Consume/Sequence/Writer"), nullptr);
 }
 
 TEST(BtSubTree, SameSubtreeTwiceGetsSeparateInstancesAndPaths) {
   Harness h;
-  const BtFactory f = make_test_factory(h);
+  const Factory f = make_test_factory(h);
   auto tree = load_tree_xml(R"(<root BTCPP_format="4" main_tree_to_execute="Main">
     <BehaviorTree ID="Main"><Sequence>
       <SubTree ID="W" out="{a}" v="1"/><SubTree ID="W" out="{b}" v="2"/>
     </Sequence></BehaviorTree>
     <BehaviorTree ID="W"><Writer value="{v}" out="{out}"/></BehaviorTree></root>)",
                             f);
-  EXPECT_EQ(tree.tick(0.0), BtStatus::SUCCESS);
+  EXPECT_EQ(tree.tick(0.0), Status::SUCCESS);
   EXPECT_EQ(tree.blackboard()->get<double>("a"), 1.0);
   EXPECT_EQ(tree.blackboard()->get<double>("b"), 2.0);
   EXPECT_NE(tree.find("Main/Sequence/W#1/Writer"), nullptr);
@@ -100,31 +100,31 @@ TEST(BtSubTree, SameSubtreeTwiceGetsSeparateInstancesAndPaths) {
 
 TEST(BtSubTree, GenericTagsAndSingleTreeWithoutMainAttribute) {
   Harness h;
-  const BtFactory f = make_test_factory(h);
+  const Factory f = make_test_factory(h);
   auto tree = load_tree_xml(R"(<root BTCPP_format="4"><BehaviorTree ID="Only">
       <Control ID="Sequence"><Condition ID="Cond" name="C"/><Action ID="Act" name="A"/></Control>
     </BehaviorTree></root>)",
                             f);
   EXPECT_EQ(tree.main_tree_id(), "Only");
-  EXPECT_EQ(tree.tick(0.0), BtStatus::SUCCESS);
+  EXPECT_EQ(tree.tick(0.0), Status::SUCCESS);
   EXPECT_EQ(h.count("check C"), 1);
   EXPECT_EQ(h.count("start A"), 1);
 }
 
 TEST(BtSubTree, InitialBlackboardIsTheRoot) {
   Harness h;
-  const BtFactory f = make_test_factory(h);
+  const Factory f = make_test_factory(h);
   auto bb = Blackboard::create();
   bb->set("x", 4.0);
   auto tree = load_tree_xml(test::one_tree(R"(<Reader in="{x}" expect="4"/>)"), f, bb);
-  EXPECT_EQ(tree.tick(0.0), BtStatus::SUCCESS);
+  EXPECT_EQ(tree.tick(0.0), Status::SUCCESS);
   bb->set("x", 5.0);
-  EXPECT_EQ(tree.tick(0.1), BtStatus::FAILURE);
+  EXPECT_EQ(tree.tick(0.1), Status::FAILURE);
 }
 
 TEST(BtSubTree, SetBlackboardAndGoalUpdated) {
   Harness h;
-  const BtFactory f = make_test_factory(h);
+  const Factory f = make_test_factory(h);
   auto bb = Blackboard::create();
   bb->set("goal", Pose2{1, 0, 0});
   auto tree = load_tree_xml(test::one_tree(R"(<Sequence>
@@ -133,13 +133,13 @@ TEST(BtSubTree, SetBlackboardAndGoalUpdated) {
       <Inverter><GoalUpdated/></Inverter>
     </Sequence>)"),
                             f, bb);
-  EXPECT_EQ(tree.tick(0.0), BtStatus::SUCCESS);
+  EXPECT_EQ(tree.tick(0.0), Status::SUCCESS);
   EXPECT_EQ(bb->get<Pose2>("active_goal")->x, 1.0);
   EXPECT_EQ(bb->get<std::string>("greeting"), "hello");
   auto check = load_tree_xml(test::one_tree("<GoalUpdated/>"), f, bb);
-  EXPECT_EQ(check.tick(0.0), BtStatus::FAILURE);
+  EXPECT_EQ(check.tick(0.0), Status::FAILURE);
   bb->set("goal", Pose2{2, 0, 0});
-  EXPECT_EQ(check.tick(0.1), BtStatus::SUCCESS);
+  EXPECT_EQ(check.tick(0.1), Status::SUCCESS);
 }
 
 }  // namespace

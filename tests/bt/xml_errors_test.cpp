@@ -17,10 +17,10 @@ using test::one_tree;
 // Loads `xml`, expects a FileError, and returns its message.
 std::string load_error(const std::string& xml) {
   Harness h;
-  BtFactory f = make_test_factory(h);
-  f.register_action("Move", [&h](const BtNodeConfig& c) { return std::make_unique<test::ScriptedAction>(c, h); },
-                    {BtPortSpec::input("speed_mps", BtType::Double), BtPortSpec::input("goal", BtType::Pose2, "0;0;0"),
-                     BtPortSpec::output("path", BtType::Path)});
+  Factory f = make_test_factory(h);
+  f.register_action("Move", [&h](const NodeConfig& c) { return std::make_unique<test::ScriptedAction>(c, h); },
+                    {PortSpec::input("speed_mps", BtType::Double), PortSpec::input("goal", BtType::Pose2, "0;0;0"),
+                     PortSpec::output("path", BtType::Path)});
   try {
     load_tree_xml(xml, f);
   } catch (const FileError& e) {
@@ -131,11 +131,11 @@ TEST(BtXmlErrors, FilesAreNamedInMessages) {
 }
 
 TEST(BtXmlErrors, FactoryRejectsDuplicatesAndReservedNames) {
-  BtFactory f;
-  auto build = [](const BtNodeConfig&) -> std::unique_ptr<BtNode> { return nullptr; };
+  Factory f;
+  auto build = [](const NodeConfig&) -> std::unique_ptr<Node> { return nullptr; };
   EXPECT_THROW(f.register_action("Sequence", build), Error);
   EXPECT_THROW(f.register_action("SubTree", build), Error);
-  EXPECT_THROW(f.register_action("X", build, {BtPortSpec::input("name", BtType::Any)}), Error);
+  EXPECT_THROW(f.register_action("X", build, {PortSpec::input("name", BtType::Any)}), Error);
   f.register_action("X", build);
   EXPECT_THROW(f.register_action("X", build), Error);
   // A builder that returns nothing is reported at load time.

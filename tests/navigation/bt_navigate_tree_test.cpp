@@ -44,20 +44,20 @@ struct FakeNav {
 };
 
 // An action that lasts `duration(self)` seconds of tree time.
-bt::BtLambdaAction::StepFn timed(FakeNav& n, std::string label, std::function<double(bt::BtNode&)> duration) {
-  return [&n, label, duration](bt::BtNode& self, double now_s, bool first) {
+bt::LambdaAction::StepFn timed(FakeNav& n, std::string label, std::function<double(bt::Node&)> duration) {
+  return [&n, label, duration](bt::Node& self, double now_s, bool first) {
     if (first) {
       n.log.push_back(label);
       n.started_s[self.path()] = now_s;
     }
-    return now_s - n.started_s[self.path()] + 1e-9 >= duration(self) ? bt::BtStatus::SUCCESS : bt::BtStatus::RUNNING;
+    return now_s - n.started_s[self.path()] + 1e-9 >= duration(self) ? bt::Status::SUCCESS : bt::Status::RUNNING;
   };
 }
 
-void bind_conditions(bt::BtFactory& f, FakeNav& n) {
+void bind_conditions(bt::Factory& f, FakeNav& n) {
   auto flag = [&f](const std::string& id, const bool* value) {
     f.register_simple_condition(
-        id, [value](bt::BtNode&, double) { return *value; }, bt_leaf_ports(id));
+        id, [value](bt::Node&, double) { return *value; }, bt_leaf_ports(id));
   };
   flag("SensorsAlive", &n.sensors_ok);
   flag("IsLocalizationHealthy", &n.localization_ok);
@@ -67,7 +67,7 @@ void bind_conditions(bt::BtFactory& f, FakeNav& n) {
   flag("GoalReached", &n.goal_reached);
   f.register_simple_condition(
       "PlanningRecoveryAllowed",
-      [&n](bt::BtNode&, double) {
+      [&n](bt::Node&, double) {
         if (n.planning_recoveries_left <= 0) return false;
         --n.planning_recoveries_left;
         return true;
@@ -75,17 +75,17 @@ void bind_conditions(bt::BtFactory& f, FakeNav& n) {
       bt_leaf_ports("PlanningRecoveryAllowed"));
   f.register_simple_condition(
       "IsGoalValid",
-      [&n](bt::BtNode& self, double) {
+      [&n](bt::Node& self, double) {
         if (!n.goal_ok) self.set_output("error_code", static_cast<int>(code(Outcome::BLOCKED_GOAL)));
         return n.goal_ok;
       },
       bt_leaf_ports("IsGoalValid"));
 }
 
-void bind_actions(bt::BtFactory& f, FakeNav& n) {
+void bind_actions(bt::Factory& f, FakeNav& n) {
   f.register_simple_action(
       "ComputePathToPose",
-      [&n](bt::BtNode& self, double, bool) {
+      [&n](bt::Node& self, double, bool) {
         const Pose2 goal = self.input<Pose2>("goal");
         n.planned_goals.push_back(goal);
         n.log.push_back("plan");
@@ -93,52 +93,52 @@ void bind_actions(bt::BtFactory& f, FakeNav& n) {
         if (!n.plan_results.empty()) n.plan_results.pop_front();
         if (!ok) {
           self.set_output("error_code", static_cast<int>(code(Outcome::NO_PATH_FOUND)));
-          return bt::BtStatus::FAILURE;
+          return bt::Status::FAILURE;
         }
         Path p;
         p.poses = {Pose2{}, goal};
         self.set_output("path", p);
-        return bt::BtStatus::SUCCESS;
+        return bt::Status::SUCCESS;
       },
       {}, bt_leaf_ports("ComputePathToPose"));
   f.register_simple_action(
       "FollowPath",
-      [&n](bt::BtNode& self, double, bool first) {
+      [&n](bt::Node& self, double, bool first) {
         if (first) {
           n.log.push_back("follow");
           n.follow_tick = 0;
         }
-        if (self.input<Path>("path").empty()) return bt::BtStatus::FAILURE;
+        if (self.input<Path>("path").empty()) return bt::Status::FAILURE;
         ++n.follow_tick;
         if (!n.follow_failure_codes.empty() && n.follow_tick == 3) {
           self.set_output("error_code", n.follow_failure_codes.front());
           n.follow_failure_codes.pop_front();
-          return bt::BtStatus::FAILURE;
+          return bt::Status::FAILURE;
         }
-        return n.follow_tick >= n.follow_ticks ? bt::BtStatus::SUCCESS : bt::BtStatus::RUNNING;
+        return n.follow_tick >= n.follow_ticks ? bt::Status::SUCCESS : bt::Status::RUNNING;
       },
-      [&n](bt::BtNode&) { n.log.push_back("halt FollowPath"); }, bt_leaf_ports("FollowPath"));
+      [&n](bt::Node&) { n.log.push_back("halt FollowPath"); }, bt_leaf_ports("FollowPath"));
   auto instant = [&f, &n](const std::string& id) {
-    f.register_simple_action(id, timed(n, id, [](bt::BtNode&) { return 0.0; }), {}, bt_leaf_ports(id));
+    f.register_simple_action(id, timed(n, id, [](bt::Node&) { return 0.0; }), {}, bt_leaf_ports(id));
   };
   instant("ClearCostmaps");
   instant("RelaxConstraints");
   instant("Stop");
   f.register_simple_action(
       "BackUp",
-      timed(n, "BackUp", [](bt::BtNode& s) { return s.input<double>("distance_m") / s.input<double>("speed_mps"); }),
-      [&n](bt::BtNode&) { n.log.push_back("halt BackUp"); }, bt_leaf_ports("BackUp"));
+      timed(n, "BackUp", [](bt::Node& s) { return s.input<double>("distance_m") / s.input<double>("speed_mps"); }),
+      [&n](bt::Node&) { n.log.push_back("halt BackUp"); }, bt_leaf_ports("BackUp"));
   f.register_simple_action(
-      "RotateInPlace", timed(n, "RotateInPlace", [](bt::BtNode& s) { return std::abs(s.input<double>("angle_rad")); }),
+      "RotateInPlace", timed(n, "RotateInPlace", [](bt::Node& s) { return std::abs(s.input<double>("angle_rad")); }),
       {}, bt_leaf_ports("RotateInPlace"));
   f.register_simple_action(
-      "Wait", timed(n, "Wait", [](bt::BtNode& s) { return s.input<double>("duration_s"); }),
-      [&n](bt::BtNode&) { n.log.push_back("halt Wait"); }, bt_leaf_ports("Wait"));
+      "Wait", timed(n, "Wait", [](bt::Node& s) { return s.input<double>("duration_s"); }),
+      [&n](bt::Node&) { n.log.push_back("halt Wait"); }, bt_leaf_ports("Wait"));
 }
 
 struct NavigateTreeTest : ::testing::Test {
   FakeNav nav;
-  bt::BtFactory factory;
+  bt::Factory factory;
   std::shared_ptr<bt::Blackboard> bb = bt::Blackboard::create();
   double t = 0.0;
   int step = 0;
@@ -153,9 +153,9 @@ struct NavigateTreeTest : ::testing::Test {
                              bb);
   }
   // Ticks at 10 Hz until the tree completes or `until_s`; `each` runs before every tick.
-  bt::BtStatus run(bt::BehaviorTree& tree, double until_s, const std::function<void(double)>& each = {}) {
-    bt::BtStatus s = bt::BtStatus::RUNNING;
-    while (s == bt::BtStatus::RUNNING && t <= until_s + 1e-9) {
+  bt::Status run(bt::BehaviorTree& tree, double until_s, const std::function<void(double)>& each = {}) {
+    bt::Status s = bt::Status::RUNNING;
+    while (s == bt::Status::RUNNING && t <= until_s + 1e-9) {
       if (each) each(t);
       s = tree.tick(t);
       t = ++step * 0.1;
@@ -177,11 +177,11 @@ TEST_F(NavigateTreeTest, AllLeavesAreDeclaredAndBound) {
 TEST_F(NavigateTreeTest, NormalRunReplansAlongsideControlAndStops) {
   auto tree = load();
   std::vector<std::string> running;
-  const bt::BtStatus s = run(tree, 30.0, [&](double now) {
+  const bt::Status s = run(tree, 30.0, [&](double now) {
     if (std::abs(now - 1.0) < 1e-6)
-      for (const bt::BtNode* n : tree.running_leaves()) running.push_back(n->name());
+      for (const bt::Node* n : tree.running_leaves()) running.push_back(n->name());
   });
-  EXPECT_EQ(s, bt::BtStatus::SUCCESS);
+  EXPECT_EQ(s, bt::Status::SUCCESS);
   EXPECT_NEAR(t, 2.0, 1e-9);  // FollowPath's 20th tick at 1.9 s
   EXPECT_EQ(nav.count("follow"), 1);
   EXPECT_EQ(nav.count("plan"), 1 + 10);  // initial plan + replans at 0, 0.2, ..., 1.8 s
@@ -196,7 +196,7 @@ TEST_F(NavigateTreeTest, PlanningFailureCyclesRecoveriesThenFailsWithNoPath) {
   nav.plan_ok = false;
   nav.can_rotate = false;
   auto tree = load();
-  EXPECT_EQ(run(tree, 60.0), bt::BtStatus::FAILURE);
+  EXPECT_EQ(run(tree, 60.0), bt::Status::FAILURE);
   EXPECT_EQ(nav.count("plan"), 5);  // 1 + number_of_retries
   const std::vector<std::string> expected = {"ClearCostmaps", "RelaxConstraints", "BackUp", "Wait"};
   EXPECT_EQ(nav.recoveries(), expected);  // no RotateInPlace: the robot may not turn in place
@@ -208,7 +208,7 @@ TEST_F(NavigateTreeTest, PlanningFailureCyclesRecoveriesThenFailsWithNoPath) {
 TEST_F(NavigateTreeTest, PlanningRecoveriesRotateWhereAllowed) {
   nav.plan_ok = false;
   auto tree = load();
-  EXPECT_EQ(run(tree, 60.0), bt::BtStatus::FAILURE);
+  EXPECT_EQ(run(tree, 60.0), bt::Status::FAILURE);
   const std::vector<std::string> expected = {"ClearCostmaps", "RelaxConstraints", "RotateInPlace", "BackUp"};
   EXPECT_EQ(nav.recoveries(), expected);
 }
@@ -217,7 +217,7 @@ TEST_F(NavigateTreeTest, PlanningRecoveriesStopWhenTheGoalsBudgetIsSpent) {
   nav.plan_ok = false;
   nav.planning_recoveries_left = 2;
   auto tree = load();
-  EXPECT_EQ(run(tree, 60.0), bt::BtStatus::FAILURE);
+  EXPECT_EQ(run(tree, 60.0), bt::Status::FAILURE);
   EXPECT_EQ(nav.count("plan"), 3);
   const std::vector<std::string> expected = {"ClearCostmaps", "RelaxConstraints"};
   EXPECT_EQ(nav.recoveries(), expected);
@@ -234,7 +234,7 @@ TEST_F(NavigateTreeTest, PlanningRecoveryBudgetSpansTheNavigation) {
   auto tree = load();
   nav.plan_results = {false, true};
   nav.plan_ok = false;
-  EXPECT_EQ(run(tree, 200.0), bt::BtStatus::FAILURE);
+  EXPECT_EQ(run(tree, 200.0), bt::Status::FAILURE);
   // Planning (1), the four control recoveries, then Replanning's own round robin (2).
   const std::vector<std::string> expected = {"ClearCostmaps", "ClearCostmaps",   "Wait", "BackUp", "RotateInPlace",
                                              "ClearCostmaps", "RelaxConstraints"};
@@ -253,7 +253,7 @@ TEST_F(NavigateTreeTest, FailedReplansOnAnInvalidPathSpendThePlanningBudget) {
   nav.plan_ok = false;
   nav.path_valid = false;
   auto tree = load();
-  EXPECT_EQ(run(tree, 200.0), bt::BtStatus::FAILURE);
+  EXPECT_EQ(run(tree, 200.0), bt::Status::FAILURE);
   const std::vector<std::string> expected = {"ClearCostmaps", "Wait", "BackUp", "RotateInPlace"};
   EXPECT_EQ(nav.recoveries(), expected);
   EXPECT_EQ(nav.planning_recoveries_left, 0);
@@ -264,7 +264,7 @@ TEST_F(NavigateTreeTest, FailedReplansOnAnInvalidPathSpendThePlanningBudget) {
 TEST_F(NavigateTreeTest, ControlFailureRecoversAndSucceeds) {
   nav.follow_failure_codes = {code(Outcome::BLOCKED_PATH)};
   auto tree = load();
-  EXPECT_EQ(run(tree, 30.0), bt::BtStatus::SUCCESS);
+  EXPECT_EQ(run(tree, 30.0), bt::Status::SUCCESS);
   EXPECT_EQ(nav.count("follow"), 2);
   EXPECT_EQ(nav.recoveries(), std::vector<std::string>{"ClearCostmaps"});
   EXPECT_EQ(error_code(), code(Outcome::BLOCKED_PATH));  // the last controller failure, for the log
@@ -274,7 +274,7 @@ TEST_F(NavigateTreeTest, ControlFailureRecoversAndSucceeds) {
 TEST_F(NavigateTreeTest, ExhaustedControlRecoveriesRerunPlanning) {
   nav.follow_failure_codes = std::deque<int>(5, code(Outcome::ROBOT_STUCK));
   auto tree = load();
-  EXPECT_EQ(run(tree, 120.0), bt::BtStatus::SUCCESS);
+  EXPECT_EQ(run(tree, 120.0), bt::Status::SUCCESS);
   EXPECT_EQ(nav.count("follow"), 6);
   const std::vector<std::string> expected = {"ClearCostmaps", "Wait", "BackUp", "RotateInPlace"};
   EXPECT_EQ(nav.recoveries(), expected);
@@ -287,10 +287,10 @@ TEST_F(NavigateTreeTest, NewGoalPreemptsAndIsReached) {
   nav.follow_ticks = 30;
   auto tree = load();
   const Pose2 new_goal{5.0, 5.0, 1.0};
-  const bt::BtStatus s = run(tree, 30.0, [&](double now) {
+  const bt::Status s = run(tree, 30.0, [&](double now) {
     if (std::abs(now - 1.0) < 1e-6) bb->set("goal", new_goal);
   });
-  EXPECT_EQ(s, bt::BtStatus::SUCCESS);
+  EXPECT_EQ(s, bt::Status::SUCCESS);
   EXPECT_EQ(nav.count("halt FollowPath"), 1);
   EXPECT_EQ(nav.count("follow"), 2);
   EXPECT_EQ(bb->get<Pose2>("active_goal")->x, 5.0);
@@ -302,7 +302,7 @@ TEST_F(NavigateTreeTest, NewGoalPreemptsAndIsReached) {
 TEST_F(NavigateTreeTest, GoalReachedEndsControlEarly) {
   nav.follow_ticks = 1000;
   auto tree = load();
-  EXPECT_EQ(run(tree, 30.0, [&](double now) { nav.goal_reached = now > 1.45; }), bt::BtStatus::SUCCESS);
+  EXPECT_EQ(run(tree, 30.0, [&](double now) { nav.goal_reached = now > 1.45; }), bt::Status::SUCCESS);
   EXPECT_EQ(nav.count("halt FollowPath"), 1);
   EXPECT_EQ(nav.log.back(), "Stop");
 }
@@ -310,7 +310,7 @@ TEST_F(NavigateTreeTest, GoalReachedEndsControlEarly) {
 TEST_F(NavigateTreeTest, BlockedGoalFailsAfterValidationRecoveries) {
   nav.goal_ok = false;
   auto tree = load();
-  EXPECT_EQ(run(tree, 30.0), bt::BtStatus::FAILURE);
+  EXPECT_EQ(run(tree, 30.0), bt::Status::FAILURE);
   EXPECT_EQ(error_code(), code(Outcome::BLOCKED_GOAL));
   EXPECT_EQ(nav.recoveries(), (std::vector<std::string>{"ClearCostmaps", "BackUp"}));
   EXPECT_EQ(nav.count("plan"), 0);
@@ -319,8 +319,8 @@ TEST_F(NavigateTreeTest, BlockedGoalFailsAfterValidationRecoveries) {
 
 TEST_F(NavigateTreeTest, SilentSensorsStopTheRobotAndNavigationResumes) {
   auto tree = load();
-  const bt::BtStatus s = run(tree, 30.0, [&](double now) { nav.sensors_ok = !(now > 0.95 && now < 1.55); });
-  EXPECT_EQ(s, bt::BtStatus::SUCCESS);
+  const bt::Status s = run(tree, 30.0, [&](double now) { nav.sensors_ok = !(now > 0.95 && now < 1.55); });
+  EXPECT_EQ(s, bt::Status::SUCCESS);
   EXPECT_EQ(nav.count("halt FollowPath"), 1);
   EXPECT_TRUE(nav.recoveries().empty());  // the gate waits for health on a timer, not a recovery
   EXPECT_EQ(nav.count("follow"), 2);      // restarted with a fresh plan
@@ -332,17 +332,17 @@ TEST_F(NavigateTreeTest, SilentSensorsStopTheRobotAndNavigationResumes) {
 
 TEST_F(NavigateTreeTest, BadLocalizationForTooLongFails) {
   auto tree = load();
-  EXPECT_EQ(run(tree, 30.0, [&](double now) { nav.localization_ok = now < 0.5; }), bt::BtStatus::FAILURE);
+  EXPECT_EQ(run(tree, 30.0, [&](double now) { nav.localization_ok = now < 0.5; }), bt::Status::FAILURE);
   EXPECT_NEAR(t, 0.5 + 10.0 + 0.1, 1e-9);  // the safety gate waits 10 s for health to return
   EXPECT_EQ(nav.log.back(), "Stop");
 }
 
 TEST(BtXmlErrors, MutatedDefaultTreeNeverCrashes) {
   bt::test::Harness h;
-  bt::BtFactory f;
+  bt::Factory f;
   for (const auto& spec : navigation_leaf_specs())
     f.register_action(
-        spec.id, [&h](const bt::BtNodeConfig& c) { return std::make_unique<bt::test::ScriptedAction>(c, h); },
+        spec.id, [&h](const bt::NodeConfig& c) { return std::make_unique<bt::test::ScriptedAction>(c, h); },
         spec.ports);
   std::ifstream in(bipednav::test::source_dir() / "config/behavior_trees/navigate.xml");
   std::stringstream ss;

@@ -16,7 +16,7 @@ FootstepNavigatorParams params() {
 }
 
 // Executes every decision perfectly (the landed foot is the target) until the navigator stops.
-std::pair<StepDecision, int> walk(FootstepNavigator& nav, footstep::Footstep stance, int max_steps = 200) {
+std::pair<StepDecision, int> walk(FootstepNavigator& nav, planning::footstep::Footstep stance, int max_steps = 200) {
   for (int i = 0; i < max_steps; ++i) {
     const StepDecision d = nav.next(stance);
     if (d.done) return {d, i};
@@ -39,7 +39,7 @@ DepthView slab(double x0, double x1, double y0, double y1, double z) {
 
 TEST(FootstepNavigator, WithoutAGoalThereIsNothingToDo) {
   FootstepNavigator nav(params(), grid());
-  const StepDecision d = nav.next({{0, 0.05, 0}, 0.0, footstep::Foot::kLeft});
+  const StepDecision d = nav.next({{0, 0.05, 0}, 0.0, planning::footstep::Foot::kLeft});
   EXPECT_TRUE(d.done);
   EXPECT_EQ(d.result.outcome, Outcome::INVALID_GOAL);
 }
@@ -47,7 +47,7 @@ TEST(FootstepNavigator, WithoutAGoalThereIsNothingToDo) {
 TEST(FootstepNavigator, UnknownGroundIsFreeAndTheGoalIsReached) {
   FootstepNavigator nav(params(), grid());
   nav.set_goal({0.6, 0.0, 0.0});
-  const auto [d, steps] = walk(nav, nav.planner().stance_for_body({0, 0, 0}, footstep::Foot::kLeft));
+  const auto [d, steps] = walk(nav, nav.planner().stance_for_body({0, 0, 0}, planning::footstep::Foot::kLeft));
   EXPECT_EQ(d.result.outcome, Outcome::SUCCESS) << d.result.message;
   EXPECT_GE(steps, 6);  // 0.6 m at <= 0.08 m per step and foot
   EXPECT_EQ(nav.plans(), 1u);
@@ -56,7 +56,7 @@ TEST(FootstepNavigator, UnknownGroundIsFreeAndTheGoalIsReached) {
 TEST(FootstepNavigator, AnObservedWallForcesAReplanAroundIt) {
   FootstepNavigator nav(params(), grid());
   nav.set_goal({1.0, 0.0, 0.0});
-  footstep::Footstep stance = nav.planner().stance_for_body({0, 0, 0}, footstep::Foot::kLeft);
+  planning::footstep::Footstep stance = nav.planner().stance_for_body({0, 0, 0}, planning::footstep::Foot::kLeft);
   StepDecision d = nav.next(stance);
   ASSERT_FALSE(d.done);
   stance = d.target;
@@ -75,7 +75,7 @@ TEST(FootstepNavigator, AGoalOnAnObstacleIsBlocked) {
   FootstepNavigator nav(params(), grid());
   nav.observe({slab(0.9, 1.1, -0.2, 0.2, 0.3), slab(0.85, 0.9, -0.2, 0.2, 0.0)}, SE3::Identity());
   nav.set_goal({0.9, 0.0, 0.0});  // half on the block, half on the floor: no flat stance
-  const StepDecision d = nav.next(nav.planner().stance_for_body({0, 0, 0}, footstep::Foot::kLeft));
+  const StepDecision d = nav.next(nav.planner().stance_for_body({0, 0, 0}, planning::footstep::Foot::kLeft));
   EXPECT_TRUE(d.done);
   EXPECT_EQ(d.result.outcome, Outcome::BLOCKED_GOAL) << d.result.message;
 }
@@ -90,8 +90,9 @@ TEST(FootstepNavigator, WithoutAPathItTakesBoundedCorrectiveStepsThenGivesUp) {
     FootstepNavigator nav(p, grid());
     nav.observe(ring, SE3::Identity());
     nav.set_goal({1.0, 0.0, 0.0});
-    const footstep::Footstep start = nav.planner().stance_for_body({0, 0, 0}, footstep::Foot::kLeft);
-    footstep::Footstep stance = start;
+    const planning::footstep::Footstep start =
+        nav.planner().stance_for_body({0, 0, 0}, planning::footstep::Foot::kLeft);
+    planning::footstep::Footstep stance = start;
     int steps = 0;
     StepDecision d;
     for (; steps < 10; ++steps) {

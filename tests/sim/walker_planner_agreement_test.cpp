@@ -36,22 +36,24 @@ mapping::Heightmap corridor(bool estimated) {
   return m;
 }
 
-footstep::FootstepPlanner planner(double occlusion_rise_m) {
-  footstep::FootstepPlannerParams p;
+planning::footstep::FootstepPlanner planner(double occlusion_rise_m) {
+  planning::footstep::FootstepPlannerParams p;
   p.robot = "nao";
   p.occlusion_rise_m = occlusion_rise_m;
-  return footstep::FootstepPlanner(p);
+  return planning::footstep::FootstepPlanner(p);
 }
 
-std::optional<footstep::Footstep> landing(const footstep::FootstepPlanner& pl, const mapping::Heightmap& map,
-                                          const footstep::Footstep& from, const std::string& action) {
+std::optional<planning::footstep::Footstep> landing(const planning::footstep::FootstepPlanner& pl,
+                                                    const mapping::Heightmap& map,
+                                                    const planning::footstep::Footstep& from,
+                                                    const std::string& action) {
   for (const auto& [name, f] : pl.safe_steps(map, from))
     if (name == action) return f;
   return std::nullopt;
 }
 
 // The right stance foot of the run's plan (lattice pose, map frame) before back_turn_out.
-const footstep::Footstep kStance{{1.4850, 0.2250, -0.7854}, 0.10, footstep::Foot::kRight};
+const planning::footstep::Footstep kStance{{1.4850, 0.2250, -0.7854}, 0.10, planning::footstep::Foot::kRight};
 
 TEST(WalkerPlannerAgreement, ArmIntoTheWallIsAMapErrorNotACheckDisagreement) {
   const auto est = corridor(true), truth = corridor(false);

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numbers>
 
-namespace bipednav::footstep {
+namespace bipednav::planning::footstep {
 
 const char* action_kind_name(ActionKind k) {
   switch (k) {
@@ -135,4 +135,4 @@ ActionSet action_set_for(const std::string& robot) {
   throw ParamError("robot", "a footstep robot profile: nao or digit (got '" + robot + "')");
 }
 
-}  // namespace bipednav::footstep
+}  // namespace bipednav::planning::footstep

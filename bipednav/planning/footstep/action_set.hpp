@@ -6,7 +6,7 @@
 #include "bipednav/common/biped.hpp"
 #include "bipednav/common/error.hpp"
 
-namespace bipednav::footstep {
+namespace bipednav::planning::footstep {
 
 enum class ActionKind { kPlanar, kTStep, kStepOver, kStepOnto, kStepDown };
 
@@ -58,4 +58,4 @@ ActionSet planar_only(const ActionSet& set);
 // By robot profile name: "nao" or "digit".
 ActionSet action_set_for(const std::string& robot);
 
-}  // namespace bipednav::footstep
+}  // namespace bipednav::planning::footstep

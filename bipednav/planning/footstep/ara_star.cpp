@@ -9,7 +9,7 @@
 
 #include "bipednav/common/error.hpp"
 
-namespace bipednav::footstep {
+namespace bipednav::planning::footstep {
 
 const char* search_clock_name(SearchClockKind k) { return k == SearchClockKind::kThreadCpu ? "thread_cpu" : "wall"; }
 
@@ -260,4 +260,4 @@ AraStarResult ara_star(SearchGraph& graph, const AraStarParams& params) {
   return search.run();
 }
 
-}  // namespace bipednav::footstep
+}  // namespace bipednav::planning::footstep

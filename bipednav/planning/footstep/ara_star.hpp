@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace bipednav::footstep {
+namespace bipednav::planning::footstep {
 
 // The implicit graph ARA* searches. States are dense ids handed out by the graph.
 class SearchGraph {
@@ -85,4 +85,4 @@ struct AraStarResult {
 // its search effort (INCONS list) while epsilon decreases to 1 within the time limit.
 AraStarResult ara_star(SearchGraph& graph, const AraStarParams& params);
 
-}  // namespace bipednav::footstep
+}  // namespace bipednav::planning::footstep

@@ -6,7 +6,7 @@
 #include <memory>
 #include <numbers>
 
-namespace bipednav::footstep {
+namespace bipednav::planning::footstep {
 
 ActionLattice::ActionLattice(const ActionSet& actions, double res, int theta_bins, double landing_margin_m)
     : actions_(actions), res_(res), bins_(theta_bins), margin_m_(landing_margin_m) {
@@ -319,4 +319,4 @@ bool FootstepGraph::is_goal(std::int32_t s) {
   return goal != 0;
 }
 
-}  // namespace bipednav::footstep
+}  // namespace bipednav::planning::footstep

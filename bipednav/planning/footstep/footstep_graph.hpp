@@ -8,7 +8,7 @@
 #include "bipednav/planning/footstep/heuristics.hpp"
 #include "bipednav/planning/footstep/inverse_heightmap.hpp"
 
-namespace bipednav::footstep {
+namespace bipednav::planning::footstep {
 
 // Precomputed, position-independent lattice data of an action set: for each stance foot,
 // action and stance heading bin, the lattice displacement of the landing foot and its aligned
@@ -167,4 +167,4 @@ class FootstepGraph : public SearchGraph {
   double min_duration_s_ = 0.0;
 };
 
-}  // namespace bipednav::footstep
+}  // namespace bipednav::planning::footstep

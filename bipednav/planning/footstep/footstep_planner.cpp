@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-namespace bipednav::footstep {
+namespace bipednav::planning::footstep {
 
 void FootstepPlannerParams::validate() const {
   require(robot == "nao" || robot == "digit", "robot", "nao or digit");
@@ -146,4 +146,4 @@ std::vector<std::pair<std::string, Footstep>> FootstepPlanner::safe_steps(const 
   return out;
 }
 
-}  // namespace bipednav::footstep
+}  // namespace bipednav::planning::footstep

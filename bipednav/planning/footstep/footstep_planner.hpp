@@ -10,7 +10,7 @@
 #include "bipednav/planning/footstep/ara_star.hpp"
 #include "bipednav/planning/footstep/footstep_graph.hpp"
 
-namespace bipednav::footstep {
+namespace bipednav::planning::footstep {
 
 struct FootstepPlannerParams {
   std::string robot = "nao";           // action set: nao | digit
@@ -95,4 +95,4 @@ class FootstepPlanner {
   std::unique_ptr<ActionLattice> lattice_;
 };
 
-}  // namespace bipednav::footstep
+}  // namespace bipednav::planning::footstep

@@ -4,7 +4,7 @@
 
 #include "bipednav/common/biped.hpp"
 
-namespace bipednav::footstep {
+namespace bipednav::planning::footstep {
 
 // The walking body's feet (common/biped.hpp), named in the planner's namespace.
 using bipednav::Foot;
@@ -28,4 +28,4 @@ struct StateKey {
   }
 };
 
-}  // namespace bipednav::footstep
+}  // namespace bipednav::planning::footstep

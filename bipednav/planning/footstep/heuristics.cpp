@@ -8,7 +8,7 @@
 
 #include "bipednav/planning/footstep/octile.hpp"
 
-namespace bipednav::footstep {
+namespace bipednav::planning::footstep {
 
 EuclideanHeuristic::EuclideanHeuristic(const Pose2& goal, double tolerance_m, double v_max_mps)
     : goal_(goal), tolerance_m_(tolerance_m), v_max_(v_max_mps) {}
@@ -207,4 +207,4 @@ double DijkstraHeuristic::seconds_to_goal(double x, double y) const {
   return std::max(0.0, std::max(d - slack, straight) - tolerance_m_) / v_max_;
 }
 
-}  // namespace bipednav::footstep
+}  // namespace bipednav::planning::footstep

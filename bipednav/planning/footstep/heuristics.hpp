@@ -7,7 +7,7 @@
 #include "bipednav/planning/footstep/action_set.hpp"
 #include "bipednav/planning/footstep/terrain_grid.hpp"
 
-namespace bipednav::footstep {
+namespace bipednav::planning::footstep {
 
 // Remaining travel time estimates h(s) = d(s) / v_max (eq. 6), evaluated at the body centre.
 class Heuristic {
@@ -59,4 +59,4 @@ class DijkstraHeuristic : public Heuristic {
 enum class EdgeClass { kPlanar, kElevating, kImpassable };
 EdgeClass classify_edge(const TerrainGrid& t, int x0, int y0, int x1, int y1, const ActionSet& actions);
 
-}  // namespace bipednav::footstep
+}  // namespace bipednav::planning::footstep

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-namespace bipednav::footstep {
+namespace bipednav::planning::footstep {
 
 namespace {
 
@@ -141,4 +141,4 @@ std::vector<std::pair<std::int16_t, std::int16_t>> footprint_cells(const BodyMod
   return out;
 }
 
-}  // namespace bipednav::footstep
+}  // namespace bipednav::planning::footstep

@@ -7,7 +7,7 @@
 #include "bipednav/planning/footstep/action_set.hpp"
 #include "bipednav/planning/footstep/footstep_types.hpp"
 
-namespace bipednav::footstep {
+namespace bipednav::planning::footstep {
 
 // One cell of an inverse heightmap (section V-C): a lattice offset from the stance foot and
 // the lowest height, relative to the stance sole, that any body part reaches over it.
@@ -81,4 +81,4 @@ InverseHeightmap build_inverse_heightmap(const FootstepAction& action, const Bod
 std::vector<std::pair<std::int16_t, std::int16_t>> footprint_cells(const BodyModel& body, double theta, double res,
                                                                    double grow_m = 0.0);
 
-}  // namespace bipednav::footstep
+}  // namespace bipednav::planning::footstep

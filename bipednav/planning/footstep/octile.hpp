@@ -2,7 +2,7 @@
 
 #include <numbers>
 
-namespace bipednav::footstep {
+namespace bipednav::planning::footstep {
 
 // The 8-connected neighbourhood of the heuristics' grid graphs (0..3 orthogonal, 4..7 diagonal).
 inline constexpr int kOctileDx[8] = {1, -1, 0, 0, 1, 1, -1, -1};
@@ -17,4 +17,4 @@ inline double octile_step_m(int k, double res) {
   return (k < 4 ? res : res * std::numbers::sqrt2) * kOctileToEuclid;
 }
 
-}  // namespace bipednav::footstep
+}  // namespace bipednav::planning::footstep

@@ -6,7 +6,7 @@
 #include "bipednav/common/error.hpp"
 #include "bipednav/common/rng.hpp"
 
-namespace bipednav::footstep {
+namespace bipednav::planning::footstep {
 
 void TerrainGeneratorParams::validate() const {
   require(size_m > 0.2, "size_m", "> 0.2 m");
@@ -112,4 +112,4 @@ std::vector<PlanningProblem> random_problems(const mapping::Heightmap& map, cons
   return out;
 }
 
-}  // namespace bipednav::footstep
+}  // namespace bipednav::planning::footstep

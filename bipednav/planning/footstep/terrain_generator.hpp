@@ -7,7 +7,7 @@
 #include "bipednav/mapping/heightmap.hpp"
 #include "bipednav/planning/footstep/footstep_planner.hpp"
 
-namespace bipednav::footstep {
+namespace bipednav::planning::footstep {
 
 // Random cluttered heightmaps like those of the second reference's Table I: a flat floor with
 // bars (low and thin: stepped over), platforms (low and wide: stepped onto) and blocks (tall:
@@ -40,4 +40,4 @@ std::vector<PlanningProblem> random_problems(const mapping::Heightmap& map, cons
                                              std::size_t count, double min_dist_m, double max_dist_m,
                                              std::uint64_t seed);
 
-}  // namespace bipednav::footstep
+}  // namespace bipednav::planning::footstep

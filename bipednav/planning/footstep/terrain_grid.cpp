@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-namespace bipednav::footstep {
+namespace bipednav::planning::footstep {
 
 TerrainGrid::TerrainGrid(const mapping::Heightmap& map, double cell_m, double occlusion_rise_m) {
   const auto& g = map.geometry();
@@ -141,4 +141,4 @@ TerrainGrid::RangeSummary TerrainGrid::range(int x0, int y0, int x1, int y1) con
   return r;
 }
 
-}  // namespace bipednav::footstep
+}  // namespace bipednav::planning::footstep

@@ -5,7 +5,7 @@
 
 #include "bipednav/mapping/heightmap.hpp"
 
-namespace bipednav::footstep {
+namespace bipednav::planning::footstep {
 
 // The heightmap pooled onto the planner's lattice: per lattice cell the max, min and mean of
 // the known heightmap cells inside it. Cells with no known height are unknown, which the
@@ -63,4 +63,4 @@ class TerrainGrid {
   std::vector<Level> levels_;
 };
 
-}  // namespace bipednav::footstep
+}  // namespace bipednav::planning::footstep

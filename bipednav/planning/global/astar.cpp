@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-namespace bipednav::planning {
+namespace bipednav::planning::global {
 
 SearchOutcome AStar::search(const GridCostModel& model, std::size_t start, std::size_t goal, const Deadline& deadline) {
   const std::size_t n = model.size();
@@ -71,4 +71,4 @@ PlanResult AStarPlanner::plan(const mapping::Costmap2D& map, const Pose2& start,
   return out;
 }
 
-}  // namespace bipednav::planning
+}  // namespace bipednav::planning::global

@@ -8,7 +8,7 @@
 #include "bipednav/planning/global/indexed_heap.hpp"
 #include "bipednav/planning/global/search_types.hpp"
 
-namespace bipednav::planning {
+namespace bipednav::planning::global {
 
 // A* on the 8-connected grid with the GridCostModel's edge costs and octile heuristic. Keeps its
 // arrays between searches so repeated searches do not reallocate.
@@ -38,4 +38,4 @@ class AStarPlanner : public GlobalPlanner {
   AStar astar_;
 };
 
-}  // namespace bipednav::planning
+}  // namespace bipednav::planning::global

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace bipednav::planning {
+namespace bipednav::planning::global {
 
 Key DStarLite::calculate_key(std::size_t s, int x, int y) const {
   const Cost m = std::min(g_[s], rhs_[s]);
@@ -195,4 +195,4 @@ SearchOutcome DStarLite::extract_path() const {
   return out;
 }
 
-}  // namespace bipednav::planning
+}  // namespace bipednav::planning::global

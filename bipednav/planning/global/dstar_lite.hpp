@@ -7,7 +7,7 @@
 #include "bipednav/planning/global/indexed_heap.hpp"
 #include "bipednav/planning/global/search_types.hpp"
 
-namespace bipednav::planning {
+namespace bipednav::planning::global {
 
 // A cell whose cost changes to `cost`.
 struct CellUpdate {
@@ -75,4 +75,4 @@ class DStarLite {
   std::vector<Cost> old_costs_;
 };
 
-}  // namespace bipednav::planning
+}  // namespace bipednav::planning::global

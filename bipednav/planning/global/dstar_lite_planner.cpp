@@ -1,6 +1,6 @@
 #include "bipednav/planning/global/dstar_lite_planner.hpp"
 
-namespace bipednav::planning {
+namespace bipednav::planning::global {
 
 DStarLitePlanner::DStarLitePlanner(const GlobalPlannerParams& params) : params_(params), dstar_(params.cost) {
   params_.validate();
@@ -87,4 +87,4 @@ PlanResult DStarLitePlanner::plan(const mapping::Costmap2D& map, const Pose2& st
   return out;
 }
 
-}  // namespace bipednav::planning
+}  // namespace bipednav::planning::global

@@ -6,7 +6,7 @@
 #include "bipednav/planning/global/dstar_lite.hpp"
 #include "bipednav/planning/global/global_planner.hpp"
 
-namespace bipednav::planning {
+namespace bipednav::planning::global {
 
 // D* Lite behind the GlobalPlanner interface (Algorithm 4 spread over plan() calls): the first
 // call, a new goal or a new grid geometry (re)initialises the search; later calls move the start,
@@ -40,4 +40,4 @@ class DStarLitePlanner : public GlobalPlanner {
   std::vector<std::uint8_t> queued_;
 };
 
-}  // namespace bipednav::planning
+}  // namespace bipednav::planning::global

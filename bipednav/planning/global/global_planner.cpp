@@ -6,7 +6,7 @@
 
 #include "bipednav/common/error.hpp"
 
-namespace bipednav::planning {
+namespace bipednav::planning::global {
 
 void GlobalPlannerParams::validate() const {
   cost.validate();
@@ -172,4 +172,4 @@ void finish_plan(PlanResult& out, const SearchOutcome& search, const mapping::Gr
   for (const std::size_t c : search.cells) out.cells.push_back(geometry.cell_of(c));
 }
 
-}  // namespace bipednav::planning
+}  // namespace bipednav::planning::global

@@ -12,7 +12,7 @@
 #include "bipednav/planning/global/grid_cost_model.hpp"
 #include "bipednav/planning/global/search_types.hpp"
 
-namespace bipednav::planning {
+namespace bipednav::planning::global {
 
 struct GlobalPlannerParams {
   GridCostParams cost;
@@ -95,4 +95,4 @@ Path make_world_path(const mapping::GridGeometry& geometry, const std::vector<st
 void finish_plan(PlanResult& out, const SearchOutcome& search, const mapping::GridGeometry& geometry,
                  const Endpoints& ends, const Pose2& start, const Pose2& goal, const GlobalPlannerParams& params);
 
-}  // namespace bipednav::planning
+}  // namespace bipednav::planning::global

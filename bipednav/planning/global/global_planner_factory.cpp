@@ -7,7 +7,7 @@
 #include "bipednav/planning/global/astar.hpp"
 #include "bipednav/planning/global/dstar_lite_planner.hpp"
 
-namespace bipednav::planning {
+namespace bipednav::planning::global {
 namespace {
 
 using Factory = std::function<std::unique_ptr<GlobalPlanner>(const GlobalPlannerParams&)>;
@@ -37,4 +37,4 @@ std::vector<std::string> global_planner_names() {
   return out;
 }
 
-}  // namespace bipednav::planning
+}  // namespace bipednav::planning::global

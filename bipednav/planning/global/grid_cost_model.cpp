@@ -5,7 +5,7 @@
 
 #include "bipednav/common/error.hpp"
 
-namespace bipednav::planning {
+namespace bipednav::planning::global {
 
 void GridCostParams::validate() const {
   require(std::isfinite(cost_weight) && cost_weight >= 0.0 && cost_weight <= 50.0, "cost_weight", "a value in [0, 50]");
@@ -53,4 +53,4 @@ void GridCostModel::assign(const mapping::Costmap2D& map) {
   exempt_ = -1;
 }
 
-}  // namespace bipednav::planning
+}  // namespace bipednav::planning::global

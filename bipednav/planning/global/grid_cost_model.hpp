@@ -8,7 +8,7 @@
 #include "bipednav/mapping/costmap2d.hpp"
 #include "bipednav/mapping/inflation.hpp"
 
-namespace bipednav::planning {
+namespace bipednav::planning::global {
 
 // Path costs are exact fixed-point integers: D* Lite's equality tests (Algorithm 3 line 28,
 // Algorithm 4 line 20) and its key ties (eqs. 5.2-5.3) must not depend on rounding.
@@ -127,4 +127,4 @@ class GridCostModel {
   std::vector<std::uint8_t> cost_;
 };
 
-}  // namespace bipednav::planning
+}  // namespace bipednav::planning::global

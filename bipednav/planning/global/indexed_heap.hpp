@@ -3,7 +3,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace bipednav::planning {
+namespace bipednav::planning::global {
 
 // A two-part priority compared lexicographically ([k1, k2] of D* Lite, eqs. 5.2-5.3).
 struct Key {
@@ -105,4 +105,4 @@ class IndexedHeap {
   std::vector<std::int32_t> pos_;
 };
 
-}  // namespace bipednav::planning
+}  // namespace bipednav::planning::global

@@ -5,7 +5,7 @@
 
 #include "bipednav/common/clock.hpp"
 
-namespace bipednav::planning {
+namespace bipednav::planning::global {
 
 enum class SearchStatus { kFound, kNoPath, kTimeout };
 
@@ -31,4 +31,4 @@ class Deadline {
 
 inline constexpr std::size_t kDeadlineCheckEvery = 256;
 
-}  // namespace bipednav::planning
+}  // namespace bipednav::planning::global

@@ -11,7 +11,7 @@
 #include "bipednav/planning/footstep/heuristics.hpp"
 
 using namespace bipednav;
-using namespace bipednav::footstep;
+using namespace bipednav::planning::footstep;
 
 namespace {
 

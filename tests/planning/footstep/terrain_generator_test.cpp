@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 using namespace bipednav;
-using namespace bipednav::footstep;
+using namespace bipednav::planning::footstep;
 
 TEST(TerrainGenerator, DeterministicClutterWithValidProblems) {
   TerrainGeneratorParams p;

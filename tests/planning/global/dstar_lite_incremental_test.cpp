@@ -6,10 +6,10 @@
 #include "test_grids.hpp"
 
 using namespace bipednav;
-using namespace bipednav::planning;
-using planning::test::centre;
-using planning::test::expect_valid_path;
-using planning::test::make_map;
+using namespace bipednav::planning::global;
+using planning::global::test::centre;
+using planning::global::test::expect_valid_path;
+using planning::global::test::make_map;
 
 namespace {
 

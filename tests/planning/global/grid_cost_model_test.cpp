@@ -11,7 +11,7 @@
 #include "test_grids.hpp"
 
 using namespace bipednav;
-using namespace bipednav::planning;
+using namespace bipednav::planning::global;
 
 namespace {
 

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 using namespace bipednav;
-using namespace bipednav::planning;
+using namespace bipednav::planning::global;
 
 namespace {
 

@@ -7,7 +7,7 @@
 
 #include "bipednav/planning/global/global_planner.hpp"
 
-namespace bipednav::planning::test {
+namespace bipednav::planning::global::test {
 
 inline mapping::Costmap2D make_map(int w, int h, double res = 1.0, std::uint8_t fill = mapping::kFree) {
   mapping::GridGeometry g;
@@ -53,4 +53,4 @@ inline void expect_valid_path(const mapping::Costmap2D& map, const PlanResult& r
   ASSERT_GE(r.path.poses.size(), 2u);
 }
 
-}  // namespace bipednav::planning::test
+}  // namespace bipednav::planning::global::test
