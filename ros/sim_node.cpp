@@ -7,6 +7,7 @@
 #include <tf2_ros/static_transform_broadcaster.h>
 #include <tf2_ros/transform_broadcaster.h>
 
+#include <csignal>
 #include <map>
 #include <memory>
 
@@ -29,6 +30,11 @@ struct SimNodeParams {
   double cmd_timeout_s = 0.5;  // stop the robot when cmd_vel goes silent (simulated seconds)
   int seed = -1;               // < 0: the scenario's
 };
+
+// Set by SIGINT and SIGTERM: the node leaves its loop and removes its ~map_area before it shuts
+// down, so that no navigation node started later sizes its map from a scenario that has ended.
+volatile std::sig_atomic_t g_stop = 0;
+void request_stop(int) { g_stop = 1; }
 
 class SimNode {
  public:
@@ -119,7 +125,7 @@ void SimNode::run() {
   ros::WallRate rate(paced ? p_.real_time_factor / step_s : 1000.0);
   rosgraph_msgs::Clock clock;  // t = 0 first, so use_sim_time nodes start
   clock_pub_.publish(clock);
-  while (ros::ok()) {
+  while (ros::ok() && !g_stop) {
     ros::spinOnce();
     watchdog_->tick(sim_->now_s());
     SensorFrame frame = sim_->step(gait_.last());
@@ -136,14 +142,19 @@ void SimNode::run() {
 }  // namespace bipednav::ros1
 
 int main(int argc, char** argv) {
-  ros::init(argc, argv, "bipednav_sim_node");
+  ros::init(argc, argv, "bipednav_sim_node", ros::init_options::NoSigintHandler);
   ros::NodeHandle nh, pnh("~");
+  std::signal(SIGINT, bipednav::ros1::request_stop);
+  std::signal(SIGTERM, bipednav::ros1::request_stop);
+  int status = 0;
   try {
     bipednav::ros1::SimNode node(nh, pnh);
     node.run();
   } catch (const std::exception& e) {
     ROS_FATAL("bipednav_sim_node: %s", e.what());
-    return 1;
+    status = 1;
   }
-  return 0;
+  pnh.deleteParam("map_area");
+  ros::shutdown();
+  return status;
 }

@@ -16,6 +16,11 @@ constexpr const char* kParamsSuffix = ".params.yaml";
 // A robot's navigation tuning (robot_params_file), not a profile.
 bool is_params_file(const std::filesystem::path& file) { return file.filename().string().ends_with(kParamsSuffix); }
 
+// The folder of the robot files: the given one, or config_dir() when none is given.
+std::filesystem::path robot_dir(const std::filesystem::path& config_dir) {
+  return config_dir.empty() ? std::filesystem::path(navigation::config_dir()) : config_dir;
+}
+
 template <class P>
 P layered(P p, const RobotProfile& robot, const std::filesystem::path& params_file,
           const std::filesystem::path& config_dir) {
@@ -34,7 +39,7 @@ RobotProfile load_robot(const std::string& name_or_file, const std::filesystem::
     if (!fs::is_regular_file(given)) throw Error("robot profile file " + name_or_file + " not found");
     return io::load_robot_profile(given);
   }
-  const fs::path dir = config_dir.empty() ? fs::path(navigation::config_dir()) : config_dir;
+  const fs::path dir = robot_dir(config_dir);
   const fs::path file = dir / (name_or_file + ".yaml");
   if (name_or_file.empty() || !fs::exists(file) || is_params_file(file)) {
     std::vector<std::string> known;
@@ -52,10 +57,8 @@ RobotProfile load_robot(const std::string& name_or_file, const std::filesystem::
 }
 
 std::filesystem::path robot_params_file(const RobotProfile& robot, const std::filesystem::path& config_dir) {
-  namespace fs = std::filesystem;
-  const fs::path dir = config_dir.empty() ? fs::path(navigation::config_dir()) : config_dir;
-  const fs::path file = dir / (robot.name + kParamsSuffix);
-  return fs::is_regular_file(file) ? file : fs::path();
+  const std::filesystem::path file = robot_dir(config_dir) / (robot.name + kParamsSuffix);
+  return std::filesystem::is_regular_file(file) ? file : std::filesystem::path();
 }
 
 NavigatorParams navigator_params_for(const RobotProfile& robot, const std::filesystem::path& params_file,

@@ -58,4 +58,11 @@ cat "$WORK/client.log"
 grep -q "global map 130x118 at 0.10 m" "$WORK/nav.log" || fail "nav node's global map is not hexagon_static's 130x118 cells"
 kill -0 "${PIDS[1]}" 2>/dev/null || fail "bipednav_sim_node died"
 kill -0 "${PIDS[2]}" 2>/dev/null || fail "bipednav_nav_node died"
+# Stopped, the simulator node removes its ~map_area: a nav node started later waits for the next
+# simulator instead of sizing its map from a scenario that has ended.
+rosparam get /bipednav_sim_node/map_area >/dev/null 2>&1 || fail "no /bipednav_sim_node/map_area while the simulator runs"
+kill -INT "${PIDS[1]}"
+for _ in $(seq 50); do kill -0 "${PIDS[1]}" 2>/dev/null || break; sleep 0.1; done
+kill -0 "${PIDS[1]}" 2>/dev/null && fail "bipednav_sim_node did not stop on SIGINT"
+rosparam get /bipednav_sim_node/map_area >/dev/null 2>&1 && fail "/bipednav_sim_node/map_area left after the simulator node stopped"
 echo "PASS: ROS integration test"
