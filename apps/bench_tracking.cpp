@@ -9,7 +9,6 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
-#include <type_traits>
 #include <vector>
 
 #include "apps/cli_json.hpp"
@@ -19,6 +18,7 @@
 #include "bipednav/common/cpu_time.hpp"
 #include "bipednav/common/error.hpp"
 #include "bipednav/common/progress.hpp"
+#include "bipednav/io/param_overlay.hpp"
 #include "bipednav/sim/world_generator.hpp"
 
 namespace bipednav::app {
@@ -39,33 +39,6 @@ struct BenchTrackingArgs {
   bool json = false;
 };
 
-// Sets the TrackerParams field named `key` from `value` (TrackerParams::visit_fields).
-struct TrackerFieldSetter {
-  const std::string &key, &value;
-  bool found = false;
-
-  void operator()(const char* name, std::string& field) {
-    if (name == key) field = value, found = true;
-  }
-  template <class T>
-  void operator()(const char* name, T& field) {
-    if (name != key) return;
-    found = true;
-    try {
-      field = std::is_integral_v<T> ? static_cast<T>(std::stoi(value)) : static_cast<T>(std::stod(value));
-    } catch (const std::logic_error&) {  // std::stod / std::stoi
-      throw CLI::ValidationError("--variant", "'" + key + "=" + value + "' is not a number");
-    }
-  }
-};
-
-// TrackerParams' fields by name, for --variant.
-void set_tracker_field(tracking::TrackerParams& p, const std::string& key, const std::string& value) {
-  TrackerFieldSetter setter{key, value};
-  p.visit_fields(setter);
-  if (!setter.found) throw CLI::ValidationError("--variant", "no tracker parameter '" + key + "'");
-}
-
 // The trackers under test: the constant-velocity and IMM filters with their defaults, then each
 // --variant NAME:key=value,... (the defaults changed by its settings).
 std::vector<TrackerVariant> tracker_variants(const std::vector<std::string>& specs) {
@@ -76,18 +49,22 @@ std::vector<TrackerVariant> tracker_variants(const std::vector<std::string>& spe
     TrackerVariant v{spec.substr(0, colon), {}};
     if (v.name.empty() || colon == std::string::npos)
       throw CLI::ValidationError("--variant", "expected NAME:key=value[,key=value...], got '" + spec + "'");
+    // The settings as a YAML mapping, read as a parameters file reads TrackerParams' fields.
+    std::string yaml;
     std::size_t at = colon + 1;
     while (at < spec.size()) {
       const auto comma = std::min(spec.find(',', at), spec.size());
       const std::string item = spec.substr(at, comma - at);
       const auto eq = item.find('=');
       if (eq == std::string::npos) throw CLI::ValidationError("--variant", "expected key=value, got '" + item + "'");
-      set_tracker_field(v.params, item.substr(0, eq), item.substr(eq + 1));
+      yaml += item.substr(0, eq) + ": " + item.substr(eq + 1) + "\n";
       at = comma + 1;
     }
     try {
+      io::ParamReader r = io::ParamReader::from_string(yaml, "variant " + v.name);
+      io::overlay_fields(r, v.params);
       v.params.validate();
-    } catch (const ParamError& e) {
+    } catch (const Error& e) {  // an unknown key, a value of the wrong type or out of range
       throw CLI::ValidationError("--variant", e.what());
     }
     out.push_back(v);

@@ -7,42 +7,14 @@
 #include <type_traits>
 #include <vector>
 
+#include "bipednav/io/param_overlay.hpp"
+
 namespace bipednav::navigation {
 
 namespace {
 
-// Each parameter struct lists its fields once, in its own header, as a member
-// `template <class V> void visit_fields(V& v)`; the same list reads a file (ParamOverlay) and
-// writes one (ParamDump), so the two cannot disagree. A visitor has operator()(key, field) for
-// scalars, strings and Eigen vectors and group(key, nested_struct) for a nested mapping.
-
-// Reads the fields present in a mapping; finish() then rejects the keys no field asked for.
-class ParamOverlay {
- public:
-  explicit ParamOverlay(io::ParamReader& r) : r_(r) {}
-
-  template <class T>
-  void operator()(const char* key, T& value) {
-    r_.get(key, value);
-  }
-  template <int N>
-  void operator()(const char* key, Eigen::Matrix<double, N, 1>& value) {
-    std::vector<double> xs;
-    if (!r_.get(key, xs)) return;
-    if (xs.size() != static_cast<std::size_t>(N)) r_.fail(key, "a list of " + std::to_string(N) + " numbers");
-    for (int i = 0; i < N; ++i) value[i] = xs[static_cast<std::size_t>(i)];
-  }
-  template <class S>
-  void group(const char* key, S& nested) {
-    io::ParamReader child = r_.child(key);
-    ParamOverlay overlay(child);
-    nested.visit_fields(overlay);
-    child.finish();
-  }
-
- private:
-  io::ParamReader& r_;
-};
+// The fields each parameter struct lists in its visit_fields are read by io::ParamOverlay and
+// written by ParamDump, so the two cannot disagree.
 
 // The shortest text that reads back as the same double, with a ".0" on whole numbers so that the
 // value is visibly a number of type double (YAML's .nan / .inf for non-finite values).
@@ -88,9 +60,7 @@ class ParamDump {
 // The two top-level structs (NavigatorParams, FootstepNavigatorParams) are read and dumped alike.
 template <class P>
 void overlay_and_validate(io::ParamReader& r, P& p) {
-  ParamOverlay overlay(r);
-  p.visit_fields(overlay);
-  r.finish();
+  io::overlay_fields(r, p);
   try {
     p.validate();
   } catch (const ParamError& e) {  // validate() names the field, not the file
