@@ -1,6 +1,7 @@
 #include "apps/tracking_harness.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <exception>
 
 #include "bipednav/common/cpu_time.hpp"
@@ -39,7 +40,25 @@ Eigen::Vector2d footprint_box(const std::vector<sim::Footprint2D>& f, Eigen::Vec
   return 0.5 * (lo + hi);
 }
 
-std::vector<ActorTruth> actor_truth(const sim::World& world, double t_s, double step_s) {
+// Whether the actor's velocity jumped within the window before t_s (TrackingEvaluationParams::turn_window_s).
+bool turning(const sim::Actor& a, double t_s, const TrackingEvaluationParams& eval) {
+  const double dt = eval.velocity_step_s;
+  const int steps = static_cast<int>(std::ceil(eval.turn_window_s / dt));
+  auto position = [&](int k) -> Eigen::Vector2d { return a.pose_at(t_s - k * dt).translation().head<2>(); };
+  std::vector<Eigen::Vector2d> v;  // v[k]: the mean velocity over [t - (k+1) dt, t - k dt]
+  Eigen::Vector2d later = position(0);
+  for (int k = 0; k < steps + 2; ++k) {
+    const Eigen::Vector2d earlier = position(k + 1);
+    v.push_back((later - earlier) / dt);
+    later = earlier;
+  }
+  for (int k = 0; k < steps; ++k)
+    if ((v[static_cast<std::size_t>(k)] - v[static_cast<std::size_t>(k) + 2]).norm() >= eval.turn_jump_mps) return true;
+  return false;
+}
+
+std::vector<ActorTruth> actor_truth(const sim::World& world, double t_s, const TrackingEvaluationParams& eval) {
+  const double step_s = eval.velocity_step_s;
   std::vector<ActorTruth> out;
   for (std::size_t i = 0; i < world.actors.size(); ++i) {
     const sim::Actor& a = world.actors[i];
@@ -51,6 +70,7 @@ std::vector<ActorTruth> actor_truth(const sim::World& world, double t_s, double 
     const Eigen::Vector2d ahead = footprint_box(actor_footprint(a, t_s + step_s), lo, hi);
     const Eigen::Vector2d behind = footprint_box(actor_footprint(a, t_s - step_s), lo, hi);
     truth.object.velocity = (ahead - behind) / (2.0 * step_s);
+    truth.object.turning = turning(a, t_s, eval);
   }
   return out;
 }
@@ -113,7 +133,7 @@ class RunScorer {
     ++evaluations_;
     const Pose2 T_world_base = sim.true_pose();
     const Pose2 T_world_map = T_world_base * nav.pose().inverse();
-    const std::vector<ActorTruth> actors = actor_truth(sim.world(), t, eval_.velocity_step_s);
+    const std::vector<ActorTruth> actors = actor_truth(sim.world(), t, eval_);
     const std::vector<int> seen = points_on_actors(nav.obstacle_points(), T_world_map, actors, eval_.point_margin_m);
     truths_.clear(), ignored_.clear();
     for (std::size_t a = 0; a < actors.size(); ++a) {

@@ -32,6 +32,12 @@ struct TrackingEvaluationParams {
   double match_distance_m = 0.5;  // CLEAR MOT's threshold
   double appearance_gap_s = 1.0;  // unseen this long: in view again is a new appearance
   double velocity_step_s = 0.05;  // truth velocity: central difference of Actor::pose_at over +-this
+  // An actor is turning (MotObject::turning) for turn_window_s after its velocity changed by at
+  // least turn_jump_mps between two velocities (differences over velocity_step_s) 2
+  // velocity_step_s apart: an acceleration of 5 m/s^2 and more at the defaults, beyond a walking
+  // person's, the instant turn of a waypoint trajectory.
+  double turn_window_s = 0.5;
+  double turn_jump_mps = 0.5;
 };
 
 // Scores of one tracker over one run (or pooled over runs) and its CPU time per update.

@@ -15,14 +15,16 @@ double MotSummary::mota() const {
 
 MotSummary pool(const std::vector<MotSummary>& parts) {
   MotSummary s;
-  double position_se = 0.0, velocity_se = 0.0, pickup_sum = 0.0;
+  double position_se = 0.0, velocity_se = 0.0, steady_se = 0.0, pickup_sum = 0.0;
   for (const auto& p : parts) {
-    s.truths += p.truths, s.matches += p.matches, s.misses += p.misses;
+    s.truths += p.truths, s.matches += p.matches, s.misses += p.misses, s.matches_turning += p.matches_turning;
     s.false_positives += p.false_positives, s.id_switches += p.id_switches;
     s.appearances += p.appearances, s.appearances_picked_up += p.appearances_picked_up;
     const auto m = static_cast<double>(p.matches);
     position_se += p.position_rmse_m * p.position_rmse_m * m;
     velocity_se += p.velocity_rmse_mps * p.velocity_rmse_mps * m;
+    steady_se +=
+        p.velocity_rmse_steady_mps * p.velocity_rmse_steady_mps * static_cast<double>(p.matches - p.matches_turning);
     pickup_sum += p.mean_pickup_s * static_cast<double>(p.appearances_picked_up);
     s.max_pickup_s = std::max(s.max_pickup_s, p.max_pickup_s);
   }
@@ -30,6 +32,8 @@ MotSummary pool(const std::vector<MotSummary>& parts) {
     s.position_rmse_m = std::sqrt(position_se / static_cast<double>(s.matches));
     s.velocity_rmse_mps = std::sqrt(velocity_se / static_cast<double>(s.matches));
   }
+  if (s.matches > s.matches_turning)
+    s.velocity_rmse_steady_mps = std::sqrt(steady_se / static_cast<double>(s.matches - s.matches_turning));
   if (s.appearances_picked_up > 0) s.mean_pickup_s = pickup_sum / static_cast<double>(s.appearances_picked_up);
   return s;
 }
@@ -101,7 +105,12 @@ void ClearMot::add_frame(double t_s, const std::vector<MotObject>& truths, const
     const MotObject& h = hypotheses[static_cast<std::size_t>(hyp_of[i])];
     ++sum_.matches;
     position_se_ += (h.position - truths[i].position).squaredNorm();
-    velocity_se_ += (h.velocity - truths[i].velocity).squaredNorm();
+    const double v2 = (h.velocity - truths[i].velocity).squaredNorm();
+    velocity_se_ += v2;
+    if (truths[i].turning)
+      ++sum_.matches_turning;
+    else
+      steady_se_ += v2;
     const auto last = last_match_.find(truths[i].id);
     if (last != last_match_.end() && last->second != h.id) ++sum_.id_switches;
     last_match_[truths[i].id] = h.id;
@@ -128,6 +137,8 @@ MotSummary ClearMot::summary() const {
     s.position_rmse_m = std::sqrt(position_se_ / static_cast<double>(s.matches));
     s.velocity_rmse_mps = std::sqrt(velocity_se_ / static_cast<double>(s.matches));
   }
+  if (s.matches > s.matches_turning)
+    s.velocity_rmse_steady_mps = std::sqrt(steady_se_ / static_cast<double>(s.matches - s.matches_turning));
   if (s.appearances_picked_up > 0) s.mean_pickup_s = pickup_sum_s_ / static_cast<double>(s.appearances_picked_up);
   return s;
 }

@@ -59,4 +59,24 @@ TEST(ClearMot, AnObjectBackInViewAfterTheGapAppearsAgain) {
   EXPECT_NEAR(twice.mean_pickup_s, s.mean_pickup_s, 1e-12);
 }
 
+TEST(ClearMot, VelocityErrorsOfTurningObjectsAreSummedApart) {
+  ClearMot mot(0.5, 1.0);
+  MotObject steady{1, {0.0, 0.0}, {1.0, 0.0}}, turned = steady;
+  turned.velocity = {-1.0, 0.0};  // reversed on the spot: the hypothesis still says +1 m/s
+  turned.turning = true;
+  const MotObject h{7, {0.0, 0.0}, {1.1, 0.0}};
+  mot.add_frame(0.0, {steady}, {}, {h});
+  mot.add_frame(0.1, {steady}, {}, {h});
+  mot.add_frame(0.2, {turned}, {}, {h});
+  const MotSummary s = mot.summary();
+  EXPECT_EQ(s.matches, 3);
+  EXPECT_EQ(s.matches_turning, 1);
+  EXPECT_NEAR(s.velocity_rmse_mps, std::sqrt((0.01 + 0.01 + 2.1 * 2.1) / 3.0), 1e-12);
+  EXPECT_NEAR(s.velocity_rmse_steady_mps, 0.1, 1e-12);
+  // Pooled with a part without matches: unchanged.
+  const MotSummary pooled = pool({s, ClearMot().summary()});
+  EXPECT_EQ(pooled.matches_turning, 1);
+  EXPECT_NEAR(pooled.velocity_rmse_steady_mps, 0.1, 1e-12);
+}
+
 }  // namespace bipednav::tracking
