@@ -9,14 +9,14 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
-#include "apps/bench_runs.hpp"
 #include "apps/cli_exit.hpp"
 #include "apps/cli_json.hpp"
-#include "apps/cmd_route.hpp"
-#include "apps/scenario_files.hpp"
+#include "bench/bench_runs.hpp"
+#include "bench/route_report.hpp"
 #include "bipednav/navigation/navigation_server.hpp"
 #include "bipednav/runner/footstep_runner.hpp"
 #include "bipednav/runner/scenario_runner.hpp"
+#include "bipednav/sim/scenario_files.hpp"
 
 namespace bipednav::app {
 
@@ -61,7 +61,7 @@ std::vector<BenchRun> bench_runs(const BenchScenarioArgs& a, std::size_t scenari
 // jobs share cores.
 void run_all(std::vector<BenchRun>& runs, const std::vector<sim::Scenario>& loaded, const runner::RunOptions& base,
              int jobs) {
-  run_in_parallel(runs.size(), jobs, "scenarios", [&](std::size_t i) {
+  bench::run_in_parallel(runs.size(), jobs, "scenarios", [&](std::size_t i) {
     BenchRun& b = runs[i];
     runner::RunOptions o = base;
     o.robot = b.robot;
@@ -185,10 +185,10 @@ void bench_scenarios(const BenchScenarioArgs& a) {
   require(a.jobs >= 1 && a.jobs <= 64, "--jobs", "in [1, 64]");
   require(!a.scenarios.empty() && !a.robots.empty(), "--scenarios/--robots", "not empty");
   std::vector<sim::Scenario> loaded;
-  for (const auto& name : a.scenarios) loaded.push_back(sim::load_scenario(resolve_scenario(name)));
+  for (const auto& name : a.scenarios) loaded.push_back(sim::load_scenario(sim::resolve_scenario(name)));
   runner::RunOptions base;
   base.params_file = a.params;
-  const std::map<std::string, RobotProfile> profiles = robot_profiles(a.robots, base);
+  const std::map<std::string, RobotProfile> profiles = bench::robot_profiles(a.robots, base);
   std::vector<BenchRun> runs = bench_runs(a, loaded.size());
   run_all(runs, loaded, base, a.jobs);
   nlohmann::json rows = nlohmann::json::array();
@@ -198,7 +198,7 @@ void bench_scenarios(const BenchScenarioArgs& a) {
     // near or below zero fails by geometry, whatever the navigation does.
     constexpr double kRouteResolutionM = 0.01;
     const RobotProfile& robot = profiles.at(runs[first].robot);
-    const nlohmann::json route = route_report(loaded[runs[first].scenario], robot, kRouteResolutionM);
+    const nlohmann::json route = bench::route_report(loaded[runs[first].scenario], robot, kRouteResolutionM);
     nlohmann::json row =
         pair_row(a, runs, first, profiles, pair_expectation(route, robot, base), ok_total, expected_total);
     row["route_margin_m"] = route["min_margin_m"];
@@ -231,7 +231,7 @@ struct BenchLoopArgs {
 // Returns whether the real-time factor meets its goal (the exit status).
 bool bench_loop(const BenchLoopArgs& a) {
   require(a.runs >= 1, "--runs", ">= 1");
-  const sim::Scenario s = sim::load_scenario(resolve_scenario(a.scenario));
+  const sim::Scenario s = sim::load_scenario(sim::resolve_scenario(a.scenario));
   runner::RunOptions o;
   o.robot = a.robot;
   o.params_file = a.params;
@@ -245,8 +245,8 @@ bool bench_loop(const BenchLoopArgs& a) {
     for (const auto& [k, v] : last.stage_cpu_ms) stages[k].push_back(v);
   }
   nlohmann::json stage_median = nlohmann::json::object();
-  for (const auto& [k, v] : stages) stage_median[k] = median(v);
-  const double cpu_med = median(cpu_ms), wall_med = median(wall_ms);
+  for (const auto& [k, v] : stages) stage_median[k] = bench::median(v);
+  const double cpu_med = bench::median(cpu_ms), wall_med = bench::median(wall_ms);
   const double rtf = cpu_med > 0.0 ? last.time_s / (cpu_med * 1e-3) : 0.0;
   const double wall_rtf = wall_med > 0.0 ? last.time_s / (wall_med * 1e-3) : 0.0;
   constexpr double kGoalRtf = 10.0;

@@ -4,10 +4,10 @@
 #include <cstdio>
 
 #include "apps/cmd_odometry.hpp"
-#include "apps/scenario_files.hpp"
 #include "bipednav/common/angles.hpp"
 #include "bipednav/navigation/robot_loading.hpp"
 #include "bipednav/runner/footstep_runner.hpp"
+#include "bipednav/sim/scenario_files.hpp"
 
 namespace bipednav::app {
 
@@ -18,7 +18,7 @@ json bench_humanoid_drift(const std::string& scenario_name) {
   // corrected estimate, 0.53 m and 6.10 deg by the leg odometry.
   constexpr double kRefCorrectedCmPerM = 5.9, kRefCorrectedDegPerM = 0.99;
   constexpr double kRefOdometryCmPerM = 15.3, kRefOdometryDegPerM = 1.76;
-  const sim::Scenario scenario = sim::load_scenario(resolve_scenario(scenario_name));
+  const sim::Scenario scenario = sim::load_scenario(sim::resolve_scenario(scenario_name));
   runner::FootstepRunOptions o;
   o.navigator = runner::footstep_navigator_params(navigation::load_robot(scenario.robot), {});
   const runner::FootstepRunResult run = runner::run_footstep_scenario(scenario, o);

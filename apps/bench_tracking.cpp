@@ -13,12 +13,12 @@
 
 #include "apps/cli_json.hpp"
 #include "apps/commands.hpp"
-#include "apps/scenario_files.hpp"
 #include "apps/tracking_harness.hpp"
 #include "bipednav/common/cpu_time.hpp"
 #include "bipednav/common/error.hpp"
 #include "bipednav/common/progress.hpp"
 #include "bipednav/io/param_overlay.hpp"
+#include "bipednav/sim/scenario_files.hpp"
 #include "bipednav/sim/world_generator.hpp"
 
 namespace bipednav::app {
@@ -195,7 +195,7 @@ void add_tracking_commands(CLI::App& /*app*/, CLI::App& bench) {
     if ((a->scenarios.empty() && a->crowd_worlds == 0) || a->robots.empty())
       throw CLI::ValidationError("--scenarios/--crowd-worlds/--robots", "a scenario or a crowd world, and a robot");
     std::vector<sim::Scenario> scenarios;
-    for (const auto& name : a->scenarios) scenarios.push_back(sim::load_scenario(resolve_scenario(name)));
+    for (const auto& name : a->scenarios) scenarios.push_back(sim::load_scenario(sim::resolve_scenario(name)));
     for (int i = 0; i < a->crowd_worlds; ++i)
       scenarios.push_back(
           sim::generate_world(sim::WorldFamily::crowd, static_cast<std::uint64_t>(a->first_world + i)).scenario);

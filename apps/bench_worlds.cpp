@@ -11,13 +11,14 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
-#include "apps/bench_runs.hpp"
 #include "apps/cli_json.hpp"
-#include "apps/cmd_route.hpp"
-#include "apps/scenario_files.hpp"
+#include "bench/bench_runs.hpp"
+#include "bench/json_figures.hpp"
+#include "bench/route_report.hpp"
 #include "bipednav/common/error.hpp"
 #include "bipednav/common/wilson_interval.hpp"
 #include "bipednav/io/world_cases.hpp"
+#include "bipednav/sim/scenario_files.hpp"
 #include "bipednav/sim/sdf_writer.hpp"
 #include "bipednav/sim/space_time_route.hpp"
 #include "bipednav/sim/world_generator.hpp"
@@ -75,7 +76,7 @@ std::vector<BenchWorld> case_worlds(const std::string& cases_file) {
   const fs::path dir = fs::path(cases_file).parent_path();
   for (const io::WorldCase& c : io::read_world_cases(cases_file)) {
     const fs::path world = c.world.is_absolute() ? c.world : dir / c.world;
-    sim::Scenario s = scenario_from_world(world, c.robot, c.start, c.goal);
+    sim::Scenario s = sim::scenario_from_world(world, c.robot, c.start, c.goal);
     s.name = c.name;
     s.goal_tolerance_m = c.goal_tolerance_m;
     s.goal_tolerance_rad = c.goal_tolerance_rad;
@@ -119,7 +120,7 @@ std::vector<WorldRun> plan_runs(const std::vector<BenchWorld>& worlds, const std
 void run_world(WorldRun& r, const BenchWorld& w, const RobotProfile& profile, const runner::RunOptions& base) {
   try {
     constexpr double kRouteResolutionM = 0.02;
-    r.margin_m = route_report(w.scenario, profile, kRouteResolutionM)["min_margin_m"];
+    r.margin_m = bench::route_report(w.scenario, profile, kRouteResolutionM)["min_margin_m"];
     r.feasible = r.margin_m.is_null() || r.margin_m.get<double>() > 0.0;
     if (!r.feasible) return;
     if (!r.baseline && !w.scenario.world.actors.empty())
@@ -144,8 +145,8 @@ nlohmann::json run_row(const WorldRun& r, const BenchWorld& w, const WorldRun* b
   if (!r.error.empty()) j["error"] = r.error;
   if (r.passable) {
     j["passable"] = r.passable->reachable;
-    j["passable_arrival_s"] = finite_or_null(r.passable->arrival_s);
-    j["static_arrival_s"] = finite_or_null(r.passable->static_arrival_s);
+    j["passable_arrival_s"] = bench::finite_or_null(r.passable->arrival_s);
+    j["static_arrival_s"] = bench::finite_or_null(r.passable->static_arrival_s);
   }
   if (!r.feasible || !r.error.empty()) return j;
   const runner::RunResult& x = r.result;
@@ -223,7 +224,7 @@ nlohmann::json robot_summary(const std::string& robot, const std::vector<nlohman
           {"failures", failures},
           {"by_layout", by_layout},
           {"time_vs_without_people_median_ratio",
-           ratios.empty() ? nlohmann::json(nullptr) : nlohmann::json(median(ratios))},
+           ratios.empty() ? nlohmann::json(nullptr) : nlohmann::json(bench::median(ratios))},
           {"time_vs_without_people_runs", ratios.size()}};
 }
 
@@ -269,14 +270,14 @@ void bench_worlds(const BenchWorldsArgs& a) {
   runner::RunOptions base;
   base.params_file = a.params;
   base.stop_on_contact = true;  // a touched run has failed: no need to simulate it to the end
-  const std::map<std::string, RobotProfile> profiles = robot_profiles(a.robots, base);
+  const std::map<std::string, RobotProfile> profiles = bench::robot_profiles(a.robots, base);
   const std::vector<BenchWorld> worlds = a.cases.empty() ? generated_worlds(a) : case_worlds(a.cases);
   if (!a.save_worlds.empty()) save_worlds(worlds, a.save_worlds);
   std::vector<WorldRun> runs = plan_runs(worlds, a.robots);
   std::map<std::string, RobotProfile> case_profiles = profiles;  // a case's own robot, loaded on demand
   for (const WorldRun& r : runs)
-    if (!case_profiles.count(r.robot)) case_profiles[r.robot] = robot_profiles({r.robot}, base).at(r.robot);
-  run_in_parallel(runs.size(), a.jobs, "worlds", [&](std::size_t i) {
+    if (!case_profiles.count(r.robot)) case_profiles[r.robot] = bench::robot_profiles({r.robot}, base).at(r.robot);
+  bench::run_in_parallel(runs.size(), a.jobs, "worlds", [&](std::size_t i) {
     run_world(runs[i], worlds[runs[i].world], case_profiles.at(runs[i].robot), base);
   });
   std::map<std::string, std::vector<nlohmann::json>> rows;  // per robot, the runs with people

@@ -1,6 +1,5 @@
 #include "apps/cli_json.hpp"
 
-#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -23,8 +22,6 @@ void print_json(const nlohmann::json& figures) {
   std::fputc('\n', stdout);
   std::fflush(stdout);
 }
-
-nlohmann::json finite_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
 void print_figures(bool json, const nlohmann::json& figures, const std::function<void()>& text) {
   if (json)

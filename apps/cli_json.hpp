@@ -18,10 +18,6 @@ CLI::Option* accept_json_flag(CLI::App* cmd);
 // Prints `figures` on stdout as the command's one JSON object (throws Error when it is not an object).
 void print_json(const nlohmann::json& figures);
 
-// JSON has no infinity: a figure that is unbounded (a route without obstacles, a goal never
-// reached) is null.
-nlohmann::json finite_or_null(double v);
-
 // With --json, print_json(figures); otherwise `text()` prints the same figures for a person.
 void print_figures(bool json, const nlohmann::json& figures, const std::function<void()>& text);
 

@@ -15,7 +15,6 @@
 #include "apps/cli_json.hpp"
 #include "apps/cmd_odometry.hpp"
 #include "apps/commands.hpp"
-#include "apps/scenario_files.hpp"
 #include "bipednav/common/angles.hpp"
 #include "bipednav/common/error.hpp"
 #include "bipednav/io/pcd.hpp"
@@ -28,6 +27,7 @@
 #include "bipednav/runner/scenario_runner.hpp"
 #include "bipednav/sim/route_clearance.hpp"
 #include "bipednav/sim/scenario.hpp"
+#include "bipednav/sim/scenario_files.hpp"
 #include "bipednav/sim/simulation.hpp"
 
 namespace bipednav::app {
@@ -468,7 +468,7 @@ void add_localization_commands(CLI::App& app, CLI::App& bench) {
       run_recorded_odometry_command(*rec);
       return;
     }
-    odo->scenario = resolve_scenario(odo->scenario).string();
+    odo->scenario = sim::resolve_scenario(odo->scenario).string();
     run_odometry(*odo);
   });
 

@@ -1,22 +1,21 @@
 #include "apps/cmd_route.hpp"
 
-#include <algorithm>
-#include <cmath>
 #include <cstdio>
-#include <limits>
 #include <memory>
 #include <string>
 
 #include "apps/cli_checks.hpp"
 #include "apps/cli_exit.hpp"
 #include "apps/cli_json.hpp"
-#include "apps/scenario_files.hpp"
+#include "apps/cli_world.hpp"
+#include "bench/json_figures.hpp"
+#include "bench/route_report.hpp"
 #include "bipednav/common/error.hpp"
 #include "bipednav/navigation/robot_loading.hpp"
 #include "bipednav/runner/footstep_runner.hpp"
 #include "bipednav/runner/scenario_runner.hpp"
 #include "bipednav/sim/placement_check.hpp"
-#include "bipednav/sim/route_clearance.hpp"
+#include "bipednav/sim/scenario_files.hpp"
 #include "bipednav/sim/space_time_route.hpp"
 
 namespace bipednav::app {
@@ -70,15 +69,15 @@ bool every_route_has_room(const nlohmann::json& r) {
 
 bool run_route(const RouteArgs& a) {
   if (a.world.empty() && a.scenario.empty()) throw Error("route needs a SCENARIO or --world FILE");
-  const sim::Scenario s = a.world.empty() ? sim::load_scenario(resolve_scenario(a.scenario))
+  const sim::Scenario s = a.world.empty() ? sim::load_scenario(sim::resolve_scenario(a.scenario))
                                           : scenario_from_world(a.world, a.robot, a.start, a.goal);
   const RobotProfile robot = navigation::load_robot(a.robot.empty() ? s.robot : a.robot);
-  nlohmann::json r = route_report(s, robot, a.resolution_m);
+  nlohmann::json r = bench::route_report(s, robot, a.resolution_m);
   if (!s.world.actors.empty()) {
     const sim::SpaceTimeRoute p = sim::scenario_space_time_route(s, robot);
     r["people"] = {{"passable", p.reachable},
-                   {"arrival_s", finite_or_null(p.arrival_s)},
-                   {"static_arrival_s", finite_or_null(p.static_arrival_s)},
+                   {"arrival_s", bench::finite_or_null(p.arrival_s)},
+                   {"static_arrival_s", bench::finite_or_null(p.static_arrival_s)},
                    {"time_limit_s", s.time_limit_s}};
   }
   print_figures(a.json, r, [&] {
@@ -94,29 +93,6 @@ bool run_route(const RouteArgs& a) {
 }
 
 }  // namespace
-
-nlohmann::json route_report(const sim::Scenario& scenario, const RobotProfile& robot, double resolution_m) {
-  sim::RouteClearanceParams p = sim::RouteClearanceParams::for_robot(robot);
-  p.resolution_m = resolution_m;
-  const double needed = sim::needed_clearance_m(robot);
-  nlohmann::json routes = nlohmann::json::array();
-  double min_margin = std::numeric_limits<double>::infinity();
-  const auto found = sim::scenario_routes(scenario, p);
-  for (std::size_t i = 0; i < found.size(); ++i) {
-    const sim::RouteClearance& c = found[i];
-    const double margin = c.connected ? c.widest_m - needed : -needed;
-    min_margin = std::min(min_margin, margin);
-    const Pose2& goal = scenario.goals[i].pose;
-    routes.push_back({{"goal", {goal.x, goal.y}},
-                      {"connected", c.connected},
-                      {"widest_m", finite_or_null(c.widest_m)},
-                      {"margin_m", finite_or_null(margin)},
-                      {"bottleneck", {c.bottleneck.x(), c.bottleneck.y()}},
-                      {"bottleneck_obstacle", c.bottleneck_obstacle}});
-  }
-  return {{"scenario", scenario.name},    {"robot", robot.name}, {"needed_m", needed},
-          {"resolution_m", resolution_m}, {"routes", routes},    {"min_margin_m", finite_or_null(min_margin)}};
-}
 
 void add_route_command(CLI::App& app) {
   auto a = std::make_shared<RouteArgs>();

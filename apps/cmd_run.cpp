@@ -12,18 +12,19 @@
 #include "apps/cli_exit.hpp"
 #include "apps/cli_json.hpp"
 #include "apps/cli_output.hpp"
+#include "apps/cli_world.hpp"
 #include "apps/cmd_run_footsteps.hpp"
 #include "apps/commands.hpp"
-#include "apps/run_json.hpp"
-#include "apps/scenario_files.hpp"
 #include "bipednav/io/number_list.hpp"
 #include "bipednav/navigation/navigator_params_yaml.hpp"
 #include "bipednav/navigation/robot_loading.hpp"
 #include "bipednav/runner/footstep_runner.hpp"
 #include "bipednav/runner/replay_recorder.hpp"
 #include "bipednav/runner/run_figure.hpp"
+#include "bipednav/runner/run_json.hpp"
 #include "bipednav/runner/scenario_runner.hpp"
 #include "bipednav/sim/placement_check.hpp"
+#include "bipednav/sim/scenario_files.hpp"
 #include "bipednav/viz/replay_html.hpp"
 
 #ifdef BIPEDNAV_WITH_ROSBAG
@@ -160,7 +161,7 @@ void apply_goal_tolerance(const std::string& text, sim::Scenario& s) {
 }
 
 bool run_command(const RunArgs& a) {
-  sim::Scenario s = a.world.empty() ? sim::load_scenario(resolve_scenario(a.scenario))
+  sim::Scenario s = a.world.empty() ? sim::load_scenario(sim::resolve_scenario(a.scenario))
                                     : scenario_from_world(a.world, a.options.robot, a.start, a.goal);
   apply_goal_tolerance(a.goal_tolerance, s);
   const bool footsteps = runs_by_footsteps(s, a.options.robot);
@@ -198,7 +199,7 @@ bool run_command(const RunArgs& a) {
   }
   const runner::RunResult r = runner::run_scenario(s, o);
   const auto dir = std::filesystem::path(a.out);
-  nlohmann::json j = run_result_json(r);
+  nlohmann::json j = runner::run_result_json(r);
   std::ofstream(dir / "run.json") << j.dump(2) << "\n";
   runner::write_run_figure(dir / "run.png", s, r, runner::navigator_params(robot, o).server.local_planner);
   j["outputs"] = {{"run_json", (dir / "run.json").string()}, {"run_png", (dir / "run.png").string()}};

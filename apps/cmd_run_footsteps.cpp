@@ -8,10 +8,10 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/cli_json.hpp"
-#include "apps/run_json.hpp"
 #include "bipednav/navigation/robot_loading.hpp"
 #include "bipednav/runner/footstep_replay.hpp"
 #include "bipednav/runner/footstep_runner.hpp"
+#include "bipednav/runner/run_json.hpp"
 
 namespace bipednav::app {
 
@@ -43,7 +43,7 @@ nlohmann::json footstep_json(const runner::FootstepRunResult& f) {
                         {"x_m", c.point.x()},
                         {"y_m", c.point.y()},
                         {"depth_m", c.penetration_m}});
-  nlohmann::json j = run_result_json(r);
+  nlohmann::json j = runner::run_result_json(r);
   j.update({{"mode", "footsteps"},
             {"contacts", contacts},
             {"steps", f.steps.size()},

@@ -14,12 +14,12 @@
 #include "apps/cli_output.hpp"
 #include "apps/cmd_route.hpp"
 #include "apps/commands.hpp"
-#include "apps/scenario_files.hpp"
 #include "bipednav/common/clock.hpp"
 #include "bipednav/common/error.hpp"
 #include "bipednav/common/progress.hpp"
 #include "bipednav/io/robot_profile_yaml.hpp"
 #include "bipednav/sim/scenario.hpp"
+#include "bipednav/sim/scenario_files.hpp"
 #include "bipednav/sim/simulation.hpp"
 #include "bipednav/sim/world_drawing.hpp"
 #include "bipednav/viz/canvas.hpp"
@@ -274,7 +274,7 @@ json summary(const sim::Simulation& sim, const sim::Scenario& scenario, const Ru
 }
 
 void run_sim_command(const SimOptions& opt) {
-  const fs::path scenario_file = resolve_scenario(opt.scenario);
+  const fs::path scenario_file = sim::resolve_scenario(opt.scenario);
   const sim::Scenario scenario = sim::load_scenario(scenario_file);
   const RobotProfile robot = load_profile(opt, scenario_file, opt.robot.empty() ? scenario.robot : opt.robot);
   const fs::path out(opt.out_dir);

@@ -1,9 +1,9 @@
-#include "apps/run_json.hpp"
+#include "bipednav/runner/run_json.hpp"
 
 #include "bipednav/common/outcome.hpp"
 #include "bipednav/sim/simulation.hpp"
 
-namespace bipednav::app {
+namespace bipednav::runner {
 
 namespace {
 
@@ -15,7 +15,7 @@ nlohmann::json outcome_json(const Result& r) {
 
 }  // namespace
 
-nlohmann::json run_result_json(const runner::RunResult& r) {
+nlohmann::json run_result_json(const RunResult& r) {
   nlohmann::json j = {
       {"scenario", r.scenario}, {"robot", r.robot}, {"seed", r.seed}, {"success", r.success}, {"verdict", r.verdict}};
   const nlohmann::json navigator = outcome_json(r.outcome);
@@ -64,4 +64,4 @@ nlohmann::json run_result_json(const runner::RunResult& r) {
   return j;
 }
 
-}  // namespace bipednav::app
+}  // namespace bipednav::runner

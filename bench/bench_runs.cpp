@@ -1,4 +1,4 @@
-#include "apps/bench_runs.hpp"
+#include "bench/bench_runs.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -9,7 +9,7 @@
 #include "bipednav/common/progress.hpp"
 #include "bipednav/navigation/robot_loading.hpp"
 
-namespace bipednav::app {
+namespace bipednav::bench {
 
 void run_in_parallel(std::size_t n, int jobs, const std::string& label, const std::function<void(std::size_t)>& work) {
   ProgressBar bar(label, n, true);
@@ -46,4 +46,4 @@ std::map<std::string, RobotProfile> robot_profiles(const std::vector<std::string
   return profiles;
 }
 
-}  // namespace bipednav::app
+}  // namespace bipednav::bench

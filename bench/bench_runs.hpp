@@ -9,7 +9,7 @@
 #include "bipednav/common/robot_profile.hpp"
 #include "bipednav/runner/scenario_runner.hpp"
 
-namespace bipednav::app {
+namespace bipednav::bench {
 
 // Calls work(i) for every i in [0, n), `jobs` at a time (the calling thread is one of them), with a
 // progress bar labelled `label` counting finished items. Each item should catch its own errors.
@@ -23,4 +23,4 @@ double median(std::vector<double> v);
 std::map<std::string, RobotProfile> robot_profiles(const std::vector<std::string>& robots,
                                                    const runner::RunOptions& base);
 
-}  // namespace bipednav::app
+}  // namespace bipednav::bench
