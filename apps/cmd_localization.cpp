@@ -15,6 +15,8 @@
 #include "apps/cli_json.hpp"
 #include "apps/cmd_odometry.hpp"
 #include "apps/commands.hpp"
+#include "bench/humanoid_drift.hpp"
+#include "bench/kitti_odometry.hpp"
 #include "bipednav/common/angles.hpp"
 #include "bipednav/common/error.hpp"
 #include "bipednav/io/pcd.hpp"
@@ -394,8 +396,8 @@ void add_localization_bench(CLI::App& bench) {
   b->callback([o] {
     json j = bench_loam(*o);
     j.update(bench_gicp(*o));
-    j.update(bench_kitti_odometry(o->kitti_dir));
-    j.update(bench_humanoid_drift(o->humanoid_scenario));
+    j.update(bench::bench_kitti_odometry(o->kitti_dir));
+    j.update(bench::bench_humanoid_drift(o->humanoid_scenario));
     print_figures(o->json_out, j, [&] {
       std::printf("LOAM odometry median %.2f ms/sweep (goal 20); GICP %.1f ms (reference 410 ms)\n",
                   j["loam_odometry_median_ms"].get<double>(), j["gicp_median_ms"].get<double>());

@@ -40,11 +40,4 @@ nlohmann::json run_recorded_odometry_command(const RecordedOdometryCli& o);
 // recording's own).
 runner::SweepSequence open_recording(const RecordedOdometryCli& o, std::string& format);
 
-// `bench localization`'s KITTI rows (apps/bench_localization_kitti.cpp): LOAM and the GICP baseline on
-// the HDL-64E sweeps of `kitti_dir` (empty: tests/data/lidar/kitti00_f0-15), or a note when absent.
-nlohmann::json bench_kitti_odometry(const std::string& kitti_dir);
-// `bench localization`'s humanoid rows (apps/bench_humanoid_drift.cpp): a footstep run of the scenario,
-// the planar and yaw drift per metre of the GICP-corrected estimate and of the leg odometry alone.
-nlohmann::json bench_humanoid_drift(const std::string& scenario_name);
-
 }  // namespace bipednav::app

@@ -1,19 +1,16 @@
-// `bench localization`'s humanoid rows: the second reference's drift experiment (section VI,
-// Fig. 7) in the simulator.
-#include <cmath>
-#include <cstdio>
+#include "bench/humanoid_drift.hpp"
 
-#include "apps/cmd_odometry.hpp"
+#include <cmath>
+
 #include "bipednav/common/angles.hpp"
+#include "bipednav/common/error.hpp"
 #include "bipednav/navigation/robot_loading.hpp"
 #include "bipednav/runner/footstep_runner.hpp"
 #include "bipednav/sim/scenario_files.hpp"
 
-namespace bipednav::app {
+namespace bipednav::bench {
 
-using json = nlohmann::json;
-
-json bench_humanoid_drift(const std::string& scenario_name) {
+nlohmann::json bench_humanoid_drift(const std::string& scenario_name) {
   // The reference's Nao under motion capture over 3.47 m: 0.21 m and 3.46 deg accumulated by the
   // corrected estimate, 0.53 m and 6.10 deg by the leg odometry.
   constexpr double kRefCorrectedCmPerM = 5.9, kRefCorrectedDegPerM = 0.99;
@@ -49,4 +46,4 @@ json bench_humanoid_drift(const std::string& scenario_name) {
           {"reference_odometry_deg_per_m", kRefOdometryDegPerM}};
 }
 
-}  // namespace bipednav::app
+}  // namespace bipednav::bench

@@ -1,18 +1,17 @@
-// `bench localization`'s rows on the KITTI HDL-64E sweeps: LOAM per sweep (one core) beside the
-// scan-to-scan GICP baseline on the same sweeps, and both trajectories against the sweeps' direct
-// registration and against poses.txt.
+#include "bench/kitti_odometry.hpp"
+
 #include <algorithm>
 #include <filesystem>
+#include <vector>
 
-#include "apps/cmd_odometry.hpp"
 #include "bipednav/io/kitti_sequence.hpp"
 #include "bipednav/io/sweep_folder.hpp"
+#include "bipednav/runner/recorded_odometry.hpp"
 
-namespace bipednav::app {
+namespace bipednav::bench {
 
 namespace {
 
-namespace fs = std::filesystem;
 using json = nlohmann::json;
 
 double median_of(std::vector<double> x) {
@@ -42,8 +41,8 @@ runner::RecordedOdometryResult timed_runs(const runner::SweepSequence& seq, cons
 
 json bench_kitti_odometry(const std::string& kitti_dir) {
   constexpr double kGoalMs = 25.0, kFloamMs = 59.0;  // issue goal; F-LOAM's reported time per sweep
-  const fs::path dir =
-      !kitti_dir.empty() ? fs::path(kitti_dir) : fs::path(BIPEDNAV_SOURCE_DIR) / "tests/data/lidar/kitti00_f0-15";
+  using std::filesystem::path;
+  const path dir = !kitti_dir.empty() ? path(kitti_dir) : path(BIPEDNAV_SOURCE_DIR) / "tests/data/lidar/kitti00_f0-15";
   if (!io::is_kitti_sequence(dir))
     return {{"kitti_note", "skipped: no KITTI sweeps in " + dir.string() + " (give --kitti-dir)"},
             {"kitti_loam_cpu_median_ms", nullptr},
@@ -97,4 +96,4 @@ json bench_kitti_odometry(const std::string& kitti_dir) {
   return j;
 }
 
-}  // namespace bipednav::app
+}  // namespace bipednav::bench
