@@ -1,7 +1,5 @@
 // `bipednav bench tracking --json`: the multi-object tracker's accuracy against the simulator's
-// ground truth (CLEAR MOT, position and velocity RMSE, time to confirm) over closed-loop runs of
-// the navigator, compared in the same runs with the navigator's MovingObstacleTracker.
-#include "apps/bench_tracking.hpp"
+// ground truth over closed-loop runs of the navigator; the harness is bench/tracking.
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
@@ -13,10 +11,9 @@
 
 #include "apps/cli_json.hpp"
 #include "apps/commands.hpp"
-#include "apps/tracking_harness.hpp"
-#include "bipednav/common/cpu_time.hpp"
+#include "bench/tracking.hpp"
+#include "bench/tracking_harness.hpp"
 #include "bipednav/common/error.hpp"
-#include "bipednav/common/progress.hpp"
 #include "bipednav/io/param_overlay.hpp"
 #include "bipednav/sim/scenario_files.hpp"
 #include "bipednav/sim/world_generator.hpp"
@@ -24,9 +21,6 @@
 namespace bipednav::app {
 
 namespace {
-
-// The accuracy goals of issue 35 for people in view within 6 m.
-constexpr double kGoalPositionRmseM = 0.10, kGoalVelocityRmseMps = 0.15, kGoalMota = 0.90;
 
 struct BenchTrackingArgs {
   std::vector<std::string> scenarios{"hexagon_dynamic", "three_rooms", "digit_lab_dynamic"};
@@ -41,12 +35,12 @@ struct BenchTrackingArgs {
 
 // The trackers under test: the constant-velocity and IMM filters with their defaults, then each
 // --variant NAME:key=value,... (the defaults changed by its settings).
-std::vector<TrackerVariant> tracker_variants(const std::vector<std::string>& specs) {
-  std::vector<TrackerVariant> out{{"kalman_cv", {}}, {"kalman_imm_cv_ct", {}}};
+std::vector<bench::TrackerVariant> tracker_variants(const std::vector<std::string>& specs) {
+  std::vector<bench::TrackerVariant> out{{"kalman_cv", {}}, {"kalman_imm_cv_ct", {}}};
   out[1].params.motion_model = "imm";
   for (const auto& spec : specs) {
     const auto colon = spec.find(':');
-    TrackerVariant v{spec.substr(0, colon), {}};
+    bench::TrackerVariant v{spec.substr(0, colon), {}};
     if (v.name.empty() || colon == std::string::npos)
       throw CLI::ValidationError("--variant", "expected NAME:key=value[,key=value...], got '" + spec + "'");
     // The settings as a YAML mapping, read as a parameters file reads TrackerParams' fields.
@@ -72,58 +66,6 @@ std::vector<TrackerVariant> tracker_variants(const std::vector<std::string>& spe
   return out;
 }
 
-nlohmann::json score_json(const TrackerScore& s) {
-  const tracking::MotSummary& m = s.mot;
-  return {{"truths", m.truths},
-          {"matches", m.matches},
-          {"misses", m.misses},
-          {"false_positives", m.false_positives},
-          {"id_switches", m.id_switches},
-          {"mota_ratio", m.mota()},
-          {"position_rmse_m", m.position_rmse_m},
-          {"velocity_rmse_mps", m.velocity_rmse_mps},
-          {"velocity_rmse_steady_mps", m.velocity_rmse_steady_mps},
-          {"matches_turning", m.matches_turning},
-          {"appearances", m.appearances},
-          {"appearances_confirmed", m.appearances_picked_up},
-          {"mean_time_to_confirm_s", m.mean_pickup_s},
-          {"max_time_to_confirm_s", m.max_pickup_s},
-          {"cpu_ms_per_update", s.updates > 0 ? s.cpu_ms / static_cast<double>(s.updates) : 0.0},
-          {"unmatched_truths_by_nearest", s.unmatched}};
-}
-
-// Every tracker's scores pooled over the runs, with the goals met or not.
-nlohmann::json pooled_json(const std::vector<TrackingRun>& runs) {
-  std::map<std::string, std::vector<tracking::MotSummary>> parts;
-  std::map<std::string, TrackerScore> cpu;
-  for (const auto& r : runs) {
-    for (const auto& [name, s] : r.scores) {
-      parts[name].push_back(s.mot);
-      cpu[name].updates += s.updates, cpu[name].cpu_ms += s.cpu_ms;
-      for (const auto& [cause, n] : s.unmatched) cpu[name].unmatched[cause] += n;
-    }
-  }
-  nlohmann::json out = nlohmann::json::object();
-  for (const auto& [name, p] : parts) {
-    TrackerScore s = cpu[name];
-    s.mot = tracking::pool(p);
-    nlohmann::json j = score_json(s);
-    j["meets_position_goal"] = s.mot.matches > 0 && s.mot.position_rmse_m <= kGoalPositionRmseM;
-    j["meets_velocity_goal"] = s.mot.matches > 0 && s.mot.velocity_rmse_mps <= kGoalVelocityRmseMps;
-    j["meets_mota_goal"] = s.mot.mota() >= kGoalMota;
-    out[name] = j;
-  }
-  return out;
-}
-
-nlohmann::json run_json(const TrackingRun& r) {
-  nlohmann::json scores = nlohmann::json::object();
-  for (const auto& [name, s] : r.scores) scores[name] = score_json(s);
-  return {{"scenario", r.scenario},       {"robot", r.robot},           {"seed", r.seed},
-          {"outcome", r.outcome},         {"collisions", r.collisions}, {"time_s", r.time_s},
-          {"evaluations", r.evaluations}, {"trackers", scores}};
-}
-
 void print_table(const nlohmann::json& pooled) {
   std::printf("%-34s %9s %9s %7s %6s %6s %6s %6s %9s\n", "tracker", "pos RMSE", "vel RMSE", "MOTA", "FN", "FP", "IDSW",
               "GT", "confirm");
@@ -136,36 +78,6 @@ void print_table(const nlohmann::json& pooled) {
 }
 
 }  // namespace
-
-nlohmann::json bench_tracking(const std::vector<sim::Scenario>& scenarios, const std::vector<std::string>& robots,
-                              const std::vector<std::uint64_t>& seeds, const std::vector<TrackerVariant>& variants,
-                              bool progress) {
-  std::vector<TrackingRun> runs;
-  ProgressBar bar("tracking", scenarios.size() * robots.size() * seeds.size(), progress);
-  const double cpu0 = process_cpu_ms();
-  for (const auto& s : scenarios)
-    for (const auto& robot : robots)
-      for (const auto seed : seeds) {
-        runs.push_back(run_tracking(s, robot, seed, variants));
-        bar.update(runs.size());
-      }
-  bar.finish();
-  nlohmann::json rows = nlohmann::json::array();
-  for (const auto& r : runs) rows.push_back(run_json(r));
-  return {{"goals",
-           {{"position_rmse_m", kGoalPositionRmseM},
-            {"velocity_rmse_mps", kGoalVelocityRmseMps},
-            {"mota_ratio", kGoalMota}}},
-          {"evaluation",
-           {{"range_m", TrackingEvaluationParams{}.range_m},
-            {"match_distance_m", TrackingEvaluationParams{}.match_distance_m},
-            {"min_points_in_view", TrackingEvaluationParams{}.min_points},
-            {"turn_window_s", TrackingEvaluationParams{}.turn_window_s},
-            {"turn_jump_mps", TrackingEvaluationParams{}.turn_jump_mps}}},
-          {"trackers", pooled_json(runs)},
-          {"runs", rows},
-          {"cpu_s", (process_cpu_ms() - cpu0) * 1e-3}};
-}
 
 void add_tracking_commands(CLI::App& /*app*/, CLI::App& bench) {
   auto a = std::make_shared<BenchTrackingArgs>();
@@ -191,7 +103,7 @@ void add_tracking_commands(CLI::App& /*app*/, CLI::App& bench) {
   b->add_flag("--json", a->json, "Print one JSON object (pooled scores and every run's)");
   b->callback([a, scen] {
     if (a->crowd_worlds > 0 && scen->count() == 0) a->scenarios.clear();
-    const std::vector<TrackerVariant> variants = tracker_variants(a->variants);
+    const std::vector<bench::TrackerVariant> variants = tracker_variants(a->variants);
     if ((a->scenarios.empty() && a->crowd_worlds == 0) || a->robots.empty())
       throw CLI::ValidationError("--scenarios/--crowd-worlds/--robots", "a scenario or a crowd world, and a robot");
     std::vector<sim::Scenario> scenarios;
@@ -201,7 +113,7 @@ void add_tracking_commands(CLI::App& /*app*/, CLI::App& bench) {
           sim::generate_world(sim::WorldFamily::crowd, static_cast<std::uint64_t>(a->first_world + i)).scenario);
     std::vector<std::uint64_t> seeds;
     for (int i = 0; i < a->seeds; ++i) seeds.push_back(static_cast<std::uint64_t>(a->first_seed + i));
-    const nlohmann::json j = bench_tracking(scenarios, a->robots, seeds, variants, !a->json);
+    const nlohmann::json j = bench::bench_tracking(scenarios, a->robots, seeds, variants, !a->json);
     print_figures(a->json, j, [&] { print_table(j["trackers"]); });
   });
 }

@@ -5,10 +5,10 @@
 #include <string>
 #include <vector>
 
-#include "apps/tracking_harness.hpp"
+#include "bench/tracking_harness.hpp"
 #include "bipednav/sim/scenario.hpp"
 
-namespace bipednav::app {
+namespace bipednav::bench {
 
 // `bipednav bench tracking`: every scenario with every robot and seed (run_tracking), scored for
 // the variants and the navigator's own tracker; one JSON object with the scores pooled per tracker
@@ -17,4 +17,4 @@ nlohmann::json bench_tracking(const std::vector<sim::Scenario>& scenarios, const
                               const std::vector<std::uint64_t>& seeds, const std::vector<TrackerVariant>& variants,
                               bool progress);
 
-}  // namespace bipednav::app
+}  // namespace bipednav::bench

@@ -11,7 +11,7 @@
 
 // The harness of `bipednav bench tracking`: closed-loop runs of the navigator in the simulator
 // with trackers fed from the navigator's local-map input, scored against the simulator's actors.
-namespace bipednav::app {
+namespace bipednav::bench {
 
 // A multi-object tracker under test: a name and its parameters.
 struct TrackerVariant {
@@ -71,4 +71,4 @@ inline constexpr const char* kBaselineAll = "baseline_all_confirmed_tracks";
 TrackingRun run_tracking(const sim::Scenario& scenario, const std::string& robot, std::uint64_t seed,
                          const std::vector<TrackerVariant>& variants, const TrackingEvaluationParams& eval = {});
 
-}  // namespace bipednav::app
+}  // namespace bipednav::bench

@@ -1,4 +1,4 @@
-#include "apps/tracking_harness.hpp"
+#include "bench/tracking_harness.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +10,7 @@
 #include "bipednav/sim/footprint2d.hpp"
 #include "bipednav/tracking/tracker.hpp"
 
-namespace bipednav::app {
+namespace bipednav::bench {
 
 namespace {
 
@@ -256,4 +256,4 @@ TrackingRun run_tracking(const sim::Scenario& scenario, const std::string& robot
   return out;
 }
 
-}  // namespace bipednav::app
+}  // namespace bipednav::bench
