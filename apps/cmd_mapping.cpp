@@ -1,10 +1,9 @@
+// `bipednav costmap info|inflate` and `bipednav bench mapping` (the harness is bench/mapping).
 #include <algorithm>
 #include <cstdio>
-#include <ctime>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
-#include <vector>
 
 #include "apps/cli_checks.hpp"
 #include "apps/cli_exit.hpp"
@@ -12,13 +11,10 @@
 #include "apps/cli_json.hpp"
 #include "apps/cli_output.hpp"
 #include "apps/commands.hpp"
-#include "bench/mapping_scene.hpp"
+#include "bench/mapping.hpp"
 #include "bipednav/common/clock.hpp"
-#include "bipednav/common/cpu_time.hpp"
 #include "bipednav/common/error.hpp"
 #include "bipednav/mapping/global_costmap.hpp"
-#include "bipednav/mapping/heightmap_fusion.hpp"
-#include "bipednav/mapping/local_costmap.hpp"
 #include "bipednav/mapping/map_io.hpp"
 #include "bipednav/viz/costmap_png.hpp"
 
@@ -72,76 +68,9 @@ void run_inflate(const InflateOptions& o) {
   print_json(j);
 }
 
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
-double maximum(const std::vector<double>& v) { return v.empty() ? 0.0 : *std::max_element(v.begin(), v.end()); }
-
-// Returns whether the benchmark met its goals (the exit status).
-bool run_bench(int iterations) {
-  // Local costmap: the robot walks 5 cm per update through the room, one full frame each time.
-  std::vector<SyntheticFrame> frames;
-  for (int i = 0; i < std::min(iterations, 40); ++i)
-    frames.push_back(synthetic_digit_frame({-1.0 + 0.05 * i, 0.2, 0.1 * i}));
-  LocalCostmap local;
-  local.update({-1.05, 0.2, 0.0}, frames[0].observations);
-  std::vector<double> local_ms, infl_ms, global_ms, height_ms, local_cpu, height_cpu;
-  GlobalCostmap global(GlobalCostmap::default_geometry({0.0, 0.0, 0.0}));
-  for (int i = 0; i < iterations; ++i) {
-    const auto& f = frames[i % frames.size()];
-    const Pose2 pose{-1.0 + 0.05 * (i % frames.size()), 0.2, 0.1 * (i % frames.size())};
-    const double c0 = thread_cpu_ms();
-    Stopwatch sw;
-    local.update(pose, f.observations);
-    local_ms.push_back(sw.elapsed_ms());
-    local_cpu.push_back(thread_cpu_ms() - c0);
-    sw.restart();
-    global.update(pose, {f.observations[0]}, &local);
-    global_ms.push_back(sw.elapsed_ms());
-  }
-  Inflator inflator(local.params().inflation(), local.params().resolution_m);
-  Costmap2D inflated;
-  for (int i = 0; i < std::max(iterations, 200); ++i) {
-    Stopwatch sw;
-    inflator.inflate(local.obstacles(), inflated);
-    infl_ms.push_back(sw.elapsed_ms());
-  }
-  Rng rng(1);
-  const auto cloud = synthetic_terrain_cloud(300000, 2.5, rng);
-  HeightmapFusion fusion({250, 250, 0.01, 0.0, 0.0});
-  for (int i = 0; i < std::max(5, iterations / 4); ++i) {
-    const double c0 = thread_cpu_ms();
-    Stopwatch sw;
-    fusion.update(cloud, Eigen::Vector3d(1.25, -0.5, 1.5));
-    height_ms.push_back(sw.elapsed_ms());
-    height_cpu.push_back(thread_cpu_ms() - c0);
-  }
-  const double lm = median(local_ms), im = median(infl_ms), hm = median(height_ms);
-  const nlohmann::json j = {{"iterations", iterations},
-                            {"frame_lidar_points", frames[0].lidar_points},
-                            {"frame_depth_points", frames[0].depth_points},
-                            {"local_grid_cells", local.geometry().size()},
-                            {"local_update_median_ms", lm},
-                            {"local_update_max_ms", maximum(local_ms)},
-                            {"local_update_cpu_median_ms", median(local_cpu)},
-                            {"meets_goal_local_update_cpu_median", median(local_cpu) < 5.0},
-                            {"goal_local_update_median_ms", 5.0},
-                            {"meets_goal_local_update_median", lm < 5.0},
-                            {"inflation_160x160_median_ms", im},
-                            {"goal_inflation_160x160_median_ms", 0.1},
-                            {"meets_goal_inflation_160x160_median", im < 0.1},
-                            {"heightmap_points", cloud.size()},
-                            {"heightmap_cells", fusion.map().geometry().size()},
-                            {"heightmap_update_median_ms", hm},
-                            {"heightmap_update_cpu_median_ms", median(height_cpu)},
-                            {"meets_goal_heightmap_update_cpu_median", median(height_cpu) < 5.0},
-                            {"goal_heightmap_update_median_ms", 5.0},
-                            {"meets_goal_heightmap_update_median", hm < 5.0},
-                            {"paper_heightmap_update_ms", 70.0},
-                            {"global_update_400x400_median_ms", median(global_ms)},
-                            {"global_update_400x400_max_ms", maximum(global_ms)}};
+// Prints the figures; returns whether the benchmark met its goals (the exit status).
+bool bench_mapping(const bench::MappingBenchOptions& o) {
+  const nlohmann::json j = bench::run_mapping_bench(o);
   print_json(j);
   return bench_goals_met(j);
 }
@@ -173,13 +102,13 @@ void add_mapping_commands(CLI::App& app, CLI::App& bench) {
   accept_json_flag(inflate);
   inflate->callback([o] { run_inflate(*o); });
 
-  auto iterations = std::make_shared<int>(100);
+  auto bo = std::make_shared<bench::MappingBenchOptions>();
   CLI::App* b = bench.add_subcommand("mapping", "Local costmap update, inflation and heightmap timings");
   accept_json_flag(b);
-  b->add_option("--iterations", *iterations, "updates to time (1..10000)")
+  b->add_option("--iterations", bo->iterations, "updates to time (1..10000)")
       ->capture_default_str()
       ->check(check::integer_in(1, 10000));
-  b->callback([iterations] { report_task(run_bench(*iterations)); });
+  b->callback([bo] { report_task(bench_mapping(*bo)); });
 }
 
 }  // namespace bipednav::app
