@@ -1,9 +1,8 @@
+// `bipednav plan grid|movingai` and `bipednav bench global` (the harness is bench/global; the Moving AI
+// rows and their figures are bench/movingai_runner's).
 #include <algorithm>
-#include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -14,8 +13,8 @@
 #include "apps/cli_output.hpp"
 #include "apps/cli_pose.hpp"
 #include "apps/commands.hpp"
+#include "bench/global.hpp"
 #include "bench/movingai_runner.hpp"
-#include "bench/replan_benchmark.hpp"
 #include "bipednav/common/error.hpp"
 #include "bipednav/io/movingai.hpp"
 #include "bipednav/mapping/global_costmap.hpp"
@@ -29,7 +28,6 @@ namespace bipednav::app {
 
 namespace {
 
-namespace fs = std::filesystem;
 using nlohmann::json;
 
 json pose_json(const Pose2& p) { return {{"x_m", p.x}, {"y_m", p.y}, {"yaw_rad", p.theta}}; }
@@ -104,32 +102,6 @@ bool run_grid(const GridOptions& o) {
   return r.result.ok();
 }
 
-json movingai_json(const std::vector<planning::global::MovingAiRowResult>& rows, const std::string& planner) {
-  json out = json::array();
-  double max_err = 0.0, total_ms = 0.0;
-  int solved = 0;
-  for (const auto& r : rows) {
-    const auto& p = r.problem;
-    json row = {
-        {"start_cell", {p.start_x, p.start_y}},     {"goal_cell", {p.goal_x, p.goal_y}}, {"length_cells", nullptr},
-        {"optimal_length_cells", p.optimal_length}, {"expansions", r.expansions},        {"time_ms", r.time_ms}};
-    if (r.length) {
-      row["length_cells"] = *r.length;
-      max_err = std::max(max_err, std::abs(*r.length - p.optimal_length));
-      ++solved;
-    } else {
-      row["outcome"] = outcome_name(r.result.outcome);
-      max_err = std::max(max_err, std::abs(p.optimal_length));  // an unsolved row counts fully
-    }
-    total_ms += r.time_ms;
-    out.push_back(std::move(row));
-  }
-  return {{"planner", planner},
-          {"rows", out},
-          {"summary",
-           {{"rows", rows.size()}, {"solved", solved}, {"max_abs_error_cells", max_err}, {"total_time_ms", total_ms}}}};
-}
-
 // Returns whether every row was solved (the exit status).
 bool run_movingai(const std::string& map_file, const std::string& scen_file, const std::string& planner_name,
                   bool json_out) {
@@ -137,7 +109,7 @@ bool run_movingai(const std::string& map_file, const std::string& scen_file, con
   const auto problems = io::read_movingai_scen(scen_file);
   auto planner = planning::global::make_global_planner(planner_name, {});
   const auto rows = planning::global::run_movingai(map, problems, *planner);
-  json j = movingai_json(rows, planner_name);
+  json j = planning::global::movingai_report(rows, planner_name);
   const auto& s = j["summary"];
   const bool all_solved = s["solved"].get<std::size_t>() == s["rows"].get<std::size_t>();
   print_figures(json_out, j, [&] {
@@ -148,87 +120,9 @@ bool run_movingai(const std::string& map_file, const std::string& scen_file, con
   return all_solved;
 }
 
-// tests/data/movingai next to the sources: searched upwards from the working directory and from
-// the executable (the build directory lives inside the source tree).
-fs::path find_movingai_dir(const std::string& given) {
-  if (!given.empty()) return given;
-  std::vector<fs::path> roots = {fs::current_path()};
-  std::error_code ec;
-  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) roots.push_back(exe.parent_path());
-  for (fs::path p : roots)
-    for (; !p.empty(); p = p.parent_path()) {
-      if (fs::exists(p / "tests/data/movingai/maps")) return p / "tests/data/movingai";
-      if (p == p.parent_path()) break;
-    }
-  return {};
-}
-
-json movingai_first_plans(const fs::path& dir) {
-  json out = json::array();
-  for (const char* name : {"arena", "den312d", "lak303d", "Berlin_0_256"}) {
-    const auto map = io::read_movingai_map(dir / "maps" / (std::string(name) + ".map"));
-    const auto problems = io::read_movingai_scen(dir / "scen" / (std::string(name) + ".map.scen"));
-    json entry = {{"map", name}, {"rows", problems.size()}};
-    for (const char* planner_name : {"dstar_lite", "astar"}) {
-      auto planner = planning::global::make_global_planner(planner_name, {});
-      const auto rows = planning::global::run_movingai(map, problems, *planner);
-      double sum = 0.0, mx = 0.0, err = 0.0;
-      for (const auto& r : rows) {
-        sum += r.time_ms;
-        mx = std::max(mx, r.time_ms);
-        err = std::max(err, r.length ? std::abs(*r.length - r.problem.optimal_length) : 1e9);
-      }
-      const std::string k = planner_name;
-      entry[k + "_first_plan_mean_ms"] = sum / std::max<std::size_t>(1, rows.size());
-      entry[k + "_first_plan_max_ms"] = mx;
-      entry[k + "_max_abs_error"] = err;
-    }
-    out.push_back(entry);
-  }
-  return out;
-}
-
-// Returns whether the benchmark met its goals (the exit status).
-bool run_bench(const std::string& movingai_dir, int max_replans) {
-  planning::global::ReplanBenchParams p;
-  p.max_replans = max_replans;
-  const planning::global::ReplanStats s = planning::global::run_replan_benchmark(p);
-  const double goal_exp = 10.0, goal_time = 5.0;
-  json j = {{"world", "three_rooms 6 x 30 m at 0.1 m, obstacles revealed within 3 m"},
-            {"replans", s.replans},
-            {"reached_goal", s.reached_goal},
-            {"travelled_m", s.travelled_m},
-            {"changed_cells", s.changed_cells},
-            {"cost_mismatches", s.cost_mismatches},
-            {"first_plan_dstar_ms", s.first_dstar_ms},
-            {"first_plan_astar_ms", s.first_astar_ms},
-            {"first_plan_dstar_expansions", s.first_dstar_expansions},
-            {"first_plan_astar_expansions", s.first_astar_expansions},
-            {"replan_dstar_mean_expansions", s.dstar_mean_expansions},
-            {"replan_astar_mean_expansions", s.astar_mean_expansions},
-            {"replan_dstar_mean_ms", s.dstar_mean_ms},
-            {"replan_astar_mean_ms", s.astar_mean_ms},
-            {"replan_dstar_max_ms", s.dstar_max_ms},
-            {"replan_astar_max_ms", s.astar_max_ms},
-            {"expansions_ratio", s.expansions_ratio},
-            {"goal_expansions_ratio", goal_exp},
-            {"meets_goal_expansions_ratio", s.expansions_ratio >= goal_exp},
-            {"replan_dstar_cpu_mean_ms", s.dstar_cpu_mean_ms},
-            {"replan_astar_cpu_mean_ms", s.astar_cpu_mean_ms},
-            {"time_ratio", s.time_ratio},
-            {"cpu_time_ratio", s.cpu_time_ratio},
-            {"goal_time_ratio", goal_time},
-            {"meets_goal_time_ratio", s.cpu_time_ratio >= goal_time},
-            {"timing", "the goal on thread CPU time (cpu_*); *_ms without cpu are wall time"}};
-  const fs::path dir = find_movingai_dir(movingai_dir);
-  if (dir.empty()) {
-    j["movingai"] = nullptr;
-    j["movingai_note"] = "tests/data/movingai not found; pass --movingai-dir";
-  } else {
-    j["movingai_dir"] = dir.string();
-    j["movingai"] = movingai_first_plans(dir);
-  }
+// Prints the figures; returns whether the benchmark met its goals (the exit status).
+bool bench_global(const bench::GlobalBenchOptions& o) {
+  const json j = bench::run_global_bench(o);
   print_json(j);
   return bench_goals_met(j);
 }
@@ -262,13 +156,14 @@ void add_plan_commands(CLI::App& app, CLI::App& bench) {
   add_json_flag(mai, m->json_out);
   mai->callback([m] { report_task(run_movingai(m->map, m->start, m->planner, m->json_out)); });
 
-  auto dir = std::make_shared<std::string>();
-  auto replans = std::make_shared<int>(2000);
+  auto bo = std::make_shared<bench::GlobalBenchOptions>();
   CLI::App* b = bench.add_subcommand("global", "D* Lite replanning vs A* (three rooms), Moving AI first plans");
   accept_json_flag(b);
-  b->add_option("--movingai-dir", *dir, "directory with maps/ and scen/ (default: tests/data/movingai)");
-  b->add_option("--max-replans", *replans, "replan limit")->capture_default_str()->check(check::integer_at_least(1));
-  b->callback([dir, replans] { report_task(run_bench(*dir, *replans)); });
+  b->add_option("--movingai-dir", bo->movingai_dir, "directory with maps/ and scen/ (default: tests/data/movingai)");
+  b->add_option("--max-replans", bo->max_replans, "replan limit")
+      ->capture_default_str()
+      ->check(check::integer_at_least(1));
+  b->callback([bo] { report_task(bench_global(*bo)); });
 }
 
 }  // namespace bipednav::app
