@@ -1,10 +1,9 @@
+// `bipednav local plan` and `bipednav bench local` (the harness is bench/local).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
 
 #include "apps/cli_checks.hpp"
@@ -13,17 +12,15 @@
 #include "apps/cli_output.hpp"
 #include "apps/cli_pose.hpp"
 #include "apps/commands.hpp"
-#include "bench/local_scene.hpp"
+#include "bench/local.hpp"
 #include "bipednav/common/error.hpp"
 #include "bipednav/mapping/global_costmap.hpp"
 #include "bipednav/mapping/map_io.hpp"
-#include "bipednav/navigation/robot_loading.hpp"
 #include "bipednav/planning/global/global_planner.hpp"
 #include "bipednav/planning/global/global_planner_factory.hpp"
 #include "bipednav/planning/local/local_planner.hpp"
 #include "bipednav/planning/local/local_planner_factory.hpp"
 #include "bipednav/runner/run_figure.hpp"
-#include "bipednav/runner/scenario_runner.hpp"
 #include "bipednav/viz/canvas.hpp"
 #include "bipednav/viz/figure_legend.hpp"
 
@@ -158,59 +155,9 @@ bool local_plan(const PlanOptions& o) {
   return reached;
 }
 
-struct BenchLocalArgs {
-  int cycles = 100;
-  int threads = 1;
-  std::string params;                // a navigation parameters file: its TEB settings (server.local.teb)
-  std::string robot = "turtlebot3";  // the robot whose defaults the file overlays
-};
-
-// Returns whether the benchmark met its goals (the exit status).
-bool bench_local(const BenchLocalArgs& a) {
-  using namespace planning::local;
-  // Without a file: TebParams' own defaults (the figures in the README). With one: the robot's TEB
-  // settings with the file overlaid, as `run --params` would use them.
-  TebParams base;
-  if (!a.params.empty()) {
-    const RobotProfile robot = navigation::load_robot(a.robot);
-    if (robot.kind == "humanoid")
-      throw Error("bench local --robot " + a.robot + ": a humanoid walks by footsteps, no TEB");
-    runner::RunOptions o;
-    o.params_file = a.params;
-    base = runner::navigator_params(robot, o).server.local.teb;
-  }
-  nlohmann::json j;
-  j["benchmark"] = "local";
-  j["threads"] = a.threads;
-  if (!a.params.empty()) j["params"] = a.params, j["robot"] = a.robot;
-  j["homotopy_classes"] = true;
-  j["goal_median_ms"] = 10.0;
-  j["goal_p99_ms"] = 25.0;
-  for (const int n : {0, 20, 100}) {
-    TebParams params = base;
-    params.homotopy.enabled = true;
-    params.homotopy.num_threads = a.threads;
-    const auto st = run_local_bench(make_local_bench_scene(n, 42), params, a.cycles);
-    nlohmann::json e;
-    e["obstacles_placed"] = n;
-    e["obstacles_extracted"] = st.obstacles;
-    e["cycles"] = st.cycles;
-    e["success_cycles"] = st.success_cycles;
-    e["median_ms"] = st.median_ms;
-    e["p99_ms"] = st.p99_ms;
-    e["max_ms"] = st.max_ms;
-    e["cpu_median_ms"] = st.cpu_median_ms;
-    e["cpu_p99_ms"] = st.cpu_p99_ms;
-    j["per_obstacle_count"].push_back(e);
-    if (n == 100) {
-      j["median_ms"] = st.median_ms;
-      j["p99_ms"] = st.p99_ms;
-      j["meets_goal_median"] = st.median_ms <= 10.0;
-      j["meets_goal_p99"] = st.p99_ms <= 25.0;
-      j["cpu_median_ms"] = st.cpu_median_ms;
-      j["cpu_p99_ms"] = st.cpu_p99_ms;
-    }
-  }
+// Prints the figures; returns whether the benchmark met its goals (the exit status).
+bool bench_local(const bench::LocalBenchOptions& o) {
+  const nlohmann::json j = bench::run_local_bench(o);
   print_json(j);
   return bench_goals_met(j);
 }
@@ -239,7 +186,7 @@ void add_local_commands(CLI::App& app, CLI::App& bench) {
   plan->callback([o] { report_task(local_plan(*o)); });
 
   auto* b = bench.add_subcommand("local", "TEB local planner cycle time with 0, 20 and 100 obstacles");
-  auto ba = std::make_shared<BenchLocalArgs>();
+  auto ba = std::make_shared<bench::LocalBenchOptions>();
   b->add_option("--cycles", ba->cycles, "control cycles per obstacle count")
       ->capture_default_str()
       ->check(check::integer_at_least(1));
