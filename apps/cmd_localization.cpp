@@ -1,33 +1,27 @@
+// `bipednav register`, `bipednav odometry` on a scenario (a recording: apps/cmd_odometry) and `bipednav
+// bench localization` (the harness is bench/localization; the route both drive is bench/odometry_route).
 #include <algorithm>
-#include <cmath>
 #include <cstdio>
-#include <ctime>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <numeric>
 #include <optional>
-#include <sstream>
 
 #include "apps/cli_checks.hpp"
 #include "apps/cli_exit.hpp"
 #include "apps/cli_json.hpp"
 #include "apps/cmd_odometry.hpp"
 #include "apps/commands.hpp"
-#include "bench/humanoid_drift.hpp"
-#include "bench/kitti_odometry.hpp"
+#include "bench/localization.hpp"
+#include "bench/odometry_route.hpp"
 #include "bipednav/common/angles.hpp"
 #include "bipednav/common/error.hpp"
-#include "bipednav/io/pcd.hpp"
-#include "bipednav/io/ply.hpp"
 #include "bipednav/io/robot_profile_yaml.hpp"
 #include "bipednav/localization/drift_metrics.hpp"
 #include "bipednav/localization/gicp.hpp"
 #include "bipednav/localization/loam.hpp"
-#include "bipednav/perception/voxel_grid.hpp"
 #include "bipednav/runner/scenario_runner.hpp"
-#include "bipednav/sim/route_clearance.hpp"
 #include "bipednav/sim/scenario.hpp"
 #include "bipednav/sim/scenario_files.hpp"
 #include "bipednav/sim/simulation.hpp"
@@ -39,24 +33,6 @@ namespace {
 namespace fs = std::filesystem;
 using json = nlohmann::json;
 using localization::Drift;
-
-PointCloud load_cloud(const std::string& file, double voxel_m) {
-  const std::string ext = fs::path(file).extension().string();
-  PointCloud c;
-  if (ext == ".pcd")
-    c = io::read_pcd(file);
-  else if (ext == ".ply")
-    c = io::read_ply(file);
-  else
-    throw FileError(file, "", "expected a .pcd or .ply point cloud");
-  PointCloud kept = c.empty_copy();
-  for (std::size_t i = 0; i < c.size(); ++i)  // points at the sensor origin are no returns
-    if (c.points[i].allFinite() && c.points[i].norm() > 1e-3f) kept.push_back_from(c, i);
-  if (voxel_m <= 0.0) return kept;
-  perception::VoxelGridParams vp;
-  vp.leaf_size_m = Eigen::Vector3d::Constant(voxel_m);
-  return perception::voxel_downsample(kept, vp);
-}
 
 json matrix_json(const SE3& T) {
   json rows = json::array();
@@ -77,7 +53,7 @@ struct RegisterOptions {
 
 // Returns whether GICP converged (the exit status).
 bool run_register(const RegisterOptions& o) {
-  const PointCloud source = load_cloud(o.source, o.voxel_m), target = load_cloud(o.target, o.voxel_m);
+  const PointCloud source = bench::load_cloud(o.source, o.voxel_m), target = bench::load_cloud(o.target, o.voxel_m);
   localization::GicpParams p;
   p.threads = o.threads;
   const localization::GicpResult r = localization::gicp_align(source, target, SE3::Identity(), p);
@@ -113,66 +89,6 @@ struct OdometryOptions {
   std::string params;  // a navigation parameters file: LOAM's parameters from its localization.loam
 };
 
-// The route for `bipednav odometry` and how it was chosen: explicit waypoints; else the widest
-// route of the scenario's static world from its start through its goals in turn (sim::
-// widest_route, the search `bipednav route` reports on), thinned to waypoints kRouteSpacingM apart;
-// a scenario without goals: straight ahead.
-struct OdometryRoute {
-  std::vector<Eigen::Vector2d> waypoints;
-  std::string source;  // "waypoints", "widest_route" or "straight (no goal)"
-};
-
-constexpr double kRouteSpacingM = 0.75;
-constexpr double kRouteResolutionM = 0.05;
-
-OdometryRoute route_for(const OdometryOptions& o, const sim::Scenario& s, const RobotProfile& robot) {
-  OdometryRoute route;
-  std::istringstream in(o.waypoints);
-  std::string item;
-  while (in >> item) {
-    double x = 0, y = 0;
-    if (std::sscanf(item.c_str(), "%lf,%lf", &x, &y) != 2)
-      throw Error("--waypoints: expected 'x,y x,y ...', got '" + item + "'");
-    route.waypoints.emplace_back(x, y);
-  }
-  if (!route.waypoints.empty()) {
-    route.source = "waypoints";
-    return route;
-  }
-  if (s.goals.empty()) {
-    const double c = std::cos(s.start.theta), sn = std::sin(s.start.theta);
-    route.waypoints = {{s.start.x + 100.0 * c, s.start.y + 100.0 * sn}};
-    route.source = "straight (no goal)";
-    return route;
-  }
-  sim::RouteClearanceParams p = sim::RouteClearanceParams::for_robot(robot);
-  p.resolution_m = kRouteResolutionM;
-  p.with_path = true;
-  const sim::RouteArea area{{s.bounds.min_x_m, s.bounds.min_y_m}, {s.bounds.max_x_m, s.bounds.max_y_m}};
-  Eigen::Vector2d from = s.start.position();
-  for (const sim::TimedGoal& g : s.goals) {
-    const sim::RouteClearance r = sim::widest_route(s.world, area, from, g.pose.position(), p);
-    if (!r.connected)
-      throw Error("scenario '" + s.name + "': no route from (" + std::to_string(from.x()) + ", " +
-                  std::to_string(from.y()) + ") to its goal (" + std::to_string(g.pose.x) + ", " +
-                  std::to_string(g.pose.y) + "); give --waypoints");
-    for (const Eigen::Vector2d& w : sim::route_waypoints(r.path, kRouteSpacingM)) route.waypoints.push_back(w);
-    route.waypoints.back() = g.pose.position();  // the goal itself, not its grid cell
-    from = g.pose.position();
-  }
-  route.source = "widest_route";
-  return route;
-}
-
-Twist steer(const Pose2& pose, const Eigen::Vector2d& goal, double v) {
-  const Eigen::Vector2d d = goal - pose.position();
-  const double heading_error = angle_diff(std::atan2(d.y(), d.x()), pose.theta);
-  Twist t;
-  t.angular_z = std::clamp(1.5 * heading_error, -0.8, 0.8);
-  t.linear_x = std::abs(heading_error) < 0.5 ? v : 0.0;
-  return t;
-}
-
 json drift_json(const Drift& d) {
   return {{"translation_error_m", d.translation_error_m},
           {"translation_drift_percent", d.translation_percent},
@@ -194,7 +110,7 @@ void run_odometry(const OdometryOptions& o) {
   sp.seed = scenario.seed;
   sp.enable_depth = false;
   sim::Simulation sim(scenario.world, robot, scenario.start, sp);
-  const OdometryRoute planned = route_for(o, scenario, robot);
+  const bench::OdometryRoute planned = bench::route_for(o.waypoints, scenario, robot);
   if (planned.source == "straight (no goal)" && !o.json_out)
     std::fprintf(stderr, "note: scenario '%s' has no goal; driving straight ahead\n", scenario.name.c_str());
   const std::vector<Eigen::Vector2d>& route = planned.waypoints;
@@ -209,7 +125,8 @@ void run_odometry(const OdometryOptions& o) {
   std::size_t next = 0, unhealthy = 0, degenerate = 0;
   while (sim.now_s() < t_end && next < route.size()) {
     while (next < route.size() && (route[next] - sim.true_pose().position()).norm() < 0.2) ++next;
-    const Twist cmd = next < route.size() && sim.now_s() >= 0.1 ? steer(sim.true_pose(), route[next], v) : Twist{};
+    const Twist cmd =
+        next < route.size() && sim.now_s() >= 0.1 ? bench::steer(sim.true_pose(), route[next], v) : Twist{};
     const SensorFrame f = sim.step(cmd);
     if (f.odometry) odom = se3_from_pose2(f.odometry->T_odom_base);
     if (!f.lidar) continue;
@@ -272,132 +189,28 @@ void run_odometry(const OdometryOptions& o) {
   });
 }
 
-struct BenchOptions {
-  std::string scenario = "scenarios/three_rooms.yaml";
-  std::string data_dir;   // holding 251370668.pcd, 251371071.pcd, relative.txt
-  std::string kitti_dir;  // a KITTI odometry folder (default: tests/data/lidar/kitti00_f0-15)
-  std::string humanoid_scenario = "nao_drift_walk";
-  int sweeps = 100;
+struct LocalizationBenchArgs {
+  bench::LocalizationBenchOptions options;
   bool json_out = false;
 };
 
-// Simulated VLP-16 sweeps (with odometry priors) along the three_rooms route (route_for); the simulator's cost
-// is kept out of the LOAM timings.
-json bench_loam(const BenchOptions& o) {
-  OdometryOptions oo;
-  oo.scenario = o.scenario;
-  const sim::Scenario scenario = sim::load_scenario(o.scenario);
-  const RobotProfile robot =
-      io::load_robot_profile(fs::path(o.scenario).parent_path() / ".." / "config" / (scenario.robot + ".yaml"));
-  sim::SimulationParams sp;
-  sp.seed = scenario.seed;
-  sp.enable_depth = false;
-  sim::Simulation sim(scenario.world, robot, scenario.start, sp);
-  const std::vector<Eigen::Vector2d> route = route_for(oo, scenario, robot).waypoints;
-  std::vector<PointCloud> sweeps;
-  std::size_t next = 0;
-  while (static_cast<int>(sweeps.size()) < o.sweeps && sim.now_s() < 600.0) {
-    while (next < route.size() && (route[next] - sim.true_pose().position()).norm() < 0.2) ++next;
-    const SensorFrame f =
-        sim.step(next < route.size() ? steer(sim.true_pose(), route[next], robot.limits.max_vel_x_mps) : Twist{});
-    if (f.lidar) sweeps.push_back(*f.lidar);
-  }
-  localization::Loam loam;
-  std::vector<double> odo_ms, map_ms, cpu_ms;
-  std::size_t points = 0;
-  for (const auto& s : sweeps) {
-    const std::clock_t c0 = std::clock();  // CPU time: wall time is meaningless on a shared machine
-    const localization::LoamOutput out = loam.process(s);
-    cpu_ms.push_back(1000.0 * static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC);
-    odo_ms.push_back(out.odometry_ms);
-    if (out.mapped) map_ms.push_back(out.mapping_ms);
-    points += s.size();
-  }
-  std::vector<double> sorted = odo_ms;
-  std::sort(sorted.begin(), sorted.end());
-  const auto pct = [&](double q) {
-    return sorted.empty() ? 0.0 : sorted[static_cast<std::size_t>(q * (sorted.size() - 1))];
-  };
-  const double mapping_mean =
-      map_ms.empty() ? 0.0 : std::accumulate(map_ms.begin(), map_ms.end(), 0.0) / static_cast<double>(map_ms.size());
-  const double median = pct(0.5);
-  std::sort(cpu_ms.begin(), cpu_ms.end());
-  const double cpu_median = cpu_ms.empty() ? 0.0 : cpu_ms[cpu_ms.size() / 2];
-  return {{"loam_sweeps", sweeps.size()},
-          {"loam_points_per_sweep", sweeps.empty() ? 0 : points / sweeps.size()},
-          {"loam_odometry_median_ms", median},
-          {"loam_odometry_p95_ms", pct(0.95)},
-          {"loam_mapping_mean_ms", mapping_mean},
-          {"loam_total_per_sweep_ms", median + mapping_mean / 10.0},
-          {"loam_cpu_median_ms", cpu_median},  // odometry + amortised mapping, CPU time
-          {"goal_loam_odometry_median_ms", 20.0},
-          {"meets_goal_loam_odometry_median", median <= 20.0},
-          {"meets_goal_loam_cpu_median", cpu_median <= 20.0}};
-}
-
-fs::path scan_pair_dir(const BenchOptions& o) {
-  if (!o.data_dir.empty()) return o.data_dir;
-  const fs::path d = "tests/data/lidar/fast_gicp";  // the repository's copy of the scan pair
-  if (fs::exists(d / "relative.txt")) return d;
-  throw Error("scan pair not found in tests/data/lidar/fast_gicp (run from the repository's root, or use --data-dir)");
-}
-
-json bench_gicp(const BenchOptions& o) {
-  const fs::path dir = scan_pair_dir(o);
-  const PointCloud target = load_cloud((dir / "251370668.pcd").string(), 0.2);
-  const PointCloud source = load_cloud((dir / "251371071.pcd").string(), 0.2);
-  std::ifstream in(dir / "relative.txt");
-  Eigen::Matrix4d M;
-  for (int i = 0; i < 16; ++i) in >> M(i / 4, i % 4);
-  if (!in) throw FileError((dir / "relative.txt").string(), "", "expected 16 numbers");
-  SE3 truth;
-  truth.matrix() = M;
-  std::vector<double> times;
-  std::vector<double> cpu;
-  localization::GicpResult r;
-  for (int rep = 0; rep < 3; ++rep) {
-    const std::clock_t c0 = std::clock();
-    r = localization::gicp_align(source, target, SE3::Identity());
-    times.push_back(r.time_ms);
-    cpu.push_back(1000.0 * static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC);
-  }
-  std::sort(times.begin(), times.end());
-  std::sort(cpu.begin(), cpu.end());
-  const SE3 err = truth.inverse() * r.T_target_source;
-  constexpr double kReferenceMs = 410.0;  // second reference, section VII (GICP on the combined clouds)
-  return {{"gicp_source_points", source.size()},
-          {"gicp_target_points", target.size()},
-          {"gicp_median_ms", times[1]},
-          {"gicp_cpu_median_ms", cpu[1]},
-          {"gicp_iterations", r.iterations},
-          {"gicp_converged", r.converged},
-          {"gicp_translation_error_m", err.translation().norm()},
-          {"gicp_rotation_error_deg", rad2deg(Eigen::AngleAxisd(err.rotation()).angle())},
-          {"reference_gicp_ms", kReferenceMs},
-          {"speedup_vs_reference_ratio", kReferenceMs / std::max(times[1], 1e-9)},
-          {"pcl_gicp_ms", nullptr},
-          {"goal_speedup_vs_pcl_ratio", 3.0},
-          {"meets_goal_speedup_vs_pcl", nullptr},
-          {"pcl_note", "PCL is opt-in: build bipednav_bench_pcl_gicp (-DBIPEDNAV_BENCH_PCL=ON) for the side-by-side"}};
-}
-
 void add_localization_bench(CLI::App& bench) {
-  auto o = std::make_shared<BenchOptions>();
+  auto o = std::make_shared<LocalizationBenchArgs>();
   CLI::App* b = bench.add_subcommand(
       "localization",
       "LOAM per simulated VLP-16 sweep, GICP on the scan pair, LOAM and GICP odometry on KITTI HDL-64E sweeps");
-  b->add_option("--scenario", o->scenario, "Scenario for the simulated sweeps")->capture_default_str();
-  b->add_option("--data-dir", o->data_dir, "Directory of the fast_gicp scan pair");
-  b->add_option("--kitti-dir", o->kitti_dir, "KITTI odometry folder for the HDL-64E rows (skipped when absent)");
-  b->add_option("--humanoid-scenario", o->humanoid_scenario, "Footstep scenario of the humanoid drift rows")
+  b->add_option("--scenario", o->options.scenario, "Scenario for the simulated sweeps")->capture_default_str();
+  b->add_option("--data-dir", o->options.data_dir, "Directory of the fast_gicp scan pair");
+  b->add_option("--kitti-dir", o->options.kitti_dir,
+                "KITTI odometry folder for the HDL-64E rows (skipped when absent)");
+  b->add_option("--humanoid-scenario", o->options.humanoid_scenario, "Footstep scenario of the humanoid drift rows")
       ->capture_default_str();
-  b->add_option("--sweeps", o->sweeps, "Simulated sweeps for LOAM")->capture_default_str()->check(CLI::Range(2, 10000));
+  b->add_option("--sweeps", o->options.sweeps, "Simulated sweeps for LOAM")
+      ->capture_default_str()
+      ->check(CLI::Range(2, 10000));
   add_json_flag(b, o->json_out);
   b->callback([o] {
-    json j = bench_loam(*o);
-    j.update(bench_gicp(*o));
-    j.update(bench::bench_kitti_odometry(o->kitti_dir));
-    j.update(bench::bench_humanoid_drift(o->humanoid_scenario));
+    const json j = bench::run_localization_bench(o->options);
     print_figures(o->json_out, j, [&] {
       std::printf("LOAM odometry median %.2f ms/sweep (goal 20); GICP %.1f ms (reference 410 ms)\n",
                   j["loam_odometry_median_ms"].get<double>(), j["gicp_median_ms"].get<double>());
