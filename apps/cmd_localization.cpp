@@ -201,9 +201,9 @@ void add_localization_bench(CLI::App& bench) {
       "LOAM per simulated VLP-16 sweep, GICP on the scan pair, LOAM and GICP odometry on KITTI HDL-64E sweeps");
   b->add_option("--scenario", o->options.scenario, "Scenario for the simulated sweeps")->capture_default_str();
   b->add_option("--data-dir", o->options.data_dir, "Directory of the fast_gicp scan pair");
-  b->add_option("--kitti-dir", o->options.kitti_dir,
+  b->add_option("--kitti-dir", o->options.kitti.kitti_dir,
                 "KITTI odometry folder for the HDL-64E rows (skipped when absent)");
-  b->add_option("--humanoid-scenario", o->options.humanoid_scenario, "Footstep scenario of the humanoid drift rows")
+  b->add_option("--humanoid-scenario", o->options.humanoid.scenario, "Footstep scenario of the humanoid drift rows")
       ->capture_default_str();
   b->add_option("--sweeps", o->options.sweeps, "Simulated sweeps for LOAM")
       ->capture_default_str()

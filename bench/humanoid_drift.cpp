@@ -10,12 +10,12 @@
 
 namespace bipednav::bench {
 
-nlohmann::json bench_humanoid_drift(const std::string& scenario_name) {
+nlohmann::json bench_humanoid_drift(const HumanoidDriftOptions& options) {
   // The reference's Nao under motion capture over 3.47 m: 0.21 m and 3.46 deg accumulated by the
   // corrected estimate, 0.53 m and 6.10 deg by the leg odometry.
   constexpr double kRefCorrectedCmPerM = 5.9, kRefCorrectedDegPerM = 0.99;
   constexpr double kRefOdometryCmPerM = 15.3, kRefOdometryDegPerM = 1.76;
-  const sim::Scenario scenario = sim::load_scenario(sim::resolve_scenario(scenario_name));
+  const sim::Scenario scenario = sim::load_scenario(sim::resolve_scenario(options.scenario));
   runner::FootstepRunOptions o;
   o.navigator = runner::footstep_navigator_params(navigation::load_robot(scenario.robot), {});
   const runner::FootstepRunResult run = runner::run_footstep_scenario(scenario, o);

@@ -39,10 +39,11 @@ runner::RecordedOdometryResult timed_runs(const runner::SweepSequence& seq, cons
 
 }  // namespace
 
-json bench_kitti_odometry(const std::string& kitti_dir) {
+json bench_kitti_odometry(const KittiOdometryOptions& options) {
   constexpr double kGoalMs = 25.0, kFloamMs = 59.0;  // issue goal; F-LOAM's reported time per sweep
   using std::filesystem::path;
-  const path dir = !kitti_dir.empty() ? path(kitti_dir) : path(BIPEDNAV_SOURCE_DIR) / "tests/data/lidar/kitti00_f0-15";
+  const path dir = !options.kitti_dir.empty() ? path(options.kitti_dir)
+                                              : path(BIPEDNAV_SOURCE_DIR) / "tests/data/lidar/kitti00_f0-15";
   if (!io::is_kitti_sequence(dir))
     return {{"kitti_note", "skipped: no KITTI sweeps in " + dir.string() + " (give --kitti-dir)"},
             {"kitti_loam_cpu_median_ms", nullptr},

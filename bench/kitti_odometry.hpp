@@ -5,10 +5,13 @@
 
 namespace bipednav::bench {
 
-// `bench localization`'s rows on the KITTI HDL-64E sweeps of `kitti_dir` (empty:
-// tests/data/lidar/kitti00_f0-15): LOAM per sweep (one core) beside the scan-to-scan GICP baseline on
-// the same sweeps, and both trajectories against the sweeps' direct registration and against
-// poses.txt; a note when there are no sweeps.
-nlohmann::json bench_kitti_odometry(const std::string& kitti_dir);
+struct KittiOdometryOptions {
+  std::string kitti_dir;  // a KITTI odometry folder (empty: tests/data/lidar/kitti00_f0-15)
+};
+
+// `bench localization`'s rows on the KITTI HDL-64E sweeps of `kitti_dir`: LOAM per sweep (one core)
+// beside the scan-to-scan GICP baseline on the same sweeps, and both trajectories against the sweeps'
+// direct registration and against poses.txt; a note when there are no sweeps.
+nlohmann::json bench_kitti_odometry(const KittiOdometryOptions& options);
 
 }  // namespace bipednav::bench

@@ -7,8 +7,6 @@
 #include <numeric>
 #include <vector>
 
-#include "bench/humanoid_drift.hpp"
-#include "bench/kitti_odometry.hpp"
 #include "bench/odometry_route.hpp"
 #include "bipednav/common/angles.hpp"
 #include "bipednav/common/error.hpp"
@@ -146,8 +144,8 @@ nlohmann::json bench_gicp(const LocalizationBenchOptions& o) {
 nlohmann::json run_localization_bench(const LocalizationBenchOptions& options) {
   nlohmann::json j = bench_loam(options);
   j.update(bench_gicp(options));
-  j.update(bench_kitti_odometry(options.kitti_dir));
-  j.update(bench_humanoid_drift(options.humanoid_scenario));
+  j.update(bench_kitti_odometry(options.kitti));
+  j.update(bench_humanoid_drift(options.humanoid));
   return j;
 }
 

@@ -3,6 +3,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "bench/humanoid_drift.hpp"
+#include "bench/kitti_odometry.hpp"
 #include "bipednav/common/point_cloud.hpp"
 
 // `bipednav bench localization`: LOAM per simulated VLP-16 sweep, GICP on the fast_gicp scan pair,
@@ -11,10 +13,12 @@ namespace bipednav::bench {
 
 struct LocalizationBenchOptions {
   std::string scenario = "scenarios/three_rooms.yaml";  // the simulated sweeps' scenario (a YAML file)
-  std::string data_dir;   // holding 251370668.pcd, 251371071.pcd, relative.txt (empty: tests/data/lidar/fast_gicp)
-  std::string kitti_dir;  // a KITTI odometry folder (empty: tests/data/lidar/kitti00_f0-15)
-  std::string humanoid_scenario = "nao_drift_walk";
-  int sweeps = 100;  // simulated sweeps for LOAM
+  int sweeps = 100;                                     // simulated sweeps for LOAM
+  // The scan pair's directory: 251370668.pcd, 251371071.pcd, relative.txt (empty:
+  // tests/data/lidar/fast_gicp from the working directory).
+  std::string data_dir;
+  KittiOdometryOptions kitti;     // the KITTI rows
+  HumanoidDriftOptions humanoid;  // the humanoid rows
 };
 
 // The LOAM rows (sweeps simulated along the scenario's widest route, the simulator's cost kept out of
