@@ -25,13 +25,13 @@ namespace {
 
 using perception::PassThroughParams;
 
-// Looks for <rel>, tests/data/<rel> or shared/data/<rel> above the working directory and the executable.
+// Looks for <rel> or tests/data/<rel> in the working directory, the executable's, and the folders above them.
 std::filesystem::path find_file(const std::string& rel) {
   std::error_code ec;
   for (std::filesystem::path dir :
        {std::filesystem::current_path(), std::filesystem::read_symlink("/proc/self/exe", ec).parent_path()}) {
     for (int up = 0; up < 6 && !dir.empty(); ++up, dir = dir.parent_path()) {
-      for (const std::filesystem::path& c : {dir / rel, dir / "tests" / "data" / rel, dir / "shared" / "data" / rel})
+      for (const std::filesystem::path& c : {dir / rel, dir / "tests" / "data" / rel})
         if (std::filesystem::exists(c)) return c;
       if (dir == dir.parent_path()) break;
     }
