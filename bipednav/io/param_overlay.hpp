@@ -8,6 +8,11 @@
 
 namespace bipednav::io {
 
+// Overlays the mapping of `r` onto the struct `p` by its visit_fields (ParamOverlay), rejecting
+// unknown keys (no validate(): the caller knows when its struct is complete).
+template <class S>
+void overlay_fields(ParamReader& r, S& p);
+
 // Each parameter struct lists its fields once, in its own header, as a member
 // `template <class V> void visit_fields(V& v)`: the visitor's operator()(key, field) takes scalars,
 // strings and Eigen vectors, and group(key, nested_struct) a nested mapping. ParamOverlay is the
@@ -31,17 +36,13 @@ class ParamOverlay {
   template <class S>
   void group(const char* key, S& nested) {
     ParamReader child = r_.child(key);
-    ParamOverlay overlay(child);
-    nested.visit_fields(overlay);
-    child.finish();
+    overlay_fields(child, nested);
   }
 
  private:
   ParamReader& r_;
 };
 
-// Overlays the mapping of `r` onto the struct `p` by its visit_fields, rejecting unknown keys (no
-// validate(): the caller knows when its struct is complete).
 template <class S>
 void overlay_fields(ParamReader& r, S& p) {
   ParamOverlay overlay(r);

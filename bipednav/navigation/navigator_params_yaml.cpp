@@ -5,7 +5,6 @@
 #include <charconv>
 #include <cmath>
 #include <type_traits>
-#include <vector>
 
 #include "bipednav/io/param_overlay.hpp"
 
