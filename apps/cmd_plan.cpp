@@ -108,8 +108,8 @@ bool run_movingai(const std::string& map_file, const std::string& scen_file, con
   const auto map = io::read_movingai_map(map_file);
   const auto problems = io::read_movingai_scen(scen_file);
   auto planner = planning::global::make_global_planner(planner_name, {});
-  const auto rows = planning::global::run_movingai(map, problems, *planner);
-  json j = planning::global::movingai_report(rows, planner_name);
+  const auto rows = bench::run_movingai(map, problems, *planner);
+  json j = bench::movingai_report(rows, planner_name);
   const auto& s = j["summary"];
   const bool all_solved = s["solved"].get<std::size_t>() == s["rows"].get<std::size_t>();
   print_figures(json_out, j, [&] {

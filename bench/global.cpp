@@ -9,9 +9,9 @@ namespace bipednav::bench {
 
 nlohmann::json run_global_bench(const GlobalBenchOptions& options) {
   using nlohmann::json;
-  planning::global::ReplanBenchParams p;
+  ReplanBenchParams p;
   p.max_replans = options.max_replans;
-  const planning::global::ReplanStats s = planning::global::run_replan_benchmark(p);
+  const ReplanStats s = run_replan_benchmark(p);
   const double goal_exp = 10.0, goal_time = 5.0;
   json j = {{"world", "three_rooms 6 x 30 m at 0.1 m, obstacles revealed within 3 m"},
             {"replans", s.replans},
@@ -39,13 +39,13 @@ nlohmann::json run_global_bench(const GlobalBenchOptions& options) {
             {"goal_time_ratio", goal_time},
             {"meets_goal_time_ratio", s.cpu_time_ratio >= goal_time},
             {"timing", "the goal on thread CPU time (cpu_*); *_ms without cpu are wall time"}};
-  const std::filesystem::path dir = planning::global::find_movingai_dir(options.movingai_dir);
+  const std::filesystem::path dir = find_movingai_dir(options.movingai_dir);
   if (dir.empty()) {
     j["movingai"] = nullptr;
     j["movingai_note"] = "tests/data/movingai not found; pass --movingai-dir";
   } else {
     j["movingai_dir"] = dir.string();
-    j["movingai"] = planning::global::movingai_first_plans(dir);
+    j["movingai"] = movingai_first_plans(dir);
   }
   return j;
 }

@@ -8,10 +8,11 @@
 namespace {
 
 using namespace bipednav;
+using namespace bipednav::bench;
 
 // The inflated three-room world with every obstacle known.
 mapping::Costmap2D three_rooms_costmap() {
-  const auto world = planning::global::make_three_rooms_world(0.1);
+  const auto world = bench::make_three_rooms_world(0.1);
   mapping::Costmap2D out;
   mapping::Inflator(mapping::InflationParams{0.25, 0.8, 3.0}, 0.1).inflate(world.truth, out);
   return out;
@@ -19,7 +20,7 @@ mapping::Costmap2D three_rooms_costmap() {
 
 void first_plan(benchmark::State& state, const char* planner_name) {
   const auto map = three_rooms_costmap();
-  const auto world = planning::global::make_three_rooms_world(0.1);
+  const auto world = bench::make_three_rooms_world(0.1);
   auto planner = planning::global::make_global_planner(planner_name, {});
   std::size_t expansions = 0;
   for (auto _ : state) {
@@ -39,7 +40,7 @@ BENCHMARK(BM_AStarPlanThreeRooms)->Unit(benchmark::kMillisecond);
 // One incremental repair: the robot moves one cell and a cell on its path toggles.
 void BM_DStarLiteRepairThreeRooms(benchmark::State& state) {
   auto map = three_rooms_costmap();
-  const auto world = planning::global::make_three_rooms_world(0.1);
+  const auto world = bench::make_three_rooms_world(0.1);
   auto planner = planning::global::make_global_planner("dstar_lite", {});
   const auto first = planner->plan(map, world.start, world.goal, {});
   const mapping::Cell c = first.cells.at(first.cells.size() / 2);

@@ -30,7 +30,7 @@ nlohmann::json run_local_bench(const LocalBenchOptions& a) {
     TebParams params = base;
     params.homotopy.enabled = true;
     params.homotopy.num_threads = a.threads;
-    const auto st = planning::local::run_local_bench(planning::local::make_local_bench_scene(n, 42), params, a.cycles);
+    const auto st = run_local_bench(make_local_bench_scene(n, 42), params, a.cycles);
     nlohmann::json e;
     e["obstacles_placed"] = n;
     e["obstacles_extracted"] = st.obstacles;

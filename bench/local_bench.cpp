@@ -8,6 +8,7 @@ namespace {
 
 using namespace bipednav;
 using namespace bipednav::planning::local;
+using namespace bipednav::bench;
 
 // One TEB cycle (warm-started) at the start of the bench scene, homotopy classes on.
 void BM_TebCycle(benchmark::State& state) {

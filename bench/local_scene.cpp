@@ -9,7 +9,7 @@
 #include "bipednav/common/rng.hpp"
 #include "bipednav/planning/local/teb_planner.hpp"
 
-namespace bipednav::planning::local {
+namespace bipednav::bench {
 
 void stamp_disc(mapping::Costmap2D& m, double x, double y, double r, double inscribed) {
   const auto& g = m.geometry();
@@ -58,8 +58,8 @@ LocalBenchScene make_local_bench_scene(int n_obstacles, std::uint64_t seed) {
   return s;
 }
 
-LocalBenchStats run_local_bench(const LocalBenchScene& scene, const TebParams& params, int cycles) {
-  TebPlanner planner(params);
+LocalBenchStats run_local_bench(const LocalBenchScene& scene, const planning::local::TebParams& params, int cycles) {
+  planning::local::TebPlanner planner(params);
   LocalBenchStats st;
   std::vector<double> ms, cpu;
   Pose2 p = scene.start;
@@ -89,4 +89,4 @@ LocalBenchStats run_local_bench(const LocalBenchScene& scene, const TebParams& p
   return st;
 }
 
-}  // namespace bipednav::planning::local
+}  // namespace bipednav::bench

@@ -8,7 +8,7 @@
 #include "bipednav/mapping/costmap2d.hpp"
 #include "bipednav/planning/local/teb_params.hpp"
 
-namespace bipednav::planning::local {
+namespace bipednav::bench {
 
 // A reproducible local-planning scene: an 8 x 8 m, 0.05 m costmap centred on the robot with
 // n_obstacles small round obstacles (lethal core, inscribed ring) scattered by a seeded RNG, and a
@@ -35,6 +35,6 @@ struct LocalBenchStats {
   double cpu_p99_ms = 0.0;
   int success_cycles = 0;
 };
-LocalBenchStats run_local_bench(const LocalBenchScene& scene, const TebParams& params, int cycles);
+LocalBenchStats run_local_bench(const LocalBenchScene& scene, const planning::local::TebParams& params, int cycles);
 
-}  // namespace bipednav::planning::local
+}  // namespace bipednav::bench

@@ -27,9 +27,9 @@ double maximum(const std::vector<double>& v) { return v.empty() ? 0.0 : *std::ma
 nlohmann::json run_mapping_bench(const MappingBenchOptions& options) {
   const int iterations = options.iterations;
   // Local costmap: the robot walks 5 cm per update through the room, one full frame each time.
-  std::vector<SyntheticFrame> frames;
+  std::vector<SyntheticObservations> frames;
   for (int i = 0; i < std::min(iterations, 40); ++i)
-    frames.push_back(synthetic_digit_frame({-1.0 + 0.05 * i, 0.2, 0.1 * i}));
+    frames.push_back(synthetic_digit_observations({-1.0 + 0.05 * i, 0.2, 0.1 * i}));
   LocalCostmap local;
   local.update({-1.05, 0.2, 0.0}, frames[0].observations);
   std::vector<double> local_ms, infl_ms, global_ms, height_ms, local_cpu, height_cpu;

@@ -8,11 +8,12 @@
 namespace {
 
 using namespace bipednav::mapping;
+using namespace bipednav::bench;
 
 // Inflation of the 160 x 160 local map holding one synthetic Digit frame's obstacles.
 void BM_Inflation160(benchmark::State& state) {
   LocalCostmap local;
-  local.update({0.0, 0.0, 0.0}, synthetic_digit_frame({0.0, 0.0, 0.0}).observations);
+  local.update({0.0, 0.0, 0.0}, synthetic_digit_observations({0.0, 0.0, 0.0}).observations);
   Inflator inflator(local.params().inflation(), local.params().resolution_m);
   Costmap2D out;
   for (auto _ : state) {
@@ -24,7 +25,7 @@ BENCHMARK(BM_Inflation160);
 
 // Local costmap update (re-centre, marking, ray-trace clearing, inflation) from one full frame.
 void BM_LocalCostmapUpdate(benchmark::State& state) {
-  const auto frame = synthetic_digit_frame({0.0, 0.0, 0.0});
+  const auto frame = synthetic_digit_observations({0.0, 0.0, 0.0});
   LocalCostmap local;
   for (auto _ : state) benchmark::DoNotOptimize(local.update({0.0, 0.0, 0.0}, frame.observations));
 }

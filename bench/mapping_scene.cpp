@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace bipednav::mapping {
+namespace bipednav::bench {
 
 namespace {
 
@@ -38,7 +38,7 @@ double cast_2d(const Eigen::Vector2d& o, const Eigen::Vector2d& d, const std::ve
 }
 
 // Appends the obstacle-height return of a ray (unit horizontal direction, elevation) if any.
-void add_return(Observation& obs, const Eigen::Vector2d& d, double elevation, double max_range,
+void add_return(mapping::Observation& obs, const Eigen::Vector2d& d, double elevation, double max_range,
                 const std::vector<Eigen::Vector2d>& cyl) {
   const Eigen::Vector2d o = obs.origin_map.head<2>();
   const double r = cast_2d(o, d, cyl);
@@ -50,10 +50,10 @@ void add_return(Observation& obs, const Eigen::Vector2d& d, double elevation, do
 
 }  // namespace
 
-SyntheticFrame synthetic_digit_frame(const Pose2& T_map_base) {
+SyntheticObservations synthetic_digit_observations(const Pose2& T_map_base) {
   const auto cyl = cylinders();
-  SyntheticFrame f;
-  Observation lidar;
+  SyntheticObservations f;
+  mapping::Observation lidar;
   lidar.origin_map = {T_map_base.x, T_map_base.y, 1.2};
   lidar.max_range_m = 100.0;
   for (int a = 0; a < 1800; ++a) {
@@ -64,7 +64,7 @@ SyntheticFrame synthetic_digit_frame(const Pose2& T_map_base) {
   f.lidar_points = lidar.points_map.size();
   f.observations.push_back(std::move(lidar));
   for (double yaw : {0.0, M_PI}) {
-    Observation cam;
+    mapping::Observation cam;
     cam.origin_map = {T_map_base.x + 0.1 * std::cos(T_map_base.theta + yaw),
                       T_map_base.y + 0.1 * std::sin(T_map_base.theta + yaw), 1.0};
     cam.max_range_m = 4.0;
@@ -97,4 +97,4 @@ std::vector<Eigen::Vector3f> synthetic_terrain_cloud(std::size_t n, double size_
   return pts;
 }
 
-}  // namespace bipednav::mapping
+}  // namespace bipednav::bench

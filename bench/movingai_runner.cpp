@@ -8,7 +8,11 @@
 #include "bipednav/common/error.hpp"
 #include "bipednav/planning/global/global_planner_factory.hpp"
 
-namespace bipednav::planning::global {
+namespace bipednav::bench {
+
+using planning::global::GlobalPlanner;
+using planning::global::make_global_planner;
+using planning::global::PlanResult;
 
 mapping::Costmap2D movingai_costmap(const io::MovingAiMap& map) {
   mapping::GridGeometry g;
@@ -112,4 +116,4 @@ nlohmann::json movingai_first_plans(const std::filesystem::path& dir) {
   return out;
 }
 
-}  // namespace bipednav::planning::global
+}  // namespace bipednav::bench

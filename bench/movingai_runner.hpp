@@ -12,7 +12,7 @@
 #include "bipednav/mapping/costmap2d.hpp"
 #include "bipednav/planning/global/global_planner.hpp"
 
-namespace bipednav::planning::global {
+namespace bipednav::bench {
 
 // A Moving AI map as a costmap with unit cell costs: resolution 1 m, origin (0, 0), cell (x, y)
 // = tile (x, y) (rows are not flipped), passable tiles kFree, all others kLethal.
@@ -32,7 +32,8 @@ struct MovingAiRowResult {
 // Plans every problem from scratch (the planner is reset before each one). Raises Error when
 // a problem's map size differs from the map's.
 std::vector<MovingAiRowResult> run_movingai(const io::MovingAiMap& map,
-                                            const std::vector<io::MovingAiProblem>& problems, GlobalPlanner& planner);
+                                            const std::vector<io::MovingAiProblem>& problems,
+                                            planning::global::GlobalPlanner& planner);
 
 // `plan movingai`'s figures: {planner, rows (cells, length against the optimal, expansions, time),
 // summary {rows, solved, max_abs_error_cells (an unsolved row counts its optimal length),
@@ -48,4 +49,4 @@ std::filesystem::path find_movingai_dir(const std::string& given);
 // against the optimal length (1e9 for an unsolved row), per map.
 nlohmann::json movingai_first_plans(const std::filesystem::path& dir);
 
-}  // namespace bipednav::planning::global
+}  // namespace bipednav::bench

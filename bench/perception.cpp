@@ -165,8 +165,8 @@ DigitFrames simulated_digit_frames() {
   const std::filesystem::path profile = find_file("config/digit.yaml");
   if (scenario.empty() || profile.empty()) {
     d.source = "synthetic (scenarios/digit_lab_static.yaml or config/digit.yaml not found)";
-    d.robot = perception::synthetic_digit_profile();
-    d.frame = perception::synthetic_digit_frame(d.robot);
+    d.robot = bench::synthetic_digit_profile();
+    d.frame = bench::synthetic_digit_frame(d.robot);
     for (const auto& c : d.frame.depth) d.depth_clouds.push_back(c.cloud);
     return d;
   }

@@ -12,7 +12,7 @@ namespace {
 using namespace bipednav;
 
 const SensorFrame& digit_frame() {
-  static const SensorFrame frame = perception::synthetic_digit_frame(perception::synthetic_digit_profile());
+  static const SensorFrame frame = bench::synthetic_digit_frame(bench::synthetic_digit_profile());
   return frame;
 }
 
@@ -50,7 +50,7 @@ void BM_RansacLidarSweep(benchmark::State& state) {
 BENCHMARK(BM_RansacLidarSweep)->Unit(benchmark::kMicrosecond);
 
 void BM_PipelineDigitFrame(benchmark::State& state) {
-  const RobotProfile robot = perception::synthetic_digit_profile();
+  const RobotProfile robot = bench::synthetic_digit_profile();
   perception::PerceptionPipeline pipe{perception::PerceptionParams{}};
   for (auto _ : state) benchmark::DoNotOptimize(pipe.process(digit_frame(), robot));
 }

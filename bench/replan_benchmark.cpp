@@ -7,7 +7,10 @@
 #include "bipednav/common/error.hpp"
 #include "bipednav/planning/global/global_planner_factory.hpp"
 
-namespace bipednav::planning::global {
+namespace bipednav::bench {
+
+using planning::global::make_global_planner;
+using planning::global::PlanResult;
 
 namespace {
 
@@ -167,4 +170,4 @@ ReplanStats run_replan_benchmark(const ReplanBenchParams& params) {
   return st;
 }
 
-}  // namespace bipednav::planning::global
+}  // namespace bipednav::bench

@@ -7,7 +7,7 @@
 #include "bipednav/mapping/inflation.hpp"
 #include "bipednav/planning/global/global_planner.hpp"
 
-namespace bipednav::planning::global {
+namespace bipednav::bench {
 
 // The reference's 6 x 30 m three-room simulation world as an occupancy grid (built in code so the
 // benchmark does not depend on scenario files): outer and dividing walls with one door each, plus
@@ -27,7 +27,7 @@ struct ReplanBenchParams {
   double goal_tolerance_m = 0.2;
   int max_replans = 2000;
   mapping::InflationParams inflation{0.25, 0.8, 3.0};
-  GlobalPlannerParams planner;
+  planning::global::GlobalPlannerParams planner;
 
   void validate() const;
 };
@@ -59,4 +59,4 @@ ReplanStats run_replan_benchmark(const ReplanBenchParams& params);
 // The point `distance_m` along a path (its end when the path is shorter), heading along it.
 Pose2 advance_along(const Path& path, double distance_m);
 
-}  // namespace bipednav::planning::global
+}  // namespace bipednav::bench

@@ -6,7 +6,7 @@
 #include "bipednav/common/error.hpp"
 #include "bipednav/common/rng.hpp"
 
-namespace bipednav::perception {
+namespace bipednav::bench {
 namespace {
 
 constexpr double kNoHit = std::numeric_limits<double>::infinity();
@@ -117,4 +117,4 @@ SensorFrame synthetic_digit_frame(const RobotProfile& robot, const SyntheticScen
   return f;
 }
 
-}  // namespace bipednav::perception
+}  // namespace bipednav::bench

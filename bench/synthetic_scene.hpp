@@ -7,7 +7,7 @@
 #include "bipednav/common/robot_profile.hpp"
 #include "bipednav/common/sensor_frame.hpp"
 
-namespace bipednav::perception {
+namespace bipednav::bench {
 
 // A synthetic stand-in for the simulator, for tests and benchmarks of perception: a flat floor
 // (z = 0 of the base frame) in a walled room with boxes, seen by analytic ray casting.
@@ -38,4 +38,4 @@ RobotProfile synthetic_digit_profile();
 // (lidar frame, with rings and time offsets over 0.1 s).
 SensorFrame synthetic_digit_frame(const RobotProfile& robot, const SyntheticSceneParams& params = {});
 
-}  // namespace bipednav::perception
+}  // namespace bipednav::bench

@@ -160,8 +160,8 @@ int main(int argc, char** argv) {
     band.min_height_m = 0.0;
     band.max_height_m = 1.5;
     const PointCloud table_band = perception::pass_through(table, band);
-    const auto digit = perception::synthetic_digit_profile();
-    const auto frame = perception::synthetic_digit_frame(digit);
+    const auto digit = bipednav::bench::synthetic_digit_profile();
+    const auto frame = bipednav::bench::synthetic_digit_frame(digit);
     nlohmann::json j;
     j["reps"] = reps;
     j["voxel_table_scene_0.01"] = voxel(table, 0.01, reps);

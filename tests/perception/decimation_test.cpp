@@ -16,6 +16,9 @@
 namespace bipednav::perception {
 namespace {
 
+using bench::synthetic_digit_frame;
+using bench::synthetic_digit_profile;
+
 constexpr float kNan = std::numeric_limits<float>::quiet_NaN();
 
 TEST(Decimation, KeepsTheMedianRangePointOfEachBlock) {

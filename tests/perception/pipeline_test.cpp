@@ -8,6 +8,9 @@
 namespace bipednav::perception {
 namespace {
 
+using bench::synthetic_digit_frame;
+using bench::synthetic_digit_profile;
+
 TEST(Pipeline, SyntheticDigitFrame) {
   const RobotProfile digit = synthetic_digit_profile();
   const SensorFrame frame = synthetic_digit_frame(digit);

@@ -20,7 +20,7 @@ void check_all_rows(const std::filesystem::path& map_file, const std::filesystem
   const auto problems = io::read_movingai_scen(scen_file);
   ASSERT_FALSE(problems.empty());
   auto planner = planning::global::make_global_planner(planner_name, {});
-  const auto rows = planning::global::run_movingai(map, problems, *planner);
+  const auto rows = bench::run_movingai(map, problems, *planner);
   ASSERT_EQ(rows.size(), problems.size());
   int bad = 0;
   for (std::size_t i = 0; i < rows.size(); ++i) {
@@ -49,7 +49,7 @@ INSTANTIATE_TEST_SUITE_P(AllMaps, MovingAiAllRows,
 
 TEST(MovingAiCostmap, BlockedTilesAreLethalAndRowsAreNotFlipped) {
   const auto map = io::parse_movingai_map("type octile\nheight 2\nwidth 3\nmap\n.@T\nGSW\n", "t.map");
-  const auto c = planning::global::movingai_costmap(map);
+  const auto c = bench::movingai_costmap(map);
   EXPECT_EQ(c.width(), 3);
   EXPECT_EQ(c.height(), 2);
   EXPECT_EQ(c.cost(0, 0), mapping::kFree);
@@ -64,7 +64,7 @@ TEST(MovingAiRunner, RejectsProblemsForAnotherMapSize) {
   const auto map = io::parse_movingai_map("type octile\nheight 2\nwidth 3\nmap\n...\n...\n", "t.map");
   const auto probs = io::parse_movingai_scen("version 1\n0\tt.map\t4\t2\t0\t0\t1\t1\t1.41421356\n", "t.scen");
   auto planner = planning::global::make_global_planner("astar", {});
-  EXPECT_THROW(planning::global::run_movingai(map, probs, *planner), Error);
+  EXPECT_THROW(bench::run_movingai(map, probs, *planner), Error);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 
 using namespace bipednav;
 using namespace bipednav::planning::global;
+using namespace bipednav::bench;
 
 namespace {
 

@@ -21,7 +21,7 @@ inline mapping::Costmap2D empty_costmap(double cx, double cy, double size_m = 8.
 
 // Marks cells whose centre lies within r of (x, y) lethal, and those within r + inscribed inscribed.
 inline void add_disc(mapping::Costmap2D& m, double x, double y, double r, double inscribed = 0.2) {
-  stamp_disc(m, x, y, r, inscribed);
+  bench::stamp_disc(m, x, y, r, inscribed);
 }
 
 // Axis-aligned lethal rectangle [x0, x1] x [y0, y1] with an inscribed ring.
