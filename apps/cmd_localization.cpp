@@ -1,12 +1,9 @@
-// `bipednav register`, `bipednav odometry` on a scenario (a recording: apps/cmd_odometry) and `bipednav
-// bench localization` (the harness is bench/localization; the route both drive is bench/odometry_route).
-#include <algorithm>
+// `bipednav register`, `bipednav odometry` on a scenario (bench/scenario_odometry; a recording:
+// apps/cmd_odometry) and `bipednav bench localization` (the harness is bench/localization).
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
-#include <numeric>
-#include <optional>
 
 #include "apps/cli_checks.hpp"
 #include "apps/cli_exit.hpp"
@@ -14,17 +11,11 @@
 #include "apps/cmd_odometry.hpp"
 #include "apps/commands.hpp"
 #include "bench/localization.hpp"
-#include "bench/odometry_route.hpp"
+#include "bench/scenario_odometry.hpp"
 #include "bipednav/common/angles.hpp"
 #include "bipednav/common/error.hpp"
-#include "bipednav/io/robot_profile_yaml.hpp"
-#include "bipednav/localization/drift_metrics.hpp"
 #include "bipednav/localization/gicp.hpp"
-#include "bipednav/localization/loam.hpp"
-#include "bipednav/runner/scenario_runner.hpp"
-#include "bipednav/sim/scenario.hpp"
 #include "bipednav/sim/scenario_files.hpp"
-#include "bipednav/sim/simulation.hpp"
 
 namespace bipednav::app {
 
@@ -32,7 +23,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using json = nlohmann::json;
-using localization::Drift;
 
 json matrix_json(const SE3& T) {
   json rows = json::array();
@@ -78,114 +68,23 @@ bool run_register(const RegisterOptions& o) {
 }
 
 struct OdometryOptions {
-  std::string scenario;
-  std::string config_dir;
-  std::string waypoints;
-  double duration_s = 0.0;  // 0: until the route is done (or the scenario's time limit)
-  double speed_mps = 0.0;   // 0: the robot's maximum
-  bool no_prior = false;
-  bool planar = false;  // LOAM keeps the LiDAR's height, roll and pitch (LoamParams::planar_motion)
+  bench::ScenarioOdometryOptions run;
   bool json_out = false;
-  std::string params;  // a navigation parameters file: LOAM's parameters from its localization.loam
 };
 
-json drift_json(const Drift& d) {
-  return {{"translation_error_m", d.translation_error_m},
-          {"translation_drift_percent", d.translation_percent},
-          {"yaw_error_deg", d.yaw_error_deg},
-          {"yaw_drift_deg_per_10m", d.yaw_deg_per_10m},
-          {"height_error_m", d.height_error_m},
-          {"max_translation_error_m", d.max_translation_error_m}};
-}
-
 void run_odometry(const OdometryOptions& o) {
-  const sim::Scenario scenario = sim::load_scenario(o.scenario);
-  const fs::path cfg =
-      !o.config_dir.empty() ? fs::path(o.config_dir) : fs::path(o.scenario).parent_path() / ".." / "config";
-  const RobotProfile robot = io::load_robot_profile(cfg / (scenario.robot + ".yaml"));
-  const SensorMount* mount = robot.sensor("lidar");
-  if (!mount || mount->type != "vlp16") throw Error("robot '" + robot.name + "' has no vlp16 mount named 'lidar'");
-  const SE3 T_base_lidar = mount->T_base_sensor();
-  sim::SimulationParams sp;
-  sp.seed = scenario.seed;
-  sp.enable_depth = false;
-  sim::Simulation sim(scenario.world, robot, scenario.start, sp);
-  const bench::OdometryRoute planned = bench::route_for(o.waypoints, scenario, robot);
-  if (planned.source == "straight (no goal)" && !o.json_out)
-    std::fprintf(stderr, "note: scenario '%s' has no goal; driving straight ahead\n", scenario.name.c_str());
-  const std::vector<Eigen::Vector2d>& route = planned.waypoints;
-  const double v = o.speed_mps > 0 ? std::min(o.speed_mps, robot.limits.max_vel_x_mps) : robot.limits.max_vel_x_mps;
-  const double t_end = o.duration_s > 0 ? o.duration_s : scenario.time_limit_s;
-
-  std::optional<localization::Loam> loam;
-  std::optional<SE3> odom_anchor, last_odom_lidar;
-  SE3 odom = SE3::Identity(), T_world_first = SE3::Identity();
-  std::vector<SE3> truth, est_loam, est_odom;
-  std::vector<double> odo_ms, map_ms;
-  std::size_t next = 0, unhealthy = 0, degenerate = 0;
-  while (sim.now_s() < t_end && next < route.size()) {
-    while (next < route.size() && (route[next] - sim.true_pose().position()).norm() < 0.2) ++next;
-    const Twist cmd =
-        next < route.size() && sim.now_s() >= 0.1 ? bench::steer(sim.true_pose(), route[next], v) : Twist{};
-    const SensorFrame f = sim.step(cmd);
-    if (f.odometry) odom = se3_from_pose2(f.odometry->T_odom_base);
-    if (!f.lidar) continue;
-    const SE3 T_world_base = se3_from_pose2(sim.true_pose());
-    if (!loam) {
-      // LoamParams' defaults, or the file overlaid on the robot's defaults as `run --params` loads it.
-      localization::LoamParams lp;
-      if (!o.params.empty()) {
-        runner::RunOptions ro;
-        ro.params_file = o.params;
-        lp = runner::navigator_params(robot, ro).localization.loam;
-      }
-      lp.planar_motion = lp.planar_motion || o.planar;
-      lp.T_world_lidar_initial = T_world_base * T_base_lidar;
-      loam.emplace(lp);
-      odom_anchor = odom;
-      T_world_first = T_world_base;
-    }
-    const SE3 odom_lidar = odom * T_base_lidar;
-    std::optional<SE3> prior;
-    if (!o.no_prior && last_odom_lidar) prior = last_odom_lidar->inverse() * odom_lidar;
-    last_odom_lidar = odom_lidar;
-    const localization::LoamOutput out = loam->process(*f.lidar, prior);
-    unhealthy += out.healthy ? 0 : 1;
-    degenerate += out.degenerate ? 1 : 0;
-    odo_ms.push_back(out.odometry_ms);
-    if (out.mapped) map_ms.push_back(out.mapping_ms);
-    truth.push_back(T_world_base);
-    est_loam.push_back(out.T_world_lidar * T_base_lidar.inverse());
-    est_odom.push_back(T_world_first * odom_anchor->inverse() * odom);
-  }
-  if (truth.empty()) throw Error("no LiDAR sweep was produced (is --duration long enough?)");
-  const Drift dl = localization::trajectory_drift(truth, est_loam);
-  const Drift dd = localization::trajectory_drift(truth, est_odom);
-  const auto mean = [](const std::vector<double>& x) {
-    return x.empty() ? 0.0 : std::accumulate(x.begin(), x.end(), 0.0) / static_cast<double>(x.size());
-  };
-  const json j = {{"scenario", scenario.name},
-                  {"simulated_s", sim.now_s()},
-                  {"distance_m", dl.distance_m},
-                  {"sweeps", truth.size()},
-                  {"route", planned.source},
-                  {"route_waypoints", route.size()},
-                  {"route_completed", next >= route.size()},
-                  {"contacts", sim.contacts().size()},
-                  {"motion_prior", !o.no_prior},
-                  {"planar_motion", o.planar},
-                  {"unhealthy_sweeps", unhealthy},
-                  {"degenerate_sweeps", degenerate},
-                  {"loam", drift_json(dl)},
-                  {"odometry", drift_json(dd)},
-                  {"loam_odometry_mean_ms", mean(odo_ms)},
-                  {"loam_mapping_mean_ms", mean(map_ms)}};
+  const json j = bench::run_scenario_odometry(o.run);
+  if (j["route"] == "straight (no goal)" && !o.json_out)
+    std::fprintf(stderr, "note: scenario '%s' has no goal; driving straight ahead\n",
+                 j["scenario"].get<std::string>().c_str());
   print_figures(o.json_out, j, [&] {
     std::printf(
         "%s: %.1f m in %.1f s, %zu sweeps. LOAM: %.2f %% of distance, %.3f deg per 10 m. Raw odometry: %.2f %%, "
         "%.3f deg per 10 m\n",
-        scenario.name.c_str(), dl.distance_m, sim.now_s(), truth.size(), dl.translation_percent, dl.yaw_deg_per_10m,
-        dd.translation_percent, dd.yaw_deg_per_10m);
+        j["scenario"].get<std::string>().c_str(), j["distance_m"].get<double>(), j["simulated_s"].get<double>(),
+        j["sweeps"].get<std::size_t>(), j["loam"]["translation_drift_percent"].get<double>(),
+        j["loam"]["yaw_drift_deg_per_10m"].get<double>(), j["odometry"]["translation_drift_percent"].get<double>(),
+        j["odometry"]["yaw_drift_deg_per_10m"].get<double>());
   });
 }
 
@@ -239,30 +138,30 @@ void add_localization_commands(CLI::App& app, CLI::App& bench) {
       "odometry",
       "LOAM (or GICP) odometry on a recording (KITTI, PCD or PLY folder, rosbag) against its reference poses, or "
       "driving a scenario in the simulator (LOAM and raw odometry drift)");
-  d->add_option("path", odo->scenario,
+  d->add_option("path", odo->run.scenario,
                 "Recording (a KITTI/PCD/PLY folder or a .bag), or a scenario name or YAML file to simulate")
       ->required();
-  d->add_option("--duration", odo->duration_s, "Scenario: simulated seconds (default: until the route is done)")
+  d->add_option("--duration", odo->run.duration_s, "Scenario: simulated seconds (default: until the route is done)")
       ->check(check::positive());
-  d->add_option("--waypoints", odo->waypoints,
+  d->add_option("--waypoints", odo->run.waypoints,
                 "Scenario: route as 'x,y x,y ...' (default: the widest route from the start through the goals, "
                 "straight ahead without goals)");
-  d->add_option("--speed", odo->speed_mps, "Scenario: forward speed in m/s (default: the robot's maximum)")
+  d->add_option("--speed", odo->run.speed_mps, "Scenario: forward speed in m/s (default: the robot's maximum)")
       ->check(check::positive());
-  d->add_option("--config-dir", odo->config_dir,
+  d->add_option("--config-dir", odo->run.config_dir,
                 "Scenario: directory of robot profiles (default: <scenario>/../config)");
-  d->add_flag("--no-prior", odo->no_prior, "Scenario: do not give LOAM the odometry as a motion prior");
-  d->add_flag("--planar", odo->planar, "Scenario: LOAM keeps the LiDAR's height, roll and pitch (flat floor)");
+  d->add_flag("--no-prior", odo->run.no_prior, "Scenario: do not give LOAM the odometry as a motion prior");
+  d->add_flag("--planar", odo->run.planar, "Scenario: LOAM keeps the LiDAR's height, roll and pitch (flat floor)");
   add_json_flag(d, odo->json_out);
   d->add_option(
-       "--params", odo->params,
+       "--params", odo->run.params,
        "Navigation parameters file (the layout of `bipednav params`): LOAM's parameters are its "
        "localization.loam, over the robot's defaults as `run --params` reads it (default: LoamParams' defaults; "
        "a recording: config/lidar/<lidar>.yaml when it exists)")
       ->check(CLI::ExistingFile);
   add_recorded_odometry_options(*d, *rec);
   d->callback([d, odo, rec] {
-    const bool recording = is_recording(odo->scenario);
+    const bool recording = is_recording(odo->run.scenario);
     // Options of the other kind of input are an error, not silently dropped.
     const char* const scenario_only[] = {"--duration",   "--waypoints", "--speed",
                                          "--config-dir", "--no-prior",  "--planar"};
@@ -277,13 +176,13 @@ void add_localization_commands(CLI::App& app, CLI::App& bench) {
       throw Error(wrong + (recording ? ": only for a simulated scenario, not for a recording"
                                      : ": only for a recording (a folder or a .bag), not for a scenario"));
     if (recording) {
-      rec->path = odo->scenario;
-      rec->params = odo->params;
+      rec->path = odo->run.scenario;
+      rec->params = odo->run.params;
       rec->json_out = odo->json_out;
       run_recorded_odometry_command(*rec);
       return;
     }
-    odo->scenario = sim::resolve_scenario(odo->scenario).string();
+    odo->run.scenario = sim::resolve_scenario(odo->run.scenario).string();
     run_odometry(*odo);
   });
 
