@@ -78,9 +78,11 @@ void add_local_commands(CLI::App& app, CLI::App& bench) {
       ->check(check::integer_in(1, 256));
   accept_json_flag(b);
   b->add_option("--params", ba->params,
-                "Navigation parameters YAML: its TEB settings (server.local.teb) over --robot's defaults, as `run "
-                "--params` (without it: TebParams' defaults)");
-  b->add_option("--robot", ba->robot, "Robot profile whose defaults --params overlays");
+                "Navigation parameters YAML: its TEB settings (server.local.teb) over --robot's, as `run --params` "
+                "(without --robot: over the TurtleBot3's)");
+  b->add_option("--robot", ba->robot,
+                "Robot whose TEB settings are measured, as `run` uses them (without --robot and --params: "
+                "TebParams' defaults)");
   b->callback([ba] { report_task(bench_local(*ba)); });
 }
 

@@ -11,10 +11,11 @@ namespace bipednav::bench {
 nlohmann::json run_local_bench(const LocalBenchOptions& a) {
   using planning::local::TebParams;
   TebParams base;
-  if (!a.params.empty()) {
-    const RobotProfile robot = navigation::load_robot(a.robot);
+  const std::string robot_name = a.robot.empty() && !a.params.empty() ? "turtlebot3" : a.robot;
+  if (!robot_name.empty()) {
+    const RobotProfile robot = navigation::load_robot(robot_name);
     if (robot.kind == "humanoid")
-      throw Error("bench local --robot " + a.robot + ": a humanoid walks by footsteps, no TEB");
+      throw Error("bench local --robot " + robot_name + ": a humanoid walks by footsteps, no TEB");
     runner::RunOptions o;
     o.params_file = a.params;
     base = runner::navigator_params(robot, o).server.local.teb;
@@ -22,7 +23,9 @@ nlohmann::json run_local_bench(const LocalBenchOptions& a) {
   nlohmann::json j;
   j["benchmark"] = "local";
   j["threads"] = a.threads;
-  if (!a.params.empty()) j["params"] = a.params, j["robot"] = a.robot;
+  j["teb_settings"] = robot_name.empty() ? "TebParams defaults" : "robot " + robot_name;
+  if (!robot_name.empty()) j["robot"] = robot_name;
+  if (!a.params.empty()) j["params"] = a.params;
   j["homotopy_classes"] = true;
   j["goal_median_ms"] = 10.0;
   j["goal_p99_ms"] = 25.0;

@@ -8,14 +8,15 @@
 namespace bipednav::bench {
 
 struct LocalBenchOptions {
-  int cycles = 100;                  // control cycles per obstacle count
-  int threads = 1;                   // threads for the homotopy candidates
-  std::string params;                // a navigation parameters file: its TEB settings (server.local.teb)
-  std::string robot = "turtlebot3";  // the robot whose defaults the file overlays
+  int cycles = 100;    // control cycles per obstacle count
+  int threads = 1;     // threads for the homotopy candidates
+  std::string params;  // a navigation parameters file: its TEB settings (server.local.teb)
+  std::string robot;   // the robot whose TEB settings are measured (with only `params`: turtlebot3)
 };
 
-// Without a parameters file: TebParams' own defaults (the figures in the README); with one: the
-// robot's TEB settings with the file overlaid, as `run --params` would use them. Returns the timings
+// Without a robot and a parameters file: TebParams' own defaults; with a robot: its TEB settings as
+// `run` uses them (the profile's derived values and config/<robot>.params.yaml), with `params`
+// overlaid as `run --params` would overlay it. Returns the timings
 // per obstacle count, those with 100 obstacles against the goals (median 10 ms, p99 25 ms); throws
 // Error for a humanoid (it walks by footsteps, no TEB).
 nlohmann::json run_local_bench(const LocalBenchOptions& options);
