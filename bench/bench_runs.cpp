@@ -8,6 +8,7 @@
 
 #include "bipednav/common/progress.hpp"
 #include "bipednav/navigation/robot_loading.hpp"
+#include "bipednav/runner/footstep_runner.hpp"
 
 namespace bipednav::bench {
 
@@ -40,7 +41,11 @@ std::map<std::string, RobotProfile> robot_profiles(const std::vector<std::string
   std::map<std::string, RobotProfile> profiles;
   for (const auto& robot : robots) {
     const RobotProfile profile = navigation::load_robot(robot);
-    runner::navigator_params(profile, base);
+    // Reads the parameters each run will read, so a bad file fails before the first run.
+    if (runner::is_footstep_robot(profile))
+      runner::footstep_navigator_params(profile, base.params_file);
+    else
+      runner::navigator_params(profile, base);
     profiles[robot] = profile;
   }
   return profiles;

@@ -44,14 +44,26 @@ std::vector<BenchRun> bench_runs(const ScenarioBenchOptions& a, std::size_t scen
 // Runs are independent simulations: --jobs of them at a time, each on one thread. The results do
 // not depend on --jobs; a run's real-time factor is its own wall time, so it drops when the
 // jobs share cores.
+// A humanoid (kind humanoid) walks the footstep loop (runner::run_footstep_scenario) with the
+// footstep navigator's parameters; the others run the navigator.
 void run_all(std::vector<BenchRun>& runs, const std::vector<sim::Scenario>& loaded, const runner::RunOptions& base,
-             int jobs) {
+             const std::map<std::string, RobotProfile>& profiles, int jobs) {
   run_in_parallel(runs.size(), jobs, "scenarios", [&](std::size_t i) {
     BenchRun& b = runs[i];
-    runner::RunOptions o = base;
-    o.robot = b.robot;
-    o.seed = static_cast<std::uint64_t>(b.seed);
     try {
+      const RobotProfile& robot = profiles.at(b.robot);
+      if (runner::is_footstep_robot(robot)) {
+        runner::FootstepRunOptions o;
+        o.navigator = runner::footstep_navigator_params(robot, base.params_file);
+        o.seed = static_cast<std::uint64_t>(b.seed);
+        sim::Scenario s = loaded[b.scenario];
+        s.robot = b.robot;
+        b.result = runner::run_footstep_scenario(s, o).summary;
+        return;
+      }
+      runner::RunOptions o = base;
+      o.robot = b.robot;
+      o.seed = static_cast<std::uint64_t>(b.seed);
       b.result = runner::run_scenario(loaded[b.scenario], o);
     } catch (const std::exception& e) {
       b.error = e.what();
@@ -152,7 +164,7 @@ nlohmann::json run_scenario_bench(const ScenarioBenchOptions& a) {
   base.params_file = a.params;
   const std::map<std::string, RobotProfile> profiles = robot_profiles(a.robots, base);
   std::vector<BenchRun> runs = bench_runs(a, loaded.size());
-  run_all(runs, loaded, base, a.jobs);
+  run_all(runs, loaded, base, profiles, a.jobs);
   nlohmann::json rows = nlohmann::json::array();
   std::size_t ok_total = 0, expected_total = 0;
   for (std::size_t first = 0; first < runs.size(); first += static_cast<std::size_t>(a.seeds)) {
