@@ -149,7 +149,9 @@ Path make_world_path(const mapping::GridGeometry& geometry, const std::vector<st
 void finish_plan(PlanResult& out, const SearchOutcome& search, const mapping::GridGeometry& geometry,
                  const Endpoints& ends, const Pose2& start, const Pose2& goal, const GlobalPlannerParams& params) {
   out.expansions = search.expansions;
-  const std::string n_exp = std::to_string(search.expansions) + " expansions";
+  // An incremental planner (D* Lite) counts the expansions of this call's repair only: 0 when the
+  // changes did not reopen what an earlier search found closed.
+  const std::string n_exp = std::to_string(search.expansions) + " expansions in this call";
   switch (search.status) {
     case SearchStatus::kTimeout:
       out.result = {Outcome::PLAN_PAT_EXCEEDED,
