@@ -16,9 +16,9 @@ struct LocalBenchOptions {
 
 // Without a robot and a parameters file: TebParams' own defaults; with a robot: its TEB settings as
 // `run` uses them (the profile's derived values and config/<robot>.params.yaml), with `params`
-// overlaid as `run --params` would overlay it. Returns the timings
-// per obstacle count, those with 100 obstacles against the goals (median 10 ms, p99 25 ms); throws
-// Error for a humanoid (it walks by footsteps, no TEB).
+// overlaid as `run --params` would overlay it. Returns the timings per obstacle count, those with
+// 100 obstacles against the goals (median 10 ms, p99 25 ms of the thread's CPU time); throws Error
+// for a humanoid (it walks by footsteps, no TEB).
 nlohmann::json run_local_bench(const LocalBenchOptions& options);
 
 }  // namespace bipednav::bench

@@ -87,7 +87,6 @@ bipednav_cli(footsteps_map_server_yaml 2 "this is a map_server occupancy map" fo
              --out ${_cli_out}/footsteps_maze.png)
 bipednav_cli(bench_local_bad_cycles 2 "--cycles: expected a whole number >= 1" bench local --cycles 0)
 bipednav_cli(bench_local_robot_settings 0 "\"teb_settings\": \"robot digit\"" bench local --robot digit --cycles 2)
-bipednav_cli(bench_local_humanoid 2 "a humanoid walks by footsteps, no TEB" bench local --robot nao --cycles 2)
 bipednav_cli(bench_scenarios_humanoid 0 "\"as_expected\": 1," bench scenarios --scenarios nao_stairs --robots nao --seeds 1 --json)
 
 # Every numeric option fed a negative number, NaN and zero (numeric_flag.sh): NaN always exits 2
