@@ -130,7 +130,7 @@ viz::CanvasParams canvas_for(const sim::Bounds& b) {
 
 constexpr viz::Color kLidarColor{0.1, 0.3, 0.95, 0.8}, kDepthColor{0.05, 0.6, 0.2, 0.5};
 constexpr viz::Color kDrivenColor{0.0, 0.55, 0.6, 1.0};
-constexpr double kRampPx = 60.0;
+constexpr double kHeightRampPx = 60.0;
 
 // The layers the figure shows (a robot without LiDAR has no sweep to show).
 std::vector<viz::LegendEntry> sim_legend(const sim::World& world, const RunRecord& rec) {
@@ -161,7 +161,7 @@ void draw_collisions(viz::Canvas& canvas, const RunRecord& rec) {
 void write_figure(const fs::path& file, const sim::Simulation& sim, const sim::Scenario& scenario,
                   const RunRecord& rec) {
   const std::vector<viz::LegendEntry> legend = sim_legend(sim.world(), rec);
-  viz::Canvas canvas(viz::with_legend_bands(canvas_for(scenario.bounds), legend, kRampPx));
+  viz::Canvas canvas(viz::with_legend_bands(canvas_for(scenario.bounds), legend, kHeightRampPx));
   sim::WorldStyle style;
   style.shade_by_height = true;
   sim::draw_world(canvas, sim.world(), sim.now_s(), style);
@@ -201,13 +201,13 @@ void write_figure(const fs::path& file, const sim::Simulation& sim, const sim::S
   canvas.write_png(file);
 }
 
-json pose_json(const Pose2& p) { return {{"x_m", p.x}, {"y_m", p.y}, {"theta_rad", p.theta}}; }
+json summary_pose_json(const Pose2& p) { return {{"x_m", p.x}, {"y_m", p.y}, {"theta_rad", p.theta}}; }
 
 json summary(const sim::Simulation& sim, const sim::Scenario& scenario, const RunRecord& rec) {
   json collisions = json::array();
   for (const CollisionRecord& c : rec.collisions)
     collisions.push_back({{"time_s", c.time_s},
-                          {"robot", pose_json(c.pose)},
+                          {"robot", summary_pose_json(c.pose)},
                           {"contact_x_m", c.point.x()},
                           {"contact_y_m", c.point.y()},
                           {"obstacle", c.obstacle}});
@@ -221,8 +221,8 @@ json summary(const sim::Simulation& sim, const sim::Scenario& scenario, const Ru
           {"steps", sim.stats().steps},
           {"commands", scenario.commands.empty() ? "straight line" : "scenario script"},
           {"distance_m", rec.distance_m},
-          {"start", pose_json(scenario.start)},
-          {"final_pose", pose_json(sim.true_pose())},
+          {"start", summary_pose_json(scenario.start)},
+          {"final_pose", summary_pose_json(sim.true_pose())},
           {"final_goal_distance_m", goal ? distance(goal->pose, sim.true_pose()) : -1.0},
           {"collision_count", rec.collisions.size()},
           {"collisions", collisions},
