@@ -44,7 +44,10 @@ nlohmann::json run_global_bench(const GlobalBenchOptions& options) {
     j["movingai"] = nullptr;
     j["movingai_note"] = "tests/data/movingai not found; pass --movingai-dir";
   } else {
-    j["movingai_dir"] = dir.string();
+    // Relative to the working directory when below it (a record names no path of the machine).
+    const std::filesystem::path rel = dir.lexically_relative(std::filesystem::current_path());
+    const bool below = !rel.empty() && *rel.begin() != "..";
+    j["movingai_dir"] = (below ? rel : dir).string();
     j["movingai"] = movingai_first_plans(dir);
   }
   return j;
