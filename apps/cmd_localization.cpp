@@ -149,7 +149,7 @@ void add_localization_commands(CLI::App& app, CLI::App& bench) {
   d->add_option("--speed", odo->run.speed_mps, "Scenario: forward speed in m/s (default: the robot's maximum)")
       ->check(check::positive());
   d->add_option("--config-dir", odo->run.config_dir,
-                "Scenario: directory of robot profiles (default: <scenario>/../config)");
+                "Scenario: directory of robot profiles (default: the installed config/)");
   d->add_flag("--no-prior", odo->run.no_prior, "Scenario: do not give LOAM the odometry as a motion prior");
   d->add_flag("--planar", odo->run.planar, "Scenario: LOAM keeps the LiDAR's height, roll and pitch (flat floor)");
   add_json_flag(d, odo->json_out);

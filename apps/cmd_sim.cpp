@@ -13,7 +13,7 @@
 #include "apps/cmd_route.hpp"
 #include "apps/commands.hpp"
 #include "bipednav/common/error.hpp"
-#include "bipednav/io/robot_profile_yaml.hpp"
+#include "bipednav/navigation/robot_loading.hpp"
 #include "bipednav/runner/open_loop_run.hpp"
 #include "bipednav/sim/scenario.hpp"
 #include "bipednav/sim/scenario_files.hpp"
@@ -28,29 +28,16 @@ struct SimOptions {
   double duration_s = 30.0;
   std::string out_dir = "out";
   std::string robot;       // empty: the scenario's
-  std::string config_dir;  // empty: <scenario dir>/../config, then ./config
+  std::string config_dir;  // robot profiles (empty: the installed config/)
   double step_s = 0.01;
   bool quiet = false;
   bool json = false;
 };
 
-fs::path find_config_dir(const SimOptions& opt, const fs::path& scenario_file) {
-  if (!opt.config_dir.empty()) return opt.config_dir;
-  const fs::path near_scenario = scenario_file.parent_path() / ".." / "config";
-  return fs::is_directory(near_scenario) ? near_scenario : fs::path("config");
-}
-
-RobotProfile load_profile(const SimOptions& opt, const fs::path& scenario_file, const std::string& name) {
-  const fs::path file = find_config_dir(opt, scenario_file) / (name + ".yaml");
-  if (!fs::exists(file))
-    throw Error("robot profile '" + name + "' not found: " + file.string() + " (use --config-dir or --robot)");
-  return io::load_robot_profile(file);
-}
-
 void run_sim_command(const SimOptions& opt) {
   const fs::path scenario_file = sim::resolve_scenario(opt.scenario);
   const sim::Scenario scenario = sim::load_scenario(scenario_file);
-  const RobotProfile robot = load_profile(opt, scenario_file, opt.robot.empty() ? scenario.robot : opt.robot);
+  const RobotProfile robot = navigation::load_robot(opt.robot.empty() ? scenario.robot : opt.robot, opt.config_dir);
   const fs::path out(opt.out_dir);
   prepare_output_dir(out, "--out");
   sim::SimulationParams params;
@@ -87,7 +74,7 @@ void add_sim_commands(CLI::App& app, CLI::App& bench) {
       ->check(check::positive());
   cmd->add_option("--out", opt->out_dir, "Output directory")->capture_default_str();
   cmd->add_option("--robot", opt->robot, "Robot profile name (config/<NAME>.yaml), overrides the scenario's");
-  cmd->add_option("--config-dir", opt->config_dir, "Directory of robot profiles (default: <scenario>/../config)");
+  cmd->add_option("--config-dir", opt->config_dir, "Directory of robot profiles (default: the installed config/)");
   cmd->add_option("--step", opt->step_s, "Simulation step in seconds")->capture_default_str()->check(check::positive());
   cmd->add_flag("--quiet", opt->quiet, "No progress bar (it is shown only when stderr is a terminal)");
   add_json_flag(cmd, opt->json);

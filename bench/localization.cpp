@@ -12,9 +12,9 @@
 #include "bipednav/common/error.hpp"
 #include "bipednav/io/pcd.hpp"
 #include "bipednav/io/ply.hpp"
-#include "bipednav/io/robot_profile_yaml.hpp"
 #include "bipednav/localization/gicp.hpp"
 #include "bipednav/localization/loam.hpp"
+#include "bipednav/navigation/robot_loading.hpp"
 #include "bipednav/perception/voxel_grid.hpp"
 #include "bipednav/sim/scenario.hpp"
 #include "bipednav/sim/simulation.hpp"
@@ -45,8 +45,7 @@ namespace {
 // is kept out of the LOAM timings.
 nlohmann::json bench_loam(const LocalizationBenchOptions& o) {
   const sim::Scenario scenario = sim::load_scenario(o.scenario);
-  const RobotProfile robot = io::load_robot_profile(std::filesystem::path(o.scenario).parent_path() / ".." / "config" /
-                                                    (scenario.robot + ".yaml"));
+  const RobotProfile robot = navigation::load_robot(scenario.robot);
   sim::SimulationParams sp;
   sp.seed = scenario.seed;
   sp.enable_depth = false;

@@ -8,9 +8,9 @@
 
 #include "bench/odometry_route.hpp"
 #include "bipednav/common/error.hpp"
-#include "bipednav/io/robot_profile_yaml.hpp"
 #include "bipednav/localization/drift_metrics.hpp"
 #include "bipednav/localization/loam.hpp"
+#include "bipednav/navigation/robot_loading.hpp"
 #include "bipednav/runner/scenario_runner.hpp"
 #include "bipednav/sim/scenario.hpp"
 #include "bipednav/sim/simulation.hpp"
@@ -36,9 +36,7 @@ json drift_json(const Drift& d) {
 
 json run_scenario_odometry(const ScenarioOdometryOptions& o) {
   const sim::Scenario scenario = sim::load_scenario(o.scenario);
-  const fs::path cfg =
-      !o.config_dir.empty() ? fs::path(o.config_dir) : fs::path(o.scenario).parent_path() / ".." / "config";
-  const RobotProfile robot = io::load_robot_profile(cfg / (scenario.robot + ".yaml"));
+  const RobotProfile robot = navigation::load_robot(scenario.robot, o.config_dir);
   const SensorMount* mount = robot.sensor("lidar");
   if (!mount || mount->type != "vlp16") throw Error("robot '" + robot.name + "' has no vlp16 mount named 'lidar'");
   const SE3 T_base_lidar = mount->T_base_sensor();

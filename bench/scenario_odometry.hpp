@@ -9,7 +9,7 @@ namespace bipednav::bench {
 
 struct ScenarioOdometryOptions {
   std::string scenario;     // the scenario's YAML file
-  std::string config_dir;   // robot profiles (empty: <scenario's folder>/../config)
+  std::string config_dir;   // robot profiles (empty: the installed config/)
   std::string waypoints;    // 'x,y x,y ...' (empty: the widest route through the goals, or straight ahead)
   double duration_s = 0.0;  // 0: until the route is done (or the scenario's time limit)
   double speed_mps = 0.0;   // 0: the robot's maximum

@@ -59,8 +59,6 @@ void draw_start(viz::Canvas& c, const Pose2& start) {
 
 namespace {
 
-constexpr double kRampPx = 60.0;  // the height ramp under the legend
-
 std::vector<viz::LegendEntry> footstep_legend(bool with_path) {
   using viz::LegendMark;
   std::vector<viz::LegendEntry> e = {
@@ -82,7 +80,7 @@ std::vector<viz::LegendEntry> footstep_legend(bool with_path) {
 }  // namespace
 
 viz::CanvasParams footstep_canvas(const mapping::GridGeometry& g, bool with_path) {
-  return viz::with_legend_bands(canvas_for(g), footstep_legend(with_path), kRampPx);
+  return viz::with_legend_bands(canvas_for(g), footstep_legend(with_path), viz::kColorRampRoomPx);
 }
 
 void draw_footstep_legend(viz::Canvas& c, const std::string& title, const HeightRange& heights, bool with_path) {
@@ -91,8 +89,7 @@ void draw_footstep_legend(viz::Canvas& c, const std::string& title, const Height
   const auto no_negative_zero = [](double v) { return std::abs(v) < 0.005 ? 0.0 : v; };
   std::snprintf(lo, sizeof lo, "%.2f m", no_negative_zero(heights.lo_m));
   std::snprintf(hi, sizeof hi, "%.2f m", no_negative_zero(heights.hi_m));
-  viz::draw_color_ramp(c, {rest.x, rest.y, std::min(rest.w - 8, 140.0), 12}, {0, 0, 0, 0.27}, {0, 0, 0, 0.9}, lo, hi,
-                       "height");
+  viz::draw_color_ramp(c, rest, {0, 0, 0, 0.27}, {0, 0, 0, 0.9}, lo, hi, "height");
 }
 
 }  // namespace bipednav::runner

@@ -130,7 +130,6 @@ viz::CanvasParams canvas_for(const sim::Bounds& b) {
 
 constexpr viz::Color kLidarColor{0.1, 0.3, 0.95, 0.8}, kDepthColor{0.05, 0.6, 0.2, 0.5};
 constexpr viz::Color kDrivenColor{0.0, 0.55, 0.6, 1.0};
-constexpr double kHeightRampPx = 60.0;
 
 // The layers the figure shows (a robot without LiDAR has no sweep to show).
 std::vector<viz::LegendEntry> sim_legend(const sim::World& world, const RunRecord& rec) {
@@ -161,7 +160,7 @@ void draw_collisions(viz::Canvas& canvas, const RunRecord& rec) {
 void write_figure(const fs::path& file, const sim::Simulation& sim, const sim::Scenario& scenario,
                   const RunRecord& rec) {
   const std::vector<viz::LegendEntry> legend = sim_legend(sim.world(), rec);
-  viz::Canvas canvas(viz::with_legend_bands(canvas_for(scenario.bounds), legend, kHeightRampPx));
+  viz::Canvas canvas(viz::with_legend_bands(canvas_for(scenario.bounds), legend, viz::kColorRampRoomPx));
   sim::WorldStyle style;
   style.shade_by_height = true;
   sim::draw_world(canvas, sim.world(), sim.now_s(), style);
@@ -196,8 +195,7 @@ void write_figure(const fs::path& file, const sim::Simulation& sim, const sim::S
   const viz::PixelRect rest = viz::draw_title_and_legend(canvas, title, legend);
   char full[32];
   std::snprintf(full, sizeof full, ">= %.1f m", style.full_height_m);
-  viz::draw_color_ramp(canvas, {rest.x, rest.y, std::min(rest.w - 8, 140.0), 12}, style.low_fill, style.static_fill,
-                       "0 m", full, "obstacle height (top)");
+  viz::draw_color_ramp(canvas, rest, style.low_fill, style.static_fill, "0 m", full, "obstacle height (top)");
   canvas.write_png(file);
 }
 

@@ -83,8 +83,9 @@ PixelRect draw_scale_bar(Canvas& canvas, double x_px, double y_px, double max_px
   return {x_px - 3, y_px, len_px + 0.5 * w + 3, 22};
 }
 
-PixelRect draw_color_ramp(Canvas& canvas, const PixelRect& box, Color lo, Color hi, const std::string& lo_label,
+PixelRect draw_color_ramp(Canvas& canvas, const PixelRect& area, Color lo, Color hi, const std::string& lo_label,
                           const std::string& hi_label, const std::string& caption) {
+  const PixelRect box{area.x, area.y, std::min(area.w - 8, 140.0), 12};
   canvas.text_px(box.x, box.y + 12, caption, colors::kBlack, 12.0);
   const PixelRect ramp{box.x, box.y + 18, box.w, box.h};
   const int steps = 32;

@@ -43,9 +43,12 @@ double scale_bar_length_m(double max_m);
 // length written under it, its left end at (x_px, y_px); returns its rectangle.
 PixelRect draw_scale_bar(Canvas& canvas, double x_px, double y_px, double max_px);
 
-// A colour ramp from `lo` to `hi` in a w x h box with its end labels and a caption above it
-// (e.g. heights); returns its rectangle.
-PixelRect draw_color_ramp(Canvas& canvas, const PixelRect& box, Color lo, Color hi, const std::string& lo_label,
+// The room a colour ramp takes below a legend: with_legend_bands' extra_h_px for draw_color_ramp.
+inline constexpr double kColorRampRoomPx = 60.0;
+// A colour ramp from `lo` to `hi` (at most 140 px wide, 12 px tall) with its end labels and a
+// caption above it (e.g. heights), at the top of `area` (draw_title_and_legend's free rest);
+// returns its rectangle.
+PixelRect draw_color_ramp(Canvas& canvas, const PixelRect& area, Color lo, Color hi, const std::string& lo_label,
                           const std::string& hi_label, const std::string& caption);
 
 // A single-panel figure's frame: `params` with a title band above the world's window and a
