@@ -44,7 +44,6 @@ class DStarLite {
   std::size_t goal() const { return goal_; }
   Cost g(std::size_t s) const { return g_[s]; }
   Cost rhs(std::size_t s) const { return rhs_[s]; }
-  Cost km() const { return km_; }
   // Vertices breaking the invariants (rhs(s) = min over s' of c(s, s') + g(s') for s != goal, and
   // s is queued exactly when g(s) != rhs(s)); O(n), for tests.
   std::size_t invariant_violations() const;
