@@ -132,7 +132,7 @@ ActionStep NavigationServer::exe_path(const Path& path, bool first) {
   } else {
     blocked_since_s_ = -1.0;
   }
-  if (goal_checker_.reached(view_.pose, path.poses.back(), view_.velocity, view_.now_s)) {
+  if (goal_checker_.reached(view_.pose, path.poses.back(), view_.body_velocity.value_or(view_.velocity), view_.now_s)) {
     cmd_ = {};
     return {ActionStep::State::SUCCEEDED, {Outcome::SUCCESS, "goal reached"}};
   }
@@ -263,7 +263,7 @@ double NavigationServer::controller_xy_goal_tolerance() const {
 }
 
 bool NavigationServer::goal_reached(const Pose2& goal) {
-  return goal_checker_.reached(view_.pose, goal, view_.velocity, view_.now_s);
+  return goal_checker_.reached(view_.pose, goal, view_.body_velocity.value_or(view_.velocity), view_.now_s);
 }
 
 Result NavigationServer::goal_valid(const Pose2& goal) const {

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -100,6 +101,10 @@ struct RobotView {
   // limits times this per cycle (limit_velocity from `velocity`).
   double period_s = 0.1;
   double position_sigma_m = 0.0;  // the pose estimate's largest position standard deviation
+  // The body's measured velocity (odometry), when it differs from `velocity`, the velocity the
+  // planners start from (a walker's reference braking from its last command): the goal checker's
+  // "stopped" is the body's.
+  std::optional<Twist> body_velocity = std::nullopt;
 };
 
 // One recovery as it ran, with what the recovery action reported (MBF outcomes 150-158).

@@ -312,7 +312,7 @@ bool Navigator::sensors_alive() const { return gate_.all_alive(now_s_); }
 
 void Navigator::control() {
   server_.set_view({now_s_, localizer_.T_map_base(), reference_velocity(), 1.0 / params_.control_rate_hz,
-                    localizer_.weakest_position_sigma_m()});
+                    localizer_.weakest_position_sigma_m(), localizer_.velocity()});
   // Plans and goal checks wait for the first map built from the sensors.
   if (status_.state != NavState::ACTIVE || !map_ready_) {
     server_.stop();

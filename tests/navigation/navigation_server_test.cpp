@@ -147,6 +147,23 @@ TEST_F(NavigationServerRecovery, TheLogKeepsTheLatestRecoveries) {
 namespace bipednav::navigation {
 namespace {
 
+// A walker plans from its command's braking reference, but has stopped only when its body has: a
+// reference at rest while the lagging body still turns does not reach the goal.
+TEST_F(NavigationServerRecovery, TheGoalCheckWaitsForTheBodyToStop) {
+  const Pose2 goal{0.0, 0.0, 0.05};  // inside the 0.2 m / 0.2 rad tolerances of the robot at the origin
+  RobotView view{1.0, Pose2{}, Twist{}, 0.1};
+  view.body_velocity = Twist{0.0, 0.0, 0.4};
+  server.set_view(view);
+  EXPECT_FALSE(server.goal_reached(goal));
+  view.now_s = 1.1;
+  view.body_velocity = Twist{};
+  server.set_view(view);
+  EXPECT_TRUE(server.goal_reached(goal));
+  // Without a body velocity of its own the view's velocity is the body's.
+  server.set_view({1.2, Pose2{}, Twist{0.0, 0.0, 0.4}, 0.1});
+  EXPECT_FALSE(server.goal_reached(goal));
+}
+
 TEST(PlanClearance, AllowanceIsTwoSigmasInWholeCentimetres) {
   ServerParams p;
   EXPECT_NEAR(plan_clearance_allowance_m(p, 0.02), 0.04, 1e-12);
