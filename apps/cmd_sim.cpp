@@ -73,7 +73,9 @@ void add_sim_commands(CLI::App& app, CLI::App& bench) {
       ->capture_default_str()
       ->check(check::positive());
   cmd->add_option("--out", opt->out_dir, "Output directory")->capture_default_str();
-  cmd->add_option("--robot", opt->robot, "Robot profile name (config/<NAME>.yaml), overrides the scenario's");
+  cmd->add_option(
+      "--robot", opt->robot,
+      "Robot profile: a name in config/ or a profile FILE.yaml (config/README.md); overrides the scenario's");
   cmd->add_option("--config-dir", opt->config_dir, "Directory of robot profiles (default: the installed config/)");
   cmd->add_option("--step", opt->step_s, "Simulation step in seconds")->capture_default_str()->check(check::positive());
   cmd->add_flag("--quiet", opt->quiet, "No progress bar (it is shown only when stderr is a terminal)");

@@ -132,7 +132,7 @@ ActionStep NavigationServer::exe_path(const Path& path, bool first) {
   } else {
     blocked_since_s_ = -1.0;
   }
-  if (goal_checker_.reached(view_.pose, path.poses.back(), view_.body_velocity.value_or(view_.velocity), view_.now_s)) {
+  if (goal_reached(path.poses.back())) {
     cmd_ = {};
     return {ActionStep::State::SUCCEEDED, {Outcome::SUCCESS, "goal reached"}};
   }
