@@ -1,5 +1,6 @@
 #include "bench/tracking.hpp"
 
+#include <cmath>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -36,6 +37,17 @@ nlohmann::json score_json(const TrackerScore& s) {
           {"unmatched_truths_by_nearest", s.unmatched}};
 }
 
+// TrackerScore::prediction as RMSEs per horizon (nothing when it has no pairs).
+void add_prediction_json(nlohmann::json& j, const TrackerScore::Prediction& p) {
+  if (p.pairs == 0) return;
+  j["prediction_pairs"] = p.pairs;
+  for (std::size_t k = 0; k < kPredictionHorizonsS.size() && k < p.squared_error_m2.size(); ++k) {
+    const std::string h = std::to_string(static_cast<int>(kPredictionHorizonsS[k]));
+    const double n = static_cast<double>(p.pairs);
+    j["prediction_rmse_" + h + "s_m"] = std::sqrt(p.squared_error_m2[k] / n);
+  }
+}
+
 // Every tracker's scores pooled over the runs, with the goals met or not.
 nlohmann::json pooled_json(const std::vector<TrackingRun>& runs) {
   std::map<std::string, std::vector<tracking::MotSummary>> parts;
@@ -45,6 +57,12 @@ nlohmann::json pooled_json(const std::vector<TrackingRun>& runs) {
       parts[name].push_back(s.mot);
       cpu[name].updates += s.updates, cpu[name].cpu_ms += s.cpu_ms;
       for (const auto& [cause, n] : s.unmatched) cpu[name].unmatched[cause] += n;
+      auto& pred = cpu[name].prediction;
+      pred.pairs += s.prediction.pairs;
+      pred.squared_error_m2.resize(s.prediction.squared_error_m2.size(), 0.0);
+      for (std::size_t k = 0; k < s.prediction.squared_error_m2.size(); ++k) {
+        pred.squared_error_m2[k] += s.prediction.squared_error_m2[k];
+      }
     }
   }
   nlohmann::json out = nlohmann::json::object();
@@ -52,6 +70,7 @@ nlohmann::json pooled_json(const std::vector<TrackingRun>& runs) {
     TrackerScore s = cpu[name];
     s.mot = tracking::pool(p);
     nlohmann::json j = score_json(s);
+    add_prediction_json(j, s.prediction);
     j["meets_position_goal"] = s.mot.matches > 0 && s.mot.position_rmse_m <= kGoalPositionRmseM;
     j["meets_velocity_goal"] = s.mot.matches > 0 && s.mot.velocity_rmse_mps <= kGoalVelocityRmseMps;
     j["meets_mota_goal"] = s.mot.mota() >= kGoalMota;
@@ -62,7 +81,10 @@ nlohmann::json pooled_json(const std::vector<TrackingRun>& runs) {
 
 nlohmann::json run_json(const TrackingRun& r) {
   nlohmann::json scores = nlohmann::json::object();
-  for (const auto& [name, s] : r.scores) scores[name] = score_json(s);
+  for (const auto& [name, s] : r.scores) {
+    scores[name] = score_json(s);
+    add_prediction_json(scores[name], s.prediction);
+  }
   return {{"scenario", r.scenario},       {"robot", r.robot},           {"seed", r.seed},
           {"outcome", r.outcome},         {"collisions", r.collisions}, {"time_s", r.time_s},
           {"evaluations", r.evaluations}, {"trackers", scores}};

@@ -153,6 +153,7 @@ class RunScorer {
       count_unmatched(scored_[k].score, trackers_[k], hyps, T_world_map);
     }
     score_baselines(nav, t, T_world_map, T_world_base);
+    score_predictions(sim.world(), nav, t, T_world_map);
   }
 
   std::map<std::string, TrackerScore> scores() const {
@@ -216,6 +217,31 @@ class RunScorer {
     }
     score(scored_[names_.size()], t, moving, T_world_base);
     score(scored_[names_.size() + 1], t, confirmed, T_world_base);
+  }
+
+  // TrackerScore::prediction of the navigator's movers.
+  void score_predictions(const sim::World& world, const navigation::Navigator& nav, double t,
+                         const Pose2& T_world_map) {
+    TrackerScore::Prediction& p = scored_[names_.size()].score.prediction;
+    const std::size_t n = kPredictionHorizonsS.size();
+    p.squared_error_m2.resize(n, 0.0);
+    for (const auto& m : nav.moving_obstacles().moving(t)) {
+      const Eigen::Vector2d now = T_world_map.transform(m.predict(t));
+      const MotObject* truth = nullptr;
+      for (const auto& o : truths_)
+        if ((o.position - now).norm() <= eval_.match_distance_m &&
+            (!truth || (o.position - now).norm() < (truth->position - now).norm()))
+          truth = &o;
+      if (!truth) continue;
+      ++p.pairs;
+      const sim::Actor& actor = world.actors[static_cast<std::size_t>(truth->id)];
+      for (std::size_t k = 0; k < n; ++k) {
+        const double h = kPredictionHorizonsS[k];
+        Eigen::Vector2d lo, hi;
+        const Eigen::Vector2d then = footprint_box(actor_footprint(actor, t + h), lo, hi);
+        p.squared_error_m2[k] += (T_world_map.transform(m.predict(t + h)) - then).squaredNorm();
+      }
+    }
   }
 
   TrackingEvaluationParams eval_;

@@ -49,7 +49,19 @@ struct TrackerScore {
   // the tracker holds within that distance: "confirmed_not_mover", "tentative", "detection" (a
   // detection of the cycle but no track), "nothing". The variants' only (the baselines: empty).
   std::map<std::string, long> unmatched;
+  // The navigator's movers' predictions (kBaselineMoving only: what its yield checks the
+  // commands against): each mover within match_distance_m of a counted truth, its predicted
+  // position kPredictionHorizonsS ahead against the truth's position then, squared errors summed
+  // per horizon.
+  struct Prediction {
+    long pairs = 0;
+    std::vector<double> squared_error_m2;  // per horizon
+  };
+  Prediction prediction;
 };
+
+// The horizons at which the movers' predictions are scored.
+inline const std::vector<double> kPredictionHorizonsS{1.0, 2.0, 3.0};
 
 struct TrackingRun {
   std::string scenario, robot;
