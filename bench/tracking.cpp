@@ -41,9 +41,9 @@ nlohmann::json score_json(const TrackerScore& s) {
 void add_prediction_json(nlohmann::json& j, const TrackerScore::Prediction& p) {
   if (p.pairs == 0) return;
   j["prediction_pairs"] = p.pairs;
-  for (std::size_t k = 0; k < kPredictionHorizonsS.size() && k < p.squared_error_m2.size(); ++k) {
+  const double n = static_cast<double>(p.pairs);
+  for (std::size_t k = 0; k < kPredictionHorizonsS.size(); ++k) {
     const std::string h = std::to_string(static_cast<int>(kPredictionHorizonsS[k]));
-    const double n = static_cast<double>(p.pairs);
     j["prediction_rmse_" + h + "s_m"] = std::sqrt(p.squared_error_m2[k] / n);
   }
 }
@@ -59,10 +59,8 @@ nlohmann::json pooled_json(const std::vector<TrackingRun>& runs) {
       for (const auto& [cause, n] : s.unmatched) cpu[name].unmatched[cause] += n;
       auto& pred = cpu[name].prediction;
       pred.pairs += s.prediction.pairs;
-      pred.squared_error_m2.resize(s.prediction.squared_error_m2.size(), 0.0);
-      for (std::size_t k = 0; k < s.prediction.squared_error_m2.size(); ++k) {
+      for (std::size_t k = 0; k < pred.squared_error_m2.size(); ++k)
         pred.squared_error_m2[k] += s.prediction.squared_error_m2[k];
-      }
     }
   }
   nlohmann::json out = nlohmann::json::object();

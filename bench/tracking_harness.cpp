@@ -223,8 +223,6 @@ class RunScorer {
   void score_predictions(const sim::World& world, const navigation::Navigator& nav, double t,
                          const Pose2& T_world_map) {
     TrackerScore::Prediction& p = scored_[names_.size()].score.prediction;
-    const std::size_t n = kPredictionHorizonsS.size();
-    p.squared_error_m2.resize(n, 0.0);
     for (const auto& m : nav.moving_obstacles().moving(t)) {
       const Eigen::Vector2d now = T_world_map.transform(m.predict(t));
       const MotObject* truth = nullptr;
@@ -235,7 +233,7 @@ class RunScorer {
       if (!truth) continue;
       ++p.pairs;
       const sim::Actor& actor = world.actors[static_cast<std::size_t>(truth->id)];
-      for (std::size_t k = 0; k < n; ++k) {
+      for (std::size_t k = 0; k < kPredictionHorizonsS.size(); ++k) {
         const double h = kPredictionHorizonsS[k];
         Eigen::Vector2d lo, hi;
         const Eigen::Vector2d then = footprint_box(actor_footprint(actor, t + h), lo, hi);

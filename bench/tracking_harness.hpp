@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <map>
 #include <string>
@@ -40,6 +41,9 @@ struct TrackingEvaluationParams {
   double turn_jump_mps = 0.5;
 };
 
+// The horizons at which the movers' predictions are scored (TrackerScore::Prediction).
+inline constexpr std::array<double, 3> kPredictionHorizonsS{1.0, 2.0, 3.0};
+
 // Scores of one tracker over one run (or pooled over runs) and its CPU time per update.
 struct TrackerScore {
   tracking::MotSummary mot;
@@ -55,13 +59,10 @@ struct TrackerScore {
   // per horizon.
   struct Prediction {
     long pairs = 0;
-    std::vector<double> squared_error_m2;  // per horizon
+    std::array<double, kPredictionHorizonsS.size()> squared_error_m2{};  // per horizon
   };
   Prediction prediction;
 };
-
-// The horizons at which the movers' predictions are scored.
-inline const std::vector<double> kPredictionHorizonsS{1.0, 2.0, 3.0};
 
 struct TrackingRun {
   std::string scenario, robot;
