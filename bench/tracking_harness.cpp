@@ -224,7 +224,7 @@ class RunScorer {
                          const Pose2& T_world_map) {
     TrackerScore::Prediction& p = scored_[names_.size()].score.prediction;
     const std::size_t n = kPredictionHorizonsS.size();
-    p.squared_error_m2.resize(n, 0.0);
+    p.squared_error_m2.resize(n, 0.0), p.cv_squared_error_m2.resize(n, 0.0);
     for (const auto& m : nav.moving_obstacles().moving(t)) {
       const Eigen::Vector2d now = T_world_map.transform(m.predict(t));
       const MotObject* truth = nullptr;
@@ -234,12 +234,15 @@ class RunScorer {
           truth = &o;
       if (!truth) continue;
       ++p.pairs;
+      p.recurrent_pairs += !m.recurrence.empty();
       const sim::Actor& actor = world.actors[static_cast<std::size_t>(truth->id)];
       for (std::size_t k = 0; k < n; ++k) {
         const double h = kPredictionHorizonsS[k];
         Eigen::Vector2d lo, hi;
         const Eigen::Vector2d then = footprint_box(actor_footprint(actor, t + h), lo, hi);
         p.squared_error_m2[k] += (T_world_map.transform(m.predict(t + h)) - then).squaredNorm();
+        p.cv_squared_error_m2[k] +=
+            (T_world_map.transform(m.position + m.velocity * (t + h - m.stamp_s)) - then).squaredNorm();
       }
     }
   }
