@@ -41,10 +41,12 @@ nlohmann::json score_json(const TrackerScore& s) {
 void add_prediction_json(nlohmann::json& j, const TrackerScore::Prediction& p) {
   if (p.pairs == 0) return;
   j["prediction_pairs"] = p.pairs;
+  j["prediction_recurrent_pairs"] = p.recurrent_pairs;
   const double n = static_cast<double>(p.pairs);
   for (std::size_t k = 0; k < kPredictionHorizonsS.size(); ++k) {
     const std::string h = std::to_string(static_cast<int>(kPredictionHorizonsS[k]));
     j["prediction_rmse_" + h + "s_m"] = std::sqrt(p.squared_error_m2[k] / n);
+    j["prediction_cv_rmse_" + h + "s_m"] = std::sqrt(p.cv_squared_error_m2[k] / n);
   }
 }
 
@@ -59,8 +61,11 @@ nlohmann::json pooled_json(const std::vector<TrackingRun>& runs) {
       for (const auto& [cause, n] : s.unmatched) cpu[name].unmatched[cause] += n;
       auto& pred = cpu[name].prediction;
       pred.pairs += s.prediction.pairs;
-      for (std::size_t k = 0; k < pred.squared_error_m2.size(); ++k)
+      pred.recurrent_pairs += s.prediction.recurrent_pairs;
+      for (std::size_t k = 0; k < pred.squared_error_m2.size(); ++k) {
         pred.squared_error_m2[k] += s.prediction.squared_error_m2[k];
+        pred.cv_squared_error_m2[k] += s.prediction.cv_squared_error_m2[k];
+      }
     }
   }
   nlohmann::json out = nlohmann::json::object();

@@ -232,12 +232,15 @@ class RunScorer {
           truth = &o;
       if (!truth) continue;
       ++p.pairs;
+      p.recurrent_pairs += !m.recurrence.empty();
       const sim::Actor& actor = world.actors[static_cast<std::size_t>(truth->id)];
       for (std::size_t k = 0; k < kPredictionHorizonsS.size(); ++k) {
         const double h = kPredictionHorizonsS[k];
         Eigen::Vector2d lo, hi;
         const Eigen::Vector2d then = footprint_box(actor_footprint(actor, t + h), lo, hi);
         p.squared_error_m2[k] += (T_world_map.transform(m.predict(t + h)) - then).squaredNorm();
+        p.cv_squared_error_m2[k] +=
+            (T_world_map.transform(m.position + m.velocity * (t + h - m.stamp_s)) - then).squaredNorm();
       }
     }
   }

@@ -53,13 +53,14 @@ struct TrackerScore {
   // the tracker holds within that distance: "confirmed_not_mover", "tentative", "detection" (a
   // detection of the cycle but no track), "nothing". The variants' only (the baselines: empty).
   std::map<std::string, long> unmatched;
-  // The navigator's movers' predictions (kBaselineMoving only: what its yield checks the
-  // commands against): each mover within match_distance_m of a counted truth, its predicted
-  // position kPredictionHorizonsS ahead against the truth's position then, squared errors summed
-  // per horizon.
+  // The navigator's movers' predictions (kBaselineMoving only): each mover within
+  // match_distance_m of a counted truth, its predicted position kPredictionHorizonsS ahead against
+  // the truth's position then, summed squared errors; beside them the constant-velocity
+  // prediction of the same tracks (position + velocity * horizon), the reference.
   struct Prediction {
-    long pairs = 0;
-    std::array<double, kPredictionHorizonsS.size()> squared_error_m2{};  // per horizon
+    long pairs = 0, recurrent_pairs = 0;                                    // recurrent: predicted by their recurrence
+    std::array<double, kPredictionHorizonsS.size()> squared_error_m2{};     // per horizon
+    std::array<double, kPredictionHorizonsS.size()> cv_squared_error_m2{};  // per horizon
   };
   Prediction prediction;
 };

@@ -36,6 +36,10 @@ void MovingObstacleParams::validate() const {
   require(std::isfinite(radius_floor_window_s) && radius_floor_window_s >= 0.0,
           "moving_obstacles.radius_floor_window_s", ">= 0");
   require(std::isfinite(reacquire_gate_m) && reacquire_gate_m >= 0.0, "moving_obstacles.reacquire_gate_m", ">= 0");
+  require(std::isfinite(recurrence_history_s) && recurrence_history_s >= 0.0, "moving_obstacles.recurrence_history_s",
+          ">= 0");
+  require(positive(recurrence_match_m), "moving_obstacles.recurrence_match_m", "> 0");
+  require(positive(recurrence_min_lag_s), "moving_obstacles.recurrence_min_lag_s", "> 0");
   require(std::isfinite(coast_max_growth_m) && coast_max_growth_m >= 0.0, "moving_obstacles.coast_max_growth_m",
           ">= 0");
 }

@@ -66,6 +66,17 @@ struct MovingObstacleParams {
   bool radius_floor = false;
   double radius_floor_window_s = 5.0;
   double reacquire_gate_m = 1.0;
+  // Recurrence (a map of the movers' ways, kept as their trails): movers walk the same ways again
+  // (a person pacing or shuttling, people using one door, a box on a loop, a cube in its lane), so
+  // a mover is predicted to do what a mover did the last time one passed where it is, going its
+  // way. The tracker keeps the moving tracks' filtered positions of the last recurrence_history_s
+  // (0: off, constant velocity only); the latest pass at least recurrence_min_lag_s old within
+  // recurrence_match_m of the mover, in its direction (within 45 degrees), gives the prediction:
+  // the way that trail went on from there, for up to max_prediction_s, then constant velocity. A
+  // mover where none went before keeps the constant velocity.
+  double recurrence_history_s = 60.0;
+  double recurrence_match_m = 0.3;
+  double recurrence_min_lag_s = 2.0;
 
   void validate() const;
 
@@ -96,6 +107,9 @@ struct MovingObstacleParams {
     v("radius_floor", radius_floor);
     v("radius_floor_window_s", radius_floor_window_s);
     v("reacquire_gate_m", reacquire_gate_m);
+    v("recurrence_history_s", recurrence_history_s);
+    v("recurrence_match_m", recurrence_match_m);
+    v("recurrence_min_lag_s", recurrence_min_lag_s);
   }
 };
 

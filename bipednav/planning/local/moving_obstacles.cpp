@@ -40,6 +40,24 @@ void kf_update(double& p, double& v, Eigen::Matrix2d& P, double z, double r2) {
 
 }  // namespace
 
+Eigen::Vector2d TrackedObstacle::predict(double t_s) const {
+  const double dt = t_s - recurrence_base_s;
+  if (recurrence.size() >= 2 && dt >= 0.0) {
+    const auto after = std::lower_bound(recurrence.begin(), recurrence.end(), dt,
+                                        [](const PathSample& s, double t) { return s.t_s < t; });
+    if (after == recurrence.end()) {  // beyond it: the velocity over its last (up to) five steps
+      const PathSample &a = recurrence[recurrence.size() - std::min<std::size_t>(recurrence.size(), 6)],
+                       &b = recurrence.back();
+      return recurrence_base + b.position + (b.position - a.position) * ((dt - b.t_s) / (b.t_s - a.t_s));
+    }
+    if (after == recurrence.begin()) return recurrence_base + after->position;
+    const PathSample& a = *(after - 1);
+    const double f = (dt - a.t_s) / (after->t_s - a.t_s);
+    return recurrence_base + a.position + f * (after->position - a.position);
+  }
+  return position + velocity * (t_s - stamp_s);
+}
+
 MovingObstacleTracker::MovingObstacleTracker(MovingObstacleParams params) : params_(std::move(params)) {
   params_.validate();
 }
@@ -47,6 +65,7 @@ MovingObstacleTracker::MovingObstacleTracker(MovingObstacleParams params) : para
 void MovingObstacleTracker::clear() {
   tracks_.clear();
   lost_.clear();
+  trails_.clear();
   last_stamp_s_ = -1e300;
 }
 
@@ -120,6 +139,13 @@ void MovingObstacleTracker::update_blobs(const std::vector<Blob>& blobs, double 
     if (blob_used[j] || !blobs[j].centroid.allFinite()) continue;
     start_track(blobs[j], stamp_s);
   }
+  for (auto it = trails_.begin(); it != trails_.end();) {
+    auto& h = it->second;
+    h.erase(h.begin(), std::find_if(h.begin(), h.end(), [&](const TrackedObstacle::PathSample& s) {
+              return s.t_s >= stamp_s - params_.recurrence_history_s;
+            }));
+    it = h.empty() ? trails_.erase(it) : std::next(it);
+  }
 }
 
 void MovingObstacleTracker::predict_tracks(double stamp_s) {
@@ -150,6 +176,7 @@ void MovingObstacleTracker::associate(const std::vector<Blob>& blobs, double sta
     if (track_used[i] || blob_used[j]) continue;
     track_used[i] = blob_used[j] = 1;
     update_track(tracks_[i], blobs[j], stamp_s);
+    recur(tracks_[i], stamp_s);
   }
 }
 
@@ -171,6 +198,53 @@ void MovingObstacleTracker::update_track(TrackedObstacle& t, const Blob& blob, d
   t.top_m = std::max(t.top_m, blob.top_m);
   ++t.hits;
   latch_displaced(t);
+}
+
+void MovingObstacleTracker::recur(TrackedObstacle& t, double stamp_s) {
+  t.recurrence.clear();
+  t.recurrence_base_s = stamp_s;
+  t.recurrence_base = t.position;
+  if (params_.recurrence_history_s <= 0.0 || !is_moving(t)) return;
+  trails_[t.id].push_back({stamp_s, t.position});
+  const double speed = t.velocity.norm();
+  // The direction of travel at sample j of trail h: over its samples within half a second either side.
+  constexpr double kHalfWindow_s = 0.5, kMinCos = 0.7071;
+  const double match2 = params_.recurrence_match_m * params_.recurrence_match_m;
+  const std::vector<TrackedObstacle::PathSample>* from = nullptr;
+  std::size_t from_j = 0;
+  for (const auto& trail : trails_) {
+    const std::vector<TrackedObstacle::PathSample>& h = trail.second;
+    const auto heading = [&](std::size_t j) -> Eigen::Vector2d {
+      std::size_t a = j, b = j;
+      while (a > 0 && h[a - 1].t_s >= h[j].t_s - kHalfWindow_s) --a;
+      while (b + 1 < h.size() && h[b + 1].t_s <= h[j].t_s + kHalfWindow_s) ++b;
+      return h[b].position - h[a].position;
+    };
+    const auto passes = [&](std::size_t j) {
+      if (h[j].t_s > stamp_s - params_.recurrence_min_lag_s || (h[j].position - t.position).squaredNorm() > match2)
+        return false;
+      const Eigen::Vector2d d = heading(j);
+      return d.norm() >= params_.min_moving_speed_mps * kHalfWindow_s &&
+             d.dot(t.velocity) >= kMinCos * d.norm() * speed;
+    };
+    // The trail's latest pass: the run of samples that match, latest first; of it the sample
+    // nearest to where t is.
+    std::size_t best = h.size();
+    for (std::size_t j = h.size(); j-- > 0;) {
+      if (!passes(j)) {
+        if (best < h.size()) break;
+        continue;
+      }
+      if (best == h.size() ||
+          (h[j].position - t.position).squaredNorm() < (h[best].position - t.position).squaredNorm())
+        best = j;
+    }
+    if (best < h.size() && (!from || h[best].t_s > (*from)[from_j].t_s)) from = &h, from_j = best;
+  }
+  if (!from) return;
+  const auto& h = *from;
+  for (std::size_t i = from_j; i < h.size() && h[i].t_s - h[from_j].t_s <= params_.max_prediction_s; ++i)
+    t.recurrence.push_back({h[i].t_s - h[from_j].t_s, h[i].position - h[from_j].position});
 }
 
 void MovingObstacleTracker::keep_unseen(double stamp_s, const std::optional<Pose2>& robot,

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <map>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -38,9 +39,21 @@ struct TrackedObstacle {
   // Kalman state covariances, per axis (position, velocity).
   Eigen::Matrix2d cov_x = Eigen::Matrix2d::Identity();
   Eigen::Matrix2d cov_y = Eigen::Matrix2d::Identity();
+  // With MovingObstacleParams::recurrence_history_s: the way a mover went on from the latest
+  // time one passed where this one was last seen, in the direction it goes (displacements from
+  // that time; empty: none found). `recurrence_base_s` is when it was last seen, the displacements'
+  // origin.
+  struct PathSample {
+    double t_s = 0.0;
+    Eigen::Vector2d position = Eigen::Vector2d::Zero();
+  };
+  std::vector<PathSample> recurrence;
+  double recurrence_base_s = 0.0;
+  Eigen::Vector2d recurrence_base = Eigen::Vector2d::Zero();
 
-  // Constant-velocity prediction of the centroid at time t_s.
-  Eigen::Vector2d predict(double t_s) const { return position + velocity * (t_s - stamp_s); }
+  // The centroid at time t_s: along its recurrence where it has one that reaches t_s, then (and
+  // without one) at constant velocity.
+  Eigen::Vector2d predict(double t_s) const;
 };
 
 class MovingObstacleTracker {
@@ -85,12 +98,16 @@ class MovingObstacleTracker {
   void start_track(const Blob& blob, double stamp_s);
   // radius_floor: the new track t continues the nearest lost track within reacquire_gate_m, if any.
   void continue_lost(TrackedObstacle& t, const Blob& blob, double stamp_s);
+  // recurrence_history_s: adds a moving t's position to its trail and finds its recurrence.
+  void recur(TrackedObstacle& t, double stamp_s);
 
   MovingObstacleParams params_;
   tracking::SensorVisibility visibility_;
   std::vector<TrackedObstacle> tracks_;
   // With radius_floor: confirmed moving tracks dropped within the last max_coast_s and when.
   std::vector<std::pair<TrackedObstacle, double>> lost_;
+  // recurrence_history_s: the moving tracks' filtered positions of that long, by track id.
+  std::map<int, std::vector<TrackedObstacle::PathSample>> trails_;
   int next_id_ = 1;
   double last_stamp_s_ = -1e300;
   BlobScratch blob_scratch_;  // update()'s clustering buffers, kept between cycles

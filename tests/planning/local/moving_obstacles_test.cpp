@@ -61,6 +61,74 @@ TEST(MovingObstacles, BlobMovingAtKnownVelocityGetsThatEstimate) {
   EXPECT_TRUE(tracker.moving(4.0).empty());
 }
 
+TEST(MovingObstacles, APacerIsPredictedToTurnWhereItTurnedBefore) {
+  // A box pacing at 0.8 m/s between x = 0 and x = 2 (y = 1), turning on the spot at the ends,
+  // seen at 10 Hz for two laps and a bit: at x = 1.6 heading +x it turns in 0.5 s, so 1 s ahead it
+  // is back at x = 1.6, where the constant velocity puts it at 2.4.
+  const double speed = 0.8, lap_s = 2.0 * 2.0 / speed;
+  const auto at = [&](double t) {
+    const double s = std::fmod(t * speed, 4.0);
+    return Eigen::Vector2d(s <= 2.0 ? s : 4.0 - s, 1.0);
+  };
+  const double now = 2.0 * lap_s + 1.6 / speed;
+  const auto track = [&](double history_s) {
+    MovingObstacleParams p = enabled_tracking();
+    p.recurrence_history_s = history_s;
+    MovingObstacleTracker tracker(p);
+    for (int k = 0; 0.1 * k <= now + 1e-9; ++k) {
+      std::vector<Eigen::Vector2d> pts;
+      add_square(pts, at(0.1 * k), 0.15, k);
+      tracker.update(pts, {0.0, -1.0}, 0.1 * k);
+    }
+    const auto moving = tracker.moving(now);
+    EXPECT_EQ(moving.size(), 1u);
+    return moving.empty() ? TrackedObstacle{} : moving[0];
+  };
+  const TrackedObstacle with = track(60.0), without = track(0.0);
+  EXPECT_FALSE(with.recurrence.empty());
+  EXPECT_LT((with.predict(now + 1.0) - at(now + 1.0)).norm(), 0.15);
+  EXPECT_LT((with.predict(now + 2.0) - at(now + 2.0)).norm(), 0.2);
+  EXPECT_TRUE(without.recurrence.empty());
+  EXPECT_GT((without.predict(now + 1.0) - at(now + 1.0)).norm(), 0.6);
+}
+
+TEST(MovingObstacles, AMoverIsPredictedToTurnWhereAnotherTurnedGoingItsWay) {
+  // One mover walks east from (0, 0) and turns north at (2, 0), at 0.8 m/s, and leaves; a second one
+  // comes the same way 8 s later. At (1.6, 0) it is predicted to turn where the first one did.
+  const double speed = 0.8;
+  const auto way = [&](double s) {
+    return s <= 2.0 ? Eigen::Vector2d(s, 0.0) : Eigen::Vector2d(2.0, std::min(s - 2.0, 2.0));
+  };
+  MovingObstacleTracker tracker(enabled_tracking());
+  const double second_from = 8.0, now = second_from + 1.6 / speed;
+  for (int k = 0; 0.1 * k <= now + 1e-9; ++k) {
+    const double t = 0.1 * k;
+    std::vector<Eigen::Vector2d> pts;
+    if (t <= 4.0 / speed) add_square(pts, way(t * speed), 0.15, k);
+    if (t >= second_from) add_square(pts, way((t - second_from) * speed), 0.15, k);
+    tracker.update(pts, {1.0, -2.0}, t);
+  }
+  const auto moving = tracker.moving(now);
+  ASSERT_EQ(moving.size(), 1u);
+  EXPECT_FALSE(moving[0].recurrence.empty());
+  EXPECT_LT((moving[0].predict(now + 1.0) - way(2.4)).norm(), 0.15);
+  EXPECT_LT((moving[0].predict(now + 2.0) - way(3.2)).norm(), 0.2);
+}
+
+TEST(MovingObstacles, AMoverWalkingStraightThroughKeepsItsConstantVelocity) {
+  MovingObstacleTracker tracker(enabled_tracking());
+  const Eigen::Vector2d v(0.6, 0.2);
+  for (int k = 0; k <= 60; ++k) {
+    std::vector<Eigen::Vector2d> pts;
+    add_square(pts, Eigen::Vector2d(-2.0, 0.5) + v * (0.1 * k), 0.15, k);
+    tracker.update(pts, {0.0, -1.0}, 0.1 * k);
+  }
+  const auto moving = tracker.moving(6.0);
+  ASSERT_EQ(moving.size(), 1u);
+  EXPECT_TRUE(moving[0].recurrence.empty());
+  EXPECT_LT((moving[0].predict(8.0) - (Eigen::Vector2d(-2.0, 0.5) + 8.0 * v)).norm(), 0.1);
+}
+
 TEST(MovingObstacles, BadParametersAreRejected) {
   MovingObstacleParams p;
   p.gate_m = -1.0;
@@ -74,6 +142,12 @@ TEST(MovingObstacles, BadParametersAreRejected) {
   DynamicAvoidanceParams g;
   g.prediction_growth_mps = -0.05;
   EXPECT_ANY_THROW(g.validate());
+  MovingObstacleParams r;
+  r.recurrence_match_m = 0.0;
+  EXPECT_ANY_THROW(r.validate());
+  r.recurrence_match_m = 0.3;
+  r.recurrence_history_s = -1.0;
+  EXPECT_ANY_THROW(r.validate());
   MovingObstacleParams l;
   l.latch_displacement_m = -1.0;
   EXPECT_ANY_THROW(l.validate());
