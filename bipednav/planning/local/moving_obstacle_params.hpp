@@ -73,7 +73,8 @@ struct MovingObstacleParams {
   // (0: off, constant velocity only); the latest pass at least recurrence_min_lag_s old within
   // recurrence_match_m of the mover, in its direction (within 45 degrees), gives the prediction:
   // the way that trail went on from there, for up to max_prediction_s, then constant velocity. A
-  // mover where none went before keeps the constant velocity.
+  // mover where none went before keeps the constant velocity. On for every robot (evidence:
+  // docs/closed-loop-log.md, 'Recurrence prediction of the movers').
   double recurrence_history_s = 60.0;
   double recurrence_match_m = 0.3;
   double recurrence_min_lag_s = 2.0;
