@@ -239,8 +239,7 @@ class RunScorer {
         Eigen::Vector2d lo, hi;
         const Eigen::Vector2d then = footprint_box(actor_footprint(actor, t + h), lo, hi);
         p.squared_error_m2[k] += (T_world_map.transform(m.predict(t + h)) - then).squaredNorm();
-        p.cv_squared_error_m2[k] +=
-            (T_world_map.transform(m.position + m.velocity * (t + h - m.stamp_s)) - then).squaredNorm();
+        p.cv_squared_error_m2[k] += (T_world_map.transform(m.predict_constant_velocity(t + h)) - then).squaredNorm();
       }
     }
   }

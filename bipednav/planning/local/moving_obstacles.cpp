@@ -55,7 +55,7 @@ Eigen::Vector2d TrackedObstacle::predict(double t_s) const {
     const double f = (dt - a.t_s) / (after->t_s - a.t_s);
     return recurrence_base + a.position + f * (after->position - a.position);
   }
-  return position + velocity * (t_s - stamp_s);
+  return predict_constant_velocity(t_s);
 }
 
 MovingObstacleTracker::MovingObstacleTracker(MovingObstacleParams params) : params_(std::move(params)) {

@@ -54,6 +54,8 @@ struct TrackedObstacle {
   // The centroid at time t_s: along its recurrence where it has one that reaches t_s, then (and
   // without one) at constant velocity.
   Eigen::Vector2d predict(double t_s) const;
+  // The centroid at time t_s at constant velocity (predict's fallback).
+  Eigen::Vector2d predict_constant_velocity(double t_s) const { return position + velocity * (t_s - stamp_s); }
 };
 
 class MovingObstacleTracker {
