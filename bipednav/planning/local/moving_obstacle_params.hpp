@@ -24,6 +24,11 @@ struct MovingObstacleParams {
   // ... and so do tracks whose centroid has not travelled this far from where it was first seen
   // (a static object's centroid wanders while the robot sees more or less of it).
   double min_displacement_m = 0.25;
+  // ... and so do tracks whose origin is still occupied: at least min_points of the cycle's
+  // obstacle points lie within this distance of their first centroid. A static object seen in
+  // part (a post, a low box swept by a LiDAR ring, a track passed from one post to the next) has
+  // not left where it was; a mover has (tracking::MultiObjectTracker's test of the same name).
+  double vacated_radius_m = 0.15;
   // A confirmed fast track (min_hits, min_moving_speed_mps) that has once been at least this far
   // from its first centroid counts as displaced from then on, so it stays moving while it passes
   // where its track began (0: off, only the current distance counts): a box on a looping path was
@@ -98,6 +103,7 @@ struct MovingObstacleParams {
     v("min_hits", min_hits);
     v("min_moving_speed_mps", min_moving_speed_mps);
     v("min_displacement_m", min_displacement_m);
+    v("vacated_radius_m", vacated_radius_m);
     v("latch_displacement_m", latch_displacement_m);
     v("max_prediction_s", max_prediction_s);
     v("global_map_margin_m", global_map_margin_m);

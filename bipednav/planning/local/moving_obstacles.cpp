@@ -72,12 +72,14 @@ void MovingObstacleTracker::clear() {
 void MovingObstacleTracker::update(const std::vector<Eigen::Vector2d>& points, const Eigen::Vector2d& robot,
                                    double stamp_s) {
   if (!params_.enabled || !std::isfinite(stamp_s) || !robot.allFinite()) return;
+  note_occupied_origins(points);
   update_blobs(cluster_blobs(points, robot, params_, {}, &blob_scratch_), stamp_s);
 }
 
 void MovingObstacleTracker::update(const std::vector<Eigen::Vector2d>& points, const std::vector<double>& heights,
                                    const Pose2& robot, double stamp_s) {
   if (!params_.enabled || !std::isfinite(stamp_s) || !robot.is_finite()) return;
+  note_occupied_origins(points);
   update_blobs(cluster_blobs(points, robot.position(), params_, heights, &blob_scratch_), stamp_s, robot);
 }
 
@@ -117,14 +119,31 @@ double floor_radius(TrackedObstacle& t, double radius_m, double stamp_s, double 
 
 bool MovingObstacleTracker::is_moving(const TrackedObstacle& t) const {
   return t.hits >= params_.min_hits && t.velocity.norm() >= params_.min_moving_speed_mps &&
-         (t.displaced || (t.position - t.origin).norm() >= params_.min_displacement_m);
+         (t.displaced || ((t.position - t.origin).norm() >= params_.min_displacement_m && !t.origin_occupied));
 }
 
 void MovingObstacleTracker::latch_displaced(TrackedObstacle& t) const {
   const double latch = params_.latch_displacement_m;
-  if (latch > 0.0 && !t.displaced && t.hits >= params_.min_hits && t.velocity.norm() >= params_.min_moving_speed_mps &&
-      (t.position - t.origin).squaredNorm() >= latch * latch)
+  if (latch > 0.0 && !t.displaced && !t.origin_occupied && t.hits >= params_.min_hits &&
+      t.velocity.norm() >= params_.min_moving_speed_mps && (t.position - t.origin).squaredNorm() >= latch * latch)
     t.displaced = true;
+}
+
+void MovingObstacleTracker::note_occupied_origins(const std::vector<Eigen::Vector2d>& points) {
+  const double r2 = params_.vacated_radius_m * params_.vacated_radius_m;
+  // Half the displacement a mover needs: a track nearer its origin is not moving however its
+  // filter moves it this cycle.
+  const double near2 = 0.25 * params_.min_displacement_m * params_.min_displacement_m;
+  for (auto& t : tracks_) {
+    t.origin_occupied = false;
+    if (t.displaced || (t.position - t.origin).squaredNorm() < near2) continue;
+    int held = 0;
+    for (const auto& p : points)
+      if ((p - t.origin).squaredNorm() <= r2 && ++held >= params_.min_points) {
+        t.origin_occupied = true;
+        break;
+      }
+  }
 }
 
 void MovingObstacleTracker::update_blobs(const std::vector<Blob>& blobs, double stamp_s,

@@ -61,6 +61,29 @@ TEST(MovingObstacles, BlobMovingAtKnownVelocityGetsThatEstimate) {
   EXPECT_TRUE(tracker.moving(4.0).empty());
 }
 
+TEST(MovingObstacles, AnObstacleRevealedBitByBitIsNoMoverWhileItsOriginHoldsPoints) {
+  // A wall piece whose visible length grows as the robot walks past it: its blob's centroid slides
+  // 0.35 m at 0.14 m/s, as a mover's would, but its first centroid is still on the wall. The box
+  // beside it leaves where it was.
+  const auto run = [](double vacated_radius_m) {
+    MovingObstacleParams p = enabled_tracking();
+    p.vacated_radius_m = vacated_radius_m;
+    MovingObstacleTracker tracker(p);
+    for (int k = 0; k <= 25; ++k) {
+      const double t = 0.1 * k;
+      std::vector<Eigen::Vector2d> pts;
+      for (double x = 1.0; x <= 1.15 + 0.28 * t; x += 0.02) pts.emplace_back(x, 2.0);
+      add_square(pts, Eigen::Vector2d(-1.0 + 0.4 * t, -1.0), 0.2, k);
+      tracker.update(pts, {0.0, 0.0}, t);
+    }
+    return tracker.moving(2.5);
+  };
+  const auto with_test = run(0.15);
+  ASSERT_EQ(with_test.size(), 1u);
+  EXPECT_NEAR(with_test[0].position.y(), -1.0, 0.05);  // the box
+  EXPECT_EQ(run(0.0).size(), 2u);                      // without the test the wall piece moves too
+}
+
 TEST(MovingObstacles, APacerIsPredictedToTurnWhereItTurnedBefore) {
   // A box pacing at 0.8 m/s between x = 0 and x = 2 (y = 1), turning on the spot at the ends,
   // seen at 10 Hz for two laps and a bit: at x = 1.6 heading +x it turns in 0.5 s, so 1 s ahead it
