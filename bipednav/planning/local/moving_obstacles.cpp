@@ -72,14 +72,12 @@ void MovingObstacleTracker::clear() {
 void MovingObstacleTracker::update(const std::vector<Eigen::Vector2d>& points, const Eigen::Vector2d& robot,
                                    double stamp_s) {
   if (!params_.enabled || !std::isfinite(stamp_s) || !robot.allFinite()) return;
-  note_occupied_origins(points);
   update_blobs(cluster_blobs(points, robot, params_, {}, &blob_scratch_), stamp_s);
 }
 
 void MovingObstacleTracker::update(const std::vector<Eigen::Vector2d>& points, const std::vector<double>& heights,
                                    const Pose2& robot, double stamp_s) {
   if (!params_.enabled || !std::isfinite(stamp_s) || !robot.is_finite()) return;
-  note_occupied_origins(points);
   update_blobs(cluster_blobs(points, robot.position(), params_, heights, &blob_scratch_), stamp_s, robot);
 }
 
@@ -129,20 +127,20 @@ void MovingObstacleTracker::latch_displaced(TrackedObstacle& t) const {
     t.displaced = true;
 }
 
-void MovingObstacleTracker::note_occupied_origins(const std::vector<Eigen::Vector2d>& points) {
-  const double r2 = params_.vacated_radius_m * params_.vacated_radius_m;
+void MovingObstacleTracker::note_occupied_origins(const std::vector<Blob>& blobs) {
   // Half the displacement a mover needs: a track nearer its origin is not moving however its
   // filter moves it this cycle.
   const double near2 = 0.25 * params_.min_displacement_m * params_.min_displacement_m;
   for (auto& t : tracks_) {
     t.origin_occupied = false;
     if (t.displaced || (t.position - t.origin).squaredNorm() < near2) continue;
-    int held = 0;
-    for (const auto& p : points)
-      if ((p - t.origin).squaredNorm() <= r2 && ++held >= params_.min_points) {
+    for (const Blob& b : blobs) {
+      if (!b.centroid.allFinite() || (b.centroid - t.position).norm() <= t.max_radius_m) continue;  // its own
+      if ((b.centroid - t.origin).norm() <= b.radius_m + params_.vacated_radius_m) {
         t.origin_occupied = true;
         break;
       }
+    }
   }
 }
 
@@ -151,6 +149,7 @@ void MovingObstacleTracker::update_blobs(const std::vector<Blob>& blobs, double 
   if (!params_.enabled || !std::isfinite(stamp_s) || stamp_s <= last_stamp_s_) return;
   last_stamp_s_ = stamp_s;
   predict_tracks(stamp_s);
+  note_occupied_origins(blobs);
   std::vector<char> track_used(tracks_.size(), 0), blob_used(blobs.size(), 0);
   associate(blobs, stamp_s, track_used, blob_used);
   keep_unseen(stamp_s, robot, track_used);

@@ -30,8 +30,8 @@ struct TrackedObstacle {
   // With MovingObstacleParams::latch_displacement_m: it has been that far from its origin while
   // confirmed and fast.
   bool displaced = false;
-  // The latest cycle's obstacle points still hold its origin (MovingObstacleParams::vacated_radius_m):
-  // it has not left where it was first seen.
+  // Another object of the latest cycle stands where it was first seen
+  // (MovingObstacleParams::vacated_radius_m).
   bool origin_occupied = false;
   // With MovingObstacleParams::radius_floor: its blobs' radii of the last radius_floor_window_s.
   struct RadiusSample {
@@ -73,8 +73,7 @@ class MovingObstacleTracker {
   // their height and may coast through the blind zone of the visibility model.
   void update(const std::vector<Eigen::Vector2d>& points, const std::vector<double>& heights, const Pose2& robot,
               double stamp_s);
-  // Blobs instead of points (for tests and other sources: no track's origin counts as occupied);
-  // `robot` enables coasting.
+  // Blobs instead of points (for tests and other sources); `robot` enables coasting.
   void update_blobs(const std::vector<Blob>& blobs, double stamp_s, const std::optional<Pose2>& robot = std::nullopt);
   void clear();
   // The robot's sensors, for coasting (default: none, no coasting).
@@ -93,8 +92,8 @@ class MovingObstacleTracker {
   // After an update of t: whether it is latched displaced (latch_displacement_m).
   void latch_displaced(TrackedObstacle& t) const;
   // Before a cycle's association: origin_occupied of every track that may be moving, from the
-  // cycle's obstacle points.
-  void note_occupied_origins(const std::vector<Eigen::Vector2d>& points);
+  // cycle's blobs.
+  void note_occupied_origins(const std::vector<Blob>& blobs);
   // update_blobs' steps, in order: the Kalman prediction of every track to stamp_s; the gated
   // nearest-neighbour association (marking the tracks and blobs used) and update_track for each pair;
   // keeping, coasting or dropping the unseen tracks; a track for every blob left (start_track, which
