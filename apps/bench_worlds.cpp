@@ -79,9 +79,9 @@ void add_world_benches(CLI::App& bench) {
       ->check(CLI::Range(1, 64));
   w->add_option("--cases", a->options.cases,
                 "A cases file instead of generated worlds: one case per line, world=FILE start=x,y[,yaw] "
-                "goal=x,y[,yaw] [robot=R] [tolerance=M,RAD] [time_limit=S] [name=N]");
+                "goal=x,y[,yaw] [robot=R] [tolerance=M,RAD] [time_limit=S] [seed=K] [name=N]");
   w->add_option("--save-worlds", a->options.save_worlds,
-                "Write each generated world as DIR/NAME.world and their cases to DIR/cases.txt");
+                "Write each generated world as DIR/NAME.world and their cases (with each run's seed) to DIR/cases.txt");
   w->add_option("--params", a->options.params, "Navigation parameters YAML for every run (as `run --params`)");
   w->add_flag("--json", a->json, "Print one JSON object (per robot figures and every run)");
   w->callback([a] { bench_worlds(*a); });

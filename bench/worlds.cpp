@@ -63,13 +63,14 @@ std::vector<BenchWorld> case_worlds(const std::string& cases_file) {
     s.goal_tolerance_m = c.goal_tolerance_m;
     s.goal_tolerance_rad = c.goal_tolerance_rad;
     s.time_limit_s = c.time_limit_s;
+    s.seed = c.seed;
     worlds.push_back({std::move(s), "case", c.robot});
   }
   return worlds;
 }
 
-// Each generated world as DIR/NAME.world, and DIR/cases.txt to run them again (`--cases`, or one
-// by one with `run --world`).
+// Each generated world as DIR/NAME.world, and DIR/cases.txt to run them again with their seeds
+// (`--cases`, or one by one with `run --world ... --seed N`).
 void save_worlds(const std::vector<BenchWorld>& worlds, const fs::path& dir) {
   fs::create_directories(dir);
   std::vector<io::WorldCase> cases;
@@ -77,7 +78,7 @@ void save_worlds(const std::vector<BenchWorld>& worlds, const fs::path& dir) {
     const sim::Scenario& s = w.scenario;
     sim::write_sdf_world(s.world, dir / (s.name + ".world"));
     cases.push_back({s.name, s.name + ".world", "", s.start, s.goals.back().pose, s.goal_tolerance_m,
-                     s.goal_tolerance_rad, s.time_limit_s});
+                     s.goal_tolerance_rad, s.time_limit_s, s.seed});
   }
   io::write_world_cases(dir / "cases.txt", cases);
 }

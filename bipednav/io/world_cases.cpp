@@ -39,6 +39,13 @@ class LineParser {
     if (v.size() != 1 || v[0] <= 0.0) fail(key, "expected a positive number, got '" + text + "'");
     return v[0];
   }
+  std::uint64_t whole(const std::string& key, const std::string& text) const {
+    std::uint64_t v = 0;
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+    if (text.empty() || ec != std::errc{} || end != text.data() + text.size())
+      fail(key, "expected a whole number >= 0, got '" + text + "'");
+    return v;
+  }
   void tolerance(const std::string& text, WorldCase& c) const {
     const std::vector<double> v = parse_number_list(text);
     if (v.size() != 2 || v[0] <= 0.0 || v[1] <= 0.0)
@@ -85,10 +92,12 @@ std::vector<WorldCase> read_world_cases(const std::filesystem::path& file) {
         p.tolerance(value, c);
       else if (key == "time_limit")
         c.time_limit_s = p.positive(key, value);
+      else if (key == "seed")
+        c.seed = p.whole(key, value);
       else if (key == "name")
         c.name = value;
       else
-        p.fail(key, "unknown key (expected world, start, goal, robot, tolerance, time_limit or name)");
+        p.fail(key, "unknown key (expected world, start, goal, robot, tolerance, time_limit, seed or name)");
     }
     if (c.name.empty()) c.name = c.world.stem().string() + "_line" + std::to_string(number);
     cases.push_back(std::move(c));
@@ -100,11 +109,11 @@ std::vector<WorldCase> read_world_cases(const std::filesystem::path& file) {
 void write_world_cases(const std::filesystem::path& file, const std::vector<WorldCase>& cases) {
   std::ofstream out(file);
   if (!out) throw FileError(file.string(), "", "cannot write the cases file");
-  out << "# bipednav cases: one per line (world, start, goal as x,y,yaw; tolerance m,rad; time limit s)\n";
+  out << "# bipednav cases: one per line (world, start, goal as x,y,yaw; tolerance m,rad; time limit s; seed)\n";
   for (const WorldCase& c : cases) {
     out << "name=" << c.name << " world=" << c.world.string() << " start=" << pose_text(c.start)
         << " goal=" << pose_text(c.goal) << " tolerance=" << text_of(c.goal_tolerance_m) << ","
-        << text_of(c.goal_tolerance_rad) << " time_limit=" << text_of(c.time_limit_s);
+        << text_of(c.goal_tolerance_rad) << " time_limit=" << text_of(c.time_limit_s) << " seed=" << c.seed;
     if (!c.robot.empty()) out << " robot=" << c.robot;
     out << "\n";
   }

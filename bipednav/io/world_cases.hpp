@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -17,15 +18,16 @@ struct WorldCase {
   Pose2 start, goal;
   double goal_tolerance_m = 0.2, goal_tolerance_rad = 0.2;
   double time_limit_s = 180.0;
+  std::uint64_t seed = 1;  // the run's seed (sensor noise, the walker's sway): the scenario default
 };
 
 // A cases file: one case per line as space-separated key=value fields, `#` to the end of a line
 // is a comment, blank lines are skipped:
 //   world=worlds/corridor.world start=0.9,0.1,0 goal=10.2,-0.1,0 [robot=digit]
-//   [tolerance=0.2,0.2] [time_limit=90] [name=corridor_1]
+//   [tolerance=0.2,0.2] [time_limit=90] [seed=7] [name=corridor_1]
 // Poses are x,y or x,y,yaw (metres, radians). A missing or unknown key, a malformed value or a
-// non-positive tolerance or time limit raise FileError naming the file, the line and the key.
-// World paths come back as written (resolve them against the file's directory).
+// non-positive tolerance or time limit, or a seed that is not a whole number >= 0, raise FileError naming the file, the
+// line and the key. World paths come back as written (resolve them against the file's directory).
 std::vector<WorldCase> read_world_cases(const std::filesystem::path& file);
 // Writes cases in that format (paths as given; the reader reads them back to the same values).
 void write_world_cases(const std::filesystem::path& file, const std::vector<WorldCase>& cases);

@@ -18,6 +18,7 @@ void MovingObstacleParams::validate() const {
   require(positive(max_blob_radius_m), "moving_obstacles.max_blob_radius_m", "> 0");
   require(positive(max_range_m), "moving_obstacles.max_range_m", "> 0");
   require(positive(gate_m), "moving_obstacles.gate_m", "> 0");
+  require(std::isfinite(vacated_radius_m) && vacated_radius_m >= 0.0, "moving_obstacles.vacated_radius_m", ">= 0");
   require(positive(max_track_age_s), "moving_obstacles.max_track_age_s", "> 0");
   require(positive(measurement_noise_m), "moving_obstacles.measurement_noise_m", "> 0");
   require(positive(accel_noise_mps2), "moving_obstacles.accel_noise_mps2", "> 0");

@@ -24,6 +24,13 @@ struct MovingObstacleParams {
   // ... and so do tracks whose centroid has not travelled this far from where it was first seen
   // (a static object's centroid wanders while the robot sees more or less of it).
   double min_displacement_m = 0.25;
+  // ... and so do tracks whose origin another object holds: a blob of the cycle, not within the
+  // track's largest radius of it (its own object), reaches within this distance of its first
+  // centroid. A track passed from one post to the next, or a centroid jumping as the blobs of
+  // neighbouring posts merge and part, has a static object where it began; a mover has left it
+  // (tracking::MultiObjectTracker's test of the same name). Walls and other blobs larger than
+  // max_blob_radius_m do not count: a mover may start beside one.
+  double vacated_radius_m = 0.1;
   // A confirmed fast track (min_hits, min_moving_speed_mps) that has once been at least this far
   // from its first centroid counts as displaced from then on, so it stays moving while it passes
   // where its track began (0: off, only the current distance counts): a box on a looping path was
@@ -98,6 +105,7 @@ struct MovingObstacleParams {
     v("min_hits", min_hits);
     v("min_moving_speed_mps", min_moving_speed_mps);
     v("min_displacement_m", min_displacement_m);
+    v("vacated_radius_m", vacated_radius_m);
     v("latch_displacement_m", latch_displacement_m);
     v("max_prediction_s", max_prediction_s);
     v("global_map_margin_m", global_map_margin_m);

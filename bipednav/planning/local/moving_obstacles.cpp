@@ -117,14 +117,31 @@ double floor_radius(TrackedObstacle& t, double radius_m, double stamp_s, double 
 
 bool MovingObstacleTracker::is_moving(const TrackedObstacle& t) const {
   return t.hits >= params_.min_hits && t.velocity.norm() >= params_.min_moving_speed_mps &&
-         (t.displaced || (t.position - t.origin).norm() >= params_.min_displacement_m);
+         (t.displaced || ((t.position - t.origin).norm() >= params_.min_displacement_m && !t.origin_occupied));
 }
 
 void MovingObstacleTracker::latch_displaced(TrackedObstacle& t) const {
   const double latch = params_.latch_displacement_m;
-  if (latch > 0.0 && !t.displaced && t.hits >= params_.min_hits && t.velocity.norm() >= params_.min_moving_speed_mps &&
-      (t.position - t.origin).squaredNorm() >= latch * latch)
+  if (latch > 0.0 && !t.displaced && !t.origin_occupied && t.hits >= params_.min_hits &&
+      t.velocity.norm() >= params_.min_moving_speed_mps && (t.position - t.origin).squaredNorm() >= latch * latch)
     t.displaced = true;
+}
+
+void MovingObstacleTracker::note_occupied_origins(const std::vector<Blob>& blobs) {
+  // Half the displacement a mover needs: a track nearer its origin is not moving however its
+  // filter moves it this cycle.
+  const double near2 = 0.25 * params_.min_displacement_m * params_.min_displacement_m;
+  for (auto& t : tracks_) {
+    t.origin_occupied = false;
+    if (t.displaced || (t.position - t.origin).squaredNorm() < near2) continue;
+    for (const Blob& b : blobs) {
+      if (!b.centroid.allFinite() || (b.centroid - t.position).norm() <= t.max_radius_m) continue;  // its own
+      if ((b.centroid - t.origin).norm() <= b.radius_m + params_.vacated_radius_m) {
+        t.origin_occupied = true;
+        break;
+      }
+    }
+  }
 }
 
 void MovingObstacleTracker::update_blobs(const std::vector<Blob>& blobs, double stamp_s,
@@ -132,6 +149,7 @@ void MovingObstacleTracker::update_blobs(const std::vector<Blob>& blobs, double 
   if (!params_.enabled || !std::isfinite(stamp_s) || stamp_s <= last_stamp_s_) return;
   last_stamp_s_ = stamp_s;
   predict_tracks(stamp_s);
+  note_occupied_origins(blobs);
   std::vector<char> track_used(tracks_.size(), 0), blob_used(blobs.size(), 0);
   associate(blobs, stamp_s, track_used, blob_used);
   keep_unseen(stamp_s, robot, track_used);

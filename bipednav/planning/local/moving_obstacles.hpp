@@ -30,6 +30,9 @@ struct TrackedObstacle {
   // With MovingObstacleParams::latch_displacement_m: it has been that far from its origin while
   // confirmed and fast.
   bool displaced = false;
+  // Another object of the latest cycle stands where it was first seen
+  // (MovingObstacleParams::vacated_radius_m).
+  bool origin_occupied = false;
   // With MovingObstacleParams::radius_floor: its blobs' radii of the last radius_floor_window_s.
   struct RadiusSample {
     double stamp_s = 0.0;
@@ -88,6 +91,9 @@ class MovingObstacleTracker {
   bool is_moving(const TrackedObstacle& t) const;
   // After an update of t: whether it is latched displaced (latch_displacement_m).
   void latch_displaced(TrackedObstacle& t) const;
+  // Before a cycle's association: origin_occupied of every track that may be moving, from the
+  // cycle's blobs.
+  void note_occupied_origins(const std::vector<Blob>& blobs);
   // update_blobs' steps, in order: the Kalman prediction of every track to stamp_s; the gated
   // nearest-neighbour association (marking the tracks and blobs used) and update_track for each pair;
   // keeping, coasting or dropping the unseen tracks; a track for every blob left (start_track, which
