@@ -26,8 +26,9 @@ struct WorldCase {
 //   world=worlds/corridor.world start=0.9,0.1,0 goal=10.2,-0.1,0 [robot=digit]
 //   [tolerance=0.2,0.2] [time_limit=90] [seed=7] [name=corridor_1]
 // Poses are x,y or x,y,yaw (metres, radians). A missing or unknown key, a malformed value or a
-// non-positive tolerance or time limit, or a seed that is not a whole number >= 0, raise FileError naming the file, the
-// line and the key. World paths come back as written (resolve them against the file's directory).
+// non-positive tolerance or time limit, or a seed that is not a whole number >= 0, raise FileError
+// naming the file, the line and the key. World paths come back as written (resolve them against the
+// file's directory).
 std::vector<WorldCase> read_world_cases(const std::filesystem::path& file);
 // Writes cases in that format (paths as given; the reader reads them back to the same values).
 void write_world_cases(const std::filesystem::path& file, const std::vector<WorldCase>& cases);
