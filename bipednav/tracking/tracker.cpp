@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <limits>
 #include <utility>
 
 #include "bipednav/tracking/association.hpp"
+#include "bipednav/tracking/hungarian.hpp"
 
 namespace bipednav::tracking {
 
@@ -13,6 +15,39 @@ double major_sigma(const Eigen::Matrix2d& C) {
   const double m = 0.5 * (C(0, 0) + C(1, 1)), d = 0.5 * (C(0, 0) - C(1, 1));
   const double largest = m + std::sqrt(d * d + C(0, 1) * C(0, 1));
   return std::sqrt(largest < 0.0 ? 0.0 : largest);  // NaN stays NaN
+}
+
+namespace {
+
+// The unit directions 0, 22.5, .., 157.5 degrees.
+const std::array<Eigen::Vector2d, 8>& spread_directions() {
+  static const std::array<Eigen::Vector2d, 8> u = [] {
+    std::array<Eigen::Vector2d, 8> out;
+    for (std::size_t k = 0; k < out.size(); ++k) {
+      const double a = static_cast<double>(k) * M_PI / 8.0;
+      out[k] = {std::cos(a), std::sin(a)};
+    }
+    return out;
+  }();
+  return u;
+}
+
+}  // namespace
+
+void Spread::add(const Eigen::Vector2d& p) {
+  const auto& u = spread_directions();
+  for (std::size_t k = 0; k < u.size(); ++k) {
+    const double s = u[k].dot(p);
+    lo_[k] = empty_ ? s : std::min(lo_[k], s);
+    hi_[k] = empty_ ? s : std::max(hi_[k], s);
+  }
+  empty_ = false;
+}
+
+double Spread::diameter() const {
+  double d = 0.0;
+  for (std::size_t k = 0; k < lo_.size(); ++k) d = std::max(d, hi_[k] - lo_[k]);
+  return d;
 }
 
 MultiObjectTracker::MultiObjectTracker(TrackerParams params, SensorVisibility visibility)
@@ -70,7 +105,8 @@ void MultiObjectTracker::update_detections(const std::vector<Detection>& detecti
     t.stamp_s = stamp_s;
     filters.push_back(&t.filter);
   }
-  const std::vector<int> match = associate(filters, detections_, params_.gate_chi2);
+  std::vector<int> match = associate(filters, detections_, params_.gate_chi2);
+  reacquire_movers(match, stamp_s);
   std::vector<char> used(detections_.size(), 0);
   std::vector<Track> kept;
   kept.reserve(tracks_.size() + detections_.size());
@@ -92,8 +128,44 @@ void MultiObjectTracker::update_detections(const std::vector<Detection>& detecti
     if (!used[j]) start_track(detections_[j], stamp_s);
 }
 
+void MultiObjectTracker::reacquire_movers(std::vector<int>& match, double stamp_s) {
+  std::vector<char> taken(detections_.size(), 0);
+  for (int j : match)
+    if (j >= 0) taken[static_cast<std::size_t>(j)] = 1;
+  std::vector<std::size_t> lost;
+  for (std::size_t i = 0; i < tracks_.size(); ++i)
+    if (match[i] < 0 && tracks_[i].confirmed() && tracks_[i].mover && !tracks_[i].recent.empty()) lost.push_back(i);
+  if (lost.empty()) return;
+  Eigen::MatrixXd cost =
+      Eigen::MatrixXd::Constant(static_cast<Eigen::Index>(lost.size()), static_cast<Eigen::Index>(detections_.size()),
+                                std::numeric_limits<double>::infinity());
+  const double k = std::sqrt(params_.gate_chi2);
+  for (std::size_t a = 0; a < lost.size(); ++a) {
+    const Track& t = tracks_[lost[a]];
+    const Eigen::Vector2d& last = t.recent.back().position;
+    const double travelled = t.velocity().norm() * (stamp_s - t.last_seen_s);
+    for (std::size_t j = 0; j < detections_.size(); ++j) {
+      if (taken[j]) continue;
+      const Detection& d = detections_[j];
+      const double dist = (d.position - last).norm();
+      if (dist <= travelled + k * major_sigma(d.covariance + t.position_covariance()))
+        cost(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(j)) = dist;
+    }
+  }
+  const std::vector<int> pick = solve_assignment(cost);
+  for (std::size_t a = 0; a < lost.size(); ++a) {
+    if (pick[a] < 0) continue;
+    Track& t = tracks_[lost[a]];
+    const Detection& d = detections_[static_cast<std::size_t>(pick[a])];
+    t.filter = TrackFilter(d.position, d.covariance, params_);
+    t.recent.clear();
+    match[lost[a]] = pick[a];
+  }
+}
+
 void MultiObjectTracker::update_track(Track& t, const Detection& d, double stamp_s) const {
   t.filter.update(d.position, d.covariance);
+  t.spread.add(t.position());
   ++t.hits;
   t.hit_history |= 1u;
   const double dt = stamp_s - t.last_seen_s;
@@ -120,10 +192,10 @@ void MultiObjectTracker::classify_motion(Track& t) const {
   // A flat patch (the top of a box lower than the sensors, swept by a LiDAR ring) is no mover.
   if (t.height_span_m >= 0.0 && t.height_span_m < params_.mover_min_height_span_m) return;
   const WindowVelocity w = regression_velocity(t.recent);
-  if (w.span_s < 0.8 * params_.mover_window_s || !w.moving(params_.mover_speed_mps, params_.mover_significance)) return;
+  if (w.span_s < params_.mover_min_span_s || !w.moving(params_.mover_speed_mps, params_.mover_significance)) return;
   if (!vacated(t)) return;
   t.mover = true;
-  t.proven = (t.position() - t.origin).norm() >= params_.mover_proof_m;
+  t.proven = t.spread.diameter() >= params_.mover_proof_m;
 }
 
 bool MultiObjectTracker::vacated(const Track& t) const {
@@ -161,7 +233,7 @@ void MultiObjectTracker::start_track(const Detection& d, double stamp_s) {
   t.radius_m = d.radius_m;
   t.top_m = d.top_m;
   t.height_span_m = d.height_span_m;
-  t.origin = d.position;
+  t.spread.add(t.filter.state().head<2>());
   t.recent.push_back({stamp_s, d.position, d.surface});
   t.born_s = t.last_seen_s = t.stamp_s = stamp_s;
   t.updates = t.hits = 1;

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -16,6 +17,18 @@
 #include "bipednav/tracking/tracker_params.hpp"
 
 namespace bipednav::tracking {
+
+// How far apart a track's positions have been: their range along eight directions 22.5 degrees
+// apart. The largest range is the positions' diameter to within 2 % (cos 11.25 deg).
+class Spread {
+ public:
+  void add(const Eigen::Vector2d& p);
+  double diameter() const;  // 0 before the first position
+
+ private:
+  std::array<double, 8> lo_{}, hi_{};
+  bool empty_ = true;
+};
 
 // A track's life cycle: tentative until confirm_hits of its first confirm_window updates hit;
 // then confirmed while seen, coasting while unseen (deleted tracks are removed).
@@ -34,8 +47,8 @@ struct Track {
   int updates = 0, hits = 0;                              // cycles since born, and those with a detection
   std::uint32_t hit_history = 0;                          // bit k: a hit k cycles ago
   bool mover = false;                                     // moving (TrackerParams: movers), or a proven mover
-  bool proven = false;                                    // has been mover_proof_m from its origin: a mover for good
-  Eigen::Vector2d origin = Eigen::Vector2d::Zero();       // where it was first seen
+  bool proven = false;                                    // its positions spanned mover_proof_m: a mover for good
+  Spread spread = {};                                     // of its filtered positions
   std::vector<TimedPosition> recent = {};                 // its detections of the last mover_window_s
 
   bool confirmed() const { return status != TrackStatus::kTentative; }
@@ -67,8 +80,9 @@ double major_sigma(const Eigen::Matrix2d& cov);
 
 // The multi-object tracker: detections in (obstacle points the static map does not explain,
 // clustered), tracks and predictions out. Each cycle predicts every track to the cycle's time,
-// associates the detections by Mahalanobis gate and global nearest neighbour (associate), updates
-// the associated tracks' filters, runs the life cycle (TrackerParams: M of N confirmation; an
+// associates the detections by Mahalanobis gate and global nearest neighbour (associate), gives
+// movers their gate missed the nearest detection left within reach (TrackerParams: life cycle),
+// updates the associated tracks' filters, runs the life cycle (TrackerParams: M of N confirmation; an
 // unseen confirmed track coasts, shorter while its prediction is in some sensor's view) and
 // starts a tentative track on every detection left. Confirmed tracks that move are movers.
 class MultiObjectTracker {
@@ -97,6 +111,10 @@ class MultiObjectTracker {
   const TrackerParams& params() const { return params_; }
 
  private:
+  // Assigns detections no track took (match: per track, its detection or -1) to the movers
+  // without one that reach them (TrackerParams: life cycle), nearest first by the Hungarian
+  // method, and restarts those movers' filters at their detections.
+  void reacquire_movers(std::vector<int>& match, double stamp_s);
   void update_track(Track& t, const Detection& d, double stamp_s) const;
   // Sets t.mover and t.proven after an update (TrackerParams: movers).
   void classify_motion(Track& t) const;

@@ -51,6 +51,8 @@ void TrackerParams::validate() const {
   require(tracker_positive(max_position_std_m), "tracking.max_position_std_m", "> 0");
   require(tracker_non_negative(mover_speed_mps), "tracking.mover_speed_mps", ">= 0");
   require(tracker_positive(mover_window_s), "tracking.mover_window_s", "> 0");
+  require(tracker_positive(mover_min_span_s) && mover_min_span_s <= mover_window_s, "tracking.mover_min_span_s",
+          "in (0, mover_window_s]");
   require(tracker_non_negative(mover_significance), "tracking.mover_significance", ">= 0");
   require(tracker_non_negative(mover_proof_m), "tracking.mover_proof_m", ">= 0");
   require(tracker_non_negative(mover_min_height_span_m), "tracking.mover_min_height_span_m", ">= 0");

@@ -69,6 +69,11 @@ struct TrackerParams {
   // --- Life cycle (tracker.hpp).
   int confirm_hits = 3;    // tentative -> confirmed after this many hits ...
   int confirm_window = 5;  // ... within its first this many updates (M of N)
+  // A mover that its gate misses takes the nearest detection left over (after every track's gated
+  // one) within the distance its speed covers since it was last seen, plus sqrt(gate_chi2) of the
+  // position sigmas: a person who turns on the spot, whom the constant-velocity prediction
+  // overshoots. Its filter starts again there (zero velocity, initial_speed_std_mps), keeping
+  // its id; a proven mover stays one.
   // A confirmed track unseen coasts on its prediction; it is deleted once it has been unseen
   // while its prediction was in some sensor's view (SensorVisibility, within max_range_m) for
   // max_unseen_in_view_s, or unseen for max_unseen_out_of_view_s in all (a mover; any other
@@ -81,15 +86,17 @@ struct TrackerParams {
   double radius_memory_s = 2.0;
 
   // --- Movers (tracker.hpp): a confirmed track is a mover while the line fitted to its
-  // detections of the last mover_window_s (regression_velocity; at least 80 % of the window
-  // covered) runs at mover_speed_mps or faster, with that speed at least mover_significance
-  // standard errors; and for good once it has been mover_proof_m from where it was first seen (a
-  // person who stops stays one). A static object's measured centre jitters as the robot sees more
-  // or less of it. The rest are obstacles the maps do not hold yet (clutter, a wall in its first
-  // seconds): tracked, not movers, deleted once unseen for max_unseen_in_view_s wherever they are.
+  // detections of the last mover_window_s (regression_velocity), spanning mover_min_span_s at
+  // least, runs at mover_speed_mps or faster, with that speed at least mover_significance
+  // standard errors; and for good once its positions have spanned mover_proof_m (Spread: a person
+  // who stops stays one, and so does one pacing to and fro, wherever it was first seen). A static
+  // object's measured centre jitters as the robot sees more or less of it. The rest are obstacles
+  // the maps do not hold yet (clutter, a wall in its first seconds): tracked, not movers, deleted
+  // once unseen for max_unseen_in_view_s wherever they are.
   double mover_speed_mps = 0.15;
   double mover_window_s = 2.0;
-  double mover_significance = 3.0;
+  double mover_min_span_s = 1.2;
+  double mover_significance = 5.0;
   double mover_proof_m = 1.0;
   // ... and a mover has shown a vertical surface: detections spanning this much height (where
   // heights are known). The top of a box lower than a LiDAR, swept by one ring as the robot
@@ -141,6 +148,7 @@ struct TrackerParams {
     v("radius_memory_s", radius_memory_s);
     v("mover_speed_mps", mover_speed_mps);
     v("mover_window_s", mover_window_s);
+    v("mover_min_span_s", mover_min_span_s);
     v("mover_significance", mover_significance);
     v("mover_proof_m", mover_proof_m);
     v("mover_min_height_span_m", mover_min_height_span_m);

@@ -234,6 +234,9 @@ TEST(Tracker, BadInputIsHandled) {
   p = {};
   p.confirm_window = 2;
   EXPECT_THROW(p.validate(), ParamError);
+  p = {};
+  p.mover_min_span_s = p.mover_window_s + 0.1;  // never reached
+  EXPECT_THROW(p.validate(), ParamError);
 }
 
 TEST(Tracker, PointsOnTheStaticMapAreNoDetections) {
@@ -278,11 +281,72 @@ TEST(Tracker, WalkerBecomesAMoverAndStaysOneWhenItStops) {
       EXPECT_TRUE(track->mover) << "t " << t;
     }
   }
-  // The first full mover window (2 s) plus the 3 cycles of confirmation.
-  EXPECT_GT(mover_s, 1.5);
-  EXPECT_LT(mover_s, 2.5);
+  // Detections spanning mover_min_span_s (1.2 s) from the first one.
+  EXPECT_GT(mover_s, 1.15);
+  EXPECT_LT(mover_s, 1.65);
   EXPECT_TRUE(confirmed_near(mot, at(13.0), 0.2)->proven);
   EXPECT_EQ(mot.predictions().size(), 1u);
+}
+
+TEST(Tracker, MoverTurningOnTheSpotKeepsItsIdAndStaysAMover) {
+  // 1.2 m/s along y for 2.5 s, 3 m ahead, then straight back (the generated people turn so): the
+  // constant-velocity prediction runs 0.24 m past the walker in the cycle after the turn, outside
+  // the gate; the detection is the track's again, being within the distance its speed covers
+  // since it was last seen.
+  MultiObjectTracker mot;
+  Rng rng(9);
+  const auto at = [](double t) { return Eigen::Vector2d(3.0, -1.5 + 1.2 * (t < 2.5 ? t : 5.0 - t)); };
+  int id = -1;
+  for (int k = 0; k <= 50; ++k) {
+    const double t = 0.1 * k;
+    Scan scan;
+    scan_cylinder(scan, {0.0, 0.0}, at(t), 0.25, 1.7, 0.02, rng);
+    mot.update({t, Pose2{}, scan.points, scan.heights});
+    const Track* track = confirmed_near(mot, at(t), 0.3);
+    if (k < 3) continue;
+    if (track == nullptr) track = confirmed_near(mot, at(t), 0.6);  // a cycle after the turn
+    ASSERT_NE(track, nullptr) << "t " << t;
+    if (id < 0) id = track->id;
+    EXPECT_EQ(track->id, id) << "t " << t;
+    if (t > 2.0) {
+      EXPECT_TRUE(track->mover) << "t " << t;
+    }
+  }
+  EXPECT_EQ(mot.predictions().size(), 1u);
+}
+
+TEST(Tracker, PacerFirstSeenMidwayIsProvenOnceItsWalkSpansTheProof) {
+  // Pacing 1.6 m to and fro at 0.5 m/s across the line of sight, first seen in the middle: it is
+  // never 1 m from where it was first seen, but its positions span 1.6 m, so it is a mover for good
+  // (through every turn) from its first far end on.
+  MultiObjectTracker mot;
+  Rng rng(10);
+  const auto at = [](double t) {
+    const double u = std::fmod(t * 0.5 + 0.8, 3.2);  // 0 .. 3.2 m along the walk and back
+    return Eigen::Vector2d(3.0, -0.8 + (u < 1.6 ? u : 3.2 - u));
+  };
+  double proven_s = -1.0;
+  int id = -1;
+  for (int k = 0; k <= 160; ++k) {
+    const double t = 0.1 * k;
+    Scan scan;
+    scan_cylinder(scan, {0.0, 0.0}, at(t), 0.25, 1.7, 0.02, rng);
+    mot.update({t, Pose2{}, scan.points, scan.heights});
+    const Track* track = confirmed_near(mot, at(t), 0.3);
+    if (k < 3) continue;
+    ASSERT_NE(track, nullptr) << "t " << t;
+    if (id < 0) id = track->id;
+    EXPECT_EQ(track->id, id) << "t " << t;  // the track that started midway
+    EXPECT_LT((at(t) - at(0.0)).norm(), 0.81);
+    if (proven_s < 0.0 && track->proven) proven_s = t;
+    if (proven_s >= 0.0) {
+      EXPECT_TRUE(track->mover) << "t " << t;
+    }
+  }
+  // Its far ends are 1.6 s and 4.8 s in; the first full leg (0.8 .. -0.8 m) spans the proof at
+  // about 3.6 s.
+  EXPECT_GT(proven_s, 3.0);
+  EXPECT_LT(proven_s, 4.5);
 }
 
 TEST(Tracker, WallRevealedBitByBitIsNoMover) {
