@@ -34,7 +34,8 @@ nlohmann::json score_json(const TrackerScore& s) {
           {"mean_time_to_confirm_s", m.mean_pickup_s},
           {"max_time_to_confirm_s", m.max_pickup_s},
           {"cpu_ms_per_update", s.updates > 0 ? s.cpu_ms / static_cast<double>(s.updates) : 0.0},
-          {"unmatched_truths_by_nearest", s.unmatched}};
+          {"unmatched_truths_by_nearest", s.unmatched},
+          {"not_movers_by_test", s.not_movers_by_test}};
 }
 
 // TrackerScore::prediction as RMSEs per horizon (nothing when it has no pairs).
@@ -59,6 +60,7 @@ nlohmann::json pooled_json(const std::vector<TrackingRun>& runs) {
       parts[name].push_back(s.mot);
       cpu[name].updates += s.updates, cpu[name].cpu_ms += s.cpu_ms;
       for (const auto& [cause, n] : s.unmatched) cpu[name].unmatched[cause] += n;
+      for (const auto& [test, n] : s.not_movers_by_test) cpu[name].not_movers_by_test[test] += n;
       auto& pred = cpu[name].prediction;
       pred.pairs += s.prediction.pairs;
       pred.recurrent_pairs += s.prediction.recurrent_pairs;

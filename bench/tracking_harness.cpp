@@ -191,11 +191,17 @@ class RunScorer {
       if (std::any_of(movers.begin(), movers.end(), [&](const MotObject& h) { return (h.position - q).norm() <= r; }))
         continue;
       const char* cause = "nothing";
-      if (std::any_of(tracks.begin(), tracks.end(),
-                      [&](const tracking::Track& tr) { return tr.confirmed() && near(q, tr.position()); }))
+      const tracking::Track* confirmed = nullptr;  // the nearest confirmed track within r
+      for (const auto& tr : tracks)
+        if (tr.confirmed() && near(q, tr.position()) &&
+            (!confirmed || (T_world_map.transform(tr.position()) - q).norm() <
+                               (T_world_map.transform(confirmed->position()) - q).norm()))
+          confirmed = &tr;
+      if (confirmed) {
         cause = "confirmed_not_mover";
-      else if (std::any_of(tracks.begin(), tracks.end(),
-                           [&](const tracking::Track& tr) { return near(q, tr.position()); }))
+        ++s.not_movers_by_test[tracking::motion_test_name(confirmed->motion_test)];
+      } else if (std::any_of(tracks.begin(), tracks.end(),
+                             [&](const tracking::Track& tr) { return near(q, tr.position()); }))
         cause = "tentative";
       else if (std::any_of(detections.begin(), detections.end(),
                            [&](const tracking::Detection& d) { return near(q, d.position); }))

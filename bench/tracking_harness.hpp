@@ -53,6 +53,9 @@ struct TrackerScore {
   // the tracker holds within that distance: "confirmed_not_mover", "tentative", "detection" (a
   // detection of the cycle but no track), "nothing". The variants' only (the baselines: empty).
   std::map<std::string, long> unmatched;
+  // Of those "confirmed_not_mover", by the mover test that held the nearest confirmed track back
+  // (tracking::MotionTest: "short_window", "still", "flat", "origin_occupied").
+  std::map<std::string, long> not_movers_by_test;
   // The navigator's movers' predictions (kBaselineMoving only): each mover within
   // match_distance_m of a counted truth, its predicted position kPredictionHorizonsS ahead against
   // the truth's position then, summed squared errors; beside them the constant-velocity

@@ -50,6 +50,24 @@ double Spread::diameter() const {
   return d;
 }
 
+const char* motion_test_name(MotionTest m) {
+  switch (m) {
+    case MotionTest::kProven:
+      return "proven";
+    case MotionTest::kMoving:
+      return "moving";
+    case MotionTest::kFlat:
+      return "flat";
+    case MotionTest::kShortWindow:
+      return "short_window";
+    case MotionTest::kStill:
+      return "still";
+    case MotionTest::kOriginOccupied:
+      return "origin_occupied";
+  }
+  return "?";
+}
+
 MultiObjectTracker::MultiObjectTracker(TrackerParams params, SensorVisibility visibility)
     : params_((params.validate(), std::move(params))),
       visibility_(std::move(visibility)),
@@ -188,14 +206,19 @@ void MultiObjectTracker::update_track(Track& t, const Detection& d, double stamp
 
 void MultiObjectTracker::classify_motion(Track& t) const {
   t.mover = t.proven;
-  if (t.proven) return;
-  // A flat patch (the top of a box lower than the sensors, swept by a LiDAR ring) is no mover.
-  if (t.height_span_m >= 0.0 && t.height_span_m < params_.mover_min_height_span_m) return;
-  const WindowVelocity w = regression_velocity(t.recent);
-  if (w.span_s < params_.mover_min_span_s || !w.moving(params_.mover_speed_mps, params_.mover_significance)) return;
-  if (!vacated(t)) return;
+  t.motion_test = t.proven ? MotionTest::kProven : motion_evidence(t);
+  if (t.motion_test != MotionTest::kMoving) return;
   t.mover = true;
   t.proven = t.spread.diameter() >= params_.mover_proof_m;
+}
+
+MotionTest MultiObjectTracker::motion_evidence(const Track& t) const {
+  // A flat patch (the top of a box lower than the sensors, swept by a LiDAR ring) is no mover.
+  if (t.height_span_m >= 0.0 && t.height_span_m < params_.mover_min_height_span_m) return MotionTest::kFlat;
+  const WindowVelocity w = regression_velocity(t.recent);
+  if (w.samples < 3 || w.span_s < params_.mover_min_span_s) return MotionTest::kShortWindow;
+  if (!w.moving(params_.mover_speed_mps, params_.mover_significance)) return MotionTest::kStill;
+  return vacated(t) ? MotionTest::kMoving : MotionTest::kOriginOccupied;
 }
 
 bool MultiObjectTracker::vacated(const Track& t) const {

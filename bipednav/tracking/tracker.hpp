@@ -34,6 +34,18 @@ class Spread {
 // then confirmed while seen, coasting while unseen (deleted tracks are removed).
 enum class TrackStatus { kTentative, kConfirmed, kCoasting };
 
+// Which test of the mover classification (TrackerParams: movers) decided a confirmed track's
+// latest update.
+enum class MotionTest {
+  kProven,          // its positions have spanned mover_proof_m: a mover
+  kMoving,          // every test passed: a mover
+  kFlat,            // no vertical surface shown (mover_min_height_span_m)
+  kShortWindow,     // its detections span less than mover_min_span_s
+  kStill,           // the fitted line runs too slowly or not significantly
+  kOriginOccupied,  // points are still where it was (mover_vacated_radius_m)
+};
+const char* motion_test_name(MotionTest m);  // "proven", "moving", "flat", "short_window", "still", "origin_occupied"
+
 struct Track {
   int id = 0;
   TrackStatus status = TrackStatus::kTentative;
@@ -47,6 +59,7 @@ struct Track {
   int updates = 0, hits = 0;                              // cycles since born, and those with a detection
   std::uint32_t hit_history = 0;                          // bit k: a hit k cycles ago
   bool mover = false;                                     // moving (TrackerParams: movers), or a proven mover
+  MotionTest motion_test = MotionTest::kShortWindow;      // of its latest update while confirmed
   bool proven = false;                                    // its positions spanned mover_proof_m: a mover for good
   Spread spread = {};                                     // of its filtered positions
   std::vector<TimedPosition> recent = {};                 // its detections of the last mover_window_s
@@ -116,8 +129,10 @@ class MultiObjectTracker {
   // method, and restarts those movers' filters at their detections.
   void reacquire_movers(std::vector<int>& match, double stamp_s);
   void update_track(Track& t, const Detection& d, double stamp_s) const;
-  // Sets t.mover and t.proven after an update (TrackerParams: movers).
+  // Sets t.mover, t.motion_test and t.proven after an update (TrackerParams: movers).
   void classify_motion(Track& t) const;
+  // The tests of a track not yet proven, in order: the first that fails, or kMoving.
+  MotionTest motion_evidence(const Track& t) const;
   // Whether the surface where t was seen first in its mover window holds fewer than
   // min_cluster_points of this cycle's points (always, without them: update_detections).
   bool vacated(const Track& t) const;
