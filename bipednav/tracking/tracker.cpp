@@ -51,21 +51,9 @@ double Spread::diameter() const {
 }
 
 const char* motion_test_name(MotionTest m) {
-  switch (m) {
-    case MotionTest::kProven:
-      return "proven";
-    case MotionTest::kMoving:
-      return "moving";
-    case MotionTest::kFlat:
-      return "flat";
-    case MotionTest::kShortWindow:
-      return "short_window";
-    case MotionTest::kStill:
-      return "still";
-    case MotionTest::kOriginOccupied:
-      return "origin_occupied";
-  }
-  return "?";
+  static constexpr std::array<const char*, 6> kNames{"proven",       "moving", "flat",
+                                                     "short_window", "still",  "origin_occupied"};
+  return kNames.at(static_cast<std::size_t>(m));
 }
 
 MultiObjectTracker::MultiObjectTracker(TrackerParams params, SensorVisibility visibility)

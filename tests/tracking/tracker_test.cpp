@@ -44,6 +44,15 @@ void cycle(MultiObjectTracker& mot, const Pose2& robot, const std::vector<Walker
   mot.update({t_s, robot, scan.points, scan.heights});
 }
 
+// One 10 Hz cycle seeing a person (a 1.7 m tall cylinder of 0.25 m radius) at c from the origin
+// with 2 cm range noise; the confirmed track within 0.3 m of it, or null.
+const Track* observe_person(MultiObjectTracker& mot, const Eigen::Vector2d& c, double t_s, Rng& rng) {
+  Scan scan;
+  scan_cylinder(scan, {0.0, 0.0}, c, 0.25, 1.7, 0.02, rng);
+  mot.update({t_s, Pose2{}, scan.points, scan.heights});
+  return confirmed_near(mot, c, 0.3);
+}
+
 }  // namespace
 
 TEST(Tracker, ConstantVelocityTargetIsTrackedWithinItsNoise) {
@@ -269,10 +278,7 @@ TEST(Tracker, WalkerBecomesAMoverAndStaysOneWhenItStops) {
   double mover_s = -1.0;
   for (int k = 0; k <= 130; ++k) {
     const double t = 0.1 * k;
-    Scan scan;
-    scan_cylinder(scan, {0.0, 0.0}, at(t), 0.25, 1.7, 0.02, rng);
-    mot.update({t, Pose2{}, scan.points, scan.heights});
-    const Track* track = confirmed_near(mot, at(t), 0.3);
+    const Track* track = observe_person(mot, at(t), t, rng);
     if (k >= 3) {
       ASSERT_NE(track, nullptr) << "t " << t;
     }
@@ -299,10 +305,7 @@ TEST(Tracker, MoverTurningOnTheSpotKeepsItsIdAndStaysAMover) {
   int id = -1;
   for (int k = 0; k <= 50; ++k) {
     const double t = 0.1 * k;
-    Scan scan;
-    scan_cylinder(scan, {0.0, 0.0}, at(t), 0.25, 1.7, 0.02, rng);
-    mot.update({t, Pose2{}, scan.points, scan.heights});
-    const Track* track = confirmed_near(mot, at(t), 0.3);
+    const Track* track = observe_person(mot, at(t), t, rng);
     if (k < 3) continue;
     if (track == nullptr) track = confirmed_near(mot, at(t), 0.6);  // a cycle after the turn
     ASSERT_NE(track, nullptr) << "t " << t;
@@ -329,10 +332,7 @@ TEST(Tracker, PacerFirstSeenMidwayIsProvenOnceItsWalkSpansTheProof) {
   int id = -1;
   for (int k = 0; k <= 160; ++k) {
     const double t = 0.1 * k;
-    Scan scan;
-    scan_cylinder(scan, {0.0, 0.0}, at(t), 0.25, 1.7, 0.02, rng);
-    mot.update({t, Pose2{}, scan.points, scan.heights});
-    const Track* track = confirmed_near(mot, at(t), 0.3);
+    const Track* track = observe_person(mot, at(t), t, rng);
     if (k < 3) continue;
     ASSERT_NE(track, nullptr) << "t " << t;
     if (id < 0) id = track->id;
