@@ -18,8 +18,15 @@ void StaticStructure::update(const mapping::Costmap2D& occupancy, double stamp_s
     geometry_ = g;
     since_.assign(g.size(), kNotLethal);
     last_.assign(g.size(), -kNotLethal);
+    free_since_.assign(g.size(), kNotLethal);
+    free_last_.assign(g.size(), -kNotLethal);
   }
   const auto& cost = occupancy.data();
+  for (std::size_t i = 0; i < since_.size(); ++i) {
+    if (cost[i] != mapping::kFree) continue;
+    if (free_last_[i] != stamp_s_) free_since_[i] = stamp_s;
+    free_last_[i] = stamp_s;
+  }
   if (max_gap_s > 0.0) {
     for (std::size_t i = 0; i < since_.size(); ++i) {
       if (cost[i] == mapping::kLethal) {
@@ -43,6 +50,8 @@ void StaticStructure::update(const mapping::Costmap2D& occupancy, double stamp_s
 void StaticStructure::clear() {
   since_.clear();
   last_.clear();
+  free_since_.clear();
+  free_last_.clear();
   geometry_ = {};
   stamp_s_ = -1e300;
 }
@@ -60,6 +69,14 @@ bool StaticStructure::near(const Eigen::Vector2d& p, double margin_m, double min
     }
   }
   return false;
+}
+
+bool StaticStructure::was_free(const Eigen::Vector2d& p, double min_span_s, double within_s) const {
+  if (since_.empty() || !p.allFinite()) return false;
+  const auto c = geometry_.world_to_cell(p.x(), p.y());
+  if (!c) return false;
+  const std::size_t i = geometry_.index(c->x, c->y);
+  return free_last_[i] >= stamp_s_ - within_s && free_last_[i] - free_since_[i] >= min_span_s;
 }
 
 }  // namespace bipednav::tracking

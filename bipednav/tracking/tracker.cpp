@@ -204,7 +204,8 @@ MotionTest MultiObjectTracker::motion_evidence(const Track& t) const {
   // A flat patch (the top of a box lower than the sensors, swept by a LiDAR ring) is no mover.
   if (t.height_span_m >= 0.0 && t.height_span_m < params_.mover_min_height_span_m) return MotionTest::kFlat;
   const WindowVelocity w = regression_velocity(t.recent);
-  if (w.samples < 3 || w.span_s < params_.mover_min_span_s) return MotionTest::kShortWindow;
+  if (w.samples < 3 || w.span_s < (t.born_in_free ? params_.free_birth_min_span_s : params_.mover_min_span_s))
+    return MotionTest::kShortWindow;
   if (!w.moving(params_.mover_speed_mps, params_.mover_significance)) return MotionTest::kStill;
   return vacated(t) ? MotionTest::kMoving : MotionTest::kOriginOccupied;
 }
@@ -247,6 +248,7 @@ void MultiObjectTracker::start_track(const Detection& d, double stamp_s) {
   t.spread.add(t.filter.state().head<2>());
   t.recent.push_back({stamp_s, d.position, d.surface});
   t.born_s = t.last_seen_s = t.stamp_s = stamp_s;
+  t.born_in_free = static_.was_free(d.position, params_.free_birth_free_s, params_.free_birth_recent_s);
   t.updates = t.hits = 1;
   t.hit_history = 1u;
   if (params_.confirm_hits <= 1) {

@@ -40,7 +40,7 @@ enum class MotionTest {
   kProven,          // its positions have spanned mover_proof_m: a mover
   kMoving,          // every test passed: a mover
   kFlat,            // no vertical surface shown (mover_min_height_span_m)
-  kShortWindow,     // its detections span less than mover_min_span_s
+  kShortWindow,     // its detections span less than mover_min_span_s (free_birth_min_span_s)
   kStill,           // the fitted line runs too slowly or not significantly
   kOriginOccupied,  // points are still where it was (mover_vacated_radius_m)
 };
@@ -60,9 +60,10 @@ struct Track {
   std::uint32_t hit_history = 0;                          // bit k: a hit k cycles ago
   bool mover = false;                                     // moving (TrackerParams: movers), or a proven mover
   MotionTest motion_test = MotionTest::kShortWindow;      // of its latest update while confirmed
-  bool proven = false;                                    // its positions spanned mover_proof_m: a mover for good
-  Spread spread = {};                                     // of its filtered positions
-  std::vector<TimedPosition> recent = {};                 // its detections of the last mover_window_s
+  bool born_in_free = false;               // born where the static map saw free space (TrackerParams: movers)
+  bool proven = false;                     // its positions spanned mover_proof_m: a mover for good
+  Spread spread = {};                      // of its filtered positions
+  std::vector<TimedPosition> recent = {};  // its detections of the last mover_window_s
 
   bool confirmed() const { return status != TrackStatus::kTentative; }
   Eigen::Vector2d position() const { return filter.state().head<2>(); }

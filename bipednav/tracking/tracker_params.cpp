@@ -53,6 +53,10 @@ void TrackerParams::validate() const {
   require(tracker_positive(mover_window_s), "tracking.mover_window_s", "> 0");
   require(tracker_positive(mover_min_span_s) && mover_min_span_s <= mover_window_s, "tracking.mover_min_span_s",
           "in (0, mover_window_s]");
+  require(tracker_positive(free_birth_min_span_s) && free_birth_min_span_s <= mover_window_s,
+          "tracking.free_birth_min_span_s", "in (0, mover_window_s]");
+  require(tracker_non_negative(free_birth_free_s), "tracking.free_birth_free_s", ">= 0");
+  require(tracker_non_negative(free_birth_recent_s), "tracking.free_birth_recent_s", ">= 0");
   require(tracker_non_negative(mover_significance), "tracking.mover_significance", ">= 0");
   require(tracker_non_negative(mover_proof_m), "tracking.mover_proof_m", ">= 0");
   require(tracker_non_negative(mover_min_height_span_m), "tracking.mover_min_height_span_m", ">= 0");

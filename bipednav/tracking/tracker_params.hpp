@@ -96,6 +96,13 @@ struct TrackerParams {
   double mover_speed_mps = 0.15;
   double mover_window_s = 2.0;
   double mover_min_span_s = 1.2;
+  // ... or free_birth_min_span_s for a track born where the static map saw free space: its cell
+  // free without a break for free_birth_free_s, until at most free_birth_recent_s before the
+  // birth. An object that appears where there was nothing has moved there; clutter seen for the
+  // first time lies in cells the map has not seen free.
+  double free_birth_min_span_s = 0.6;
+  double free_birth_free_s = 3.0;
+  double free_birth_recent_s = 0.5;
   double mover_significance = 5.0;
   double mover_proof_m = 1.0;
   // ... and a mover has shown a vertical surface: detections spanning this much height (where
@@ -149,6 +156,9 @@ struct TrackerParams {
     v("mover_speed_mps", mover_speed_mps);
     v("mover_window_s", mover_window_s);
     v("mover_min_span_s", mover_min_span_s);
+    v("free_birth_min_span_s", free_birth_min_span_s);
+    v("free_birth_free_s", free_birth_free_s);
+    v("free_birth_recent_s", free_birth_recent_s);
     v("mover_significance", mover_significance);
     v("mover_proof_m", mover_proof_m);
     v("mover_min_height_span_m", mover_min_height_span_m);

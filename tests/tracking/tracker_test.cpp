@@ -246,6 +246,9 @@ TEST(Tracker, BadInputIsHandled) {
   p = {};
   p.mover_min_span_s = p.mover_window_s + 0.1;  // never reached
   EXPECT_THROW(p.validate(), ParamError);
+  p = {};
+  p.free_birth_min_span_s = 0.0;
+  EXPECT_THROW(p.validate(), ParamError);
 }
 
 TEST(Tracker, PointsOnTheStaticMapAreNoDetections) {
@@ -347,6 +350,30 @@ TEST(Tracker, PacerFirstSeenMidwayIsProvenOnceItsWalkSpansTheProof) {
   // about 3.6 s.
   EXPECT_GT(proven_s, 3.0);
   EXPECT_LT(proven_s, 4.5);
+}
+
+TEST(Tracker, PersonAppearingInFreeSpaceIsAMoverSooner) {
+  // A walker first detected at t = 0 where the map has seen free floor for 4 s is a mover after
+  // free_birth_min_span_s (0.6 s) of detections; where the map has seen nothing, after
+  // mover_min_span_s (1.2 s).
+  for (const bool seen_free : {true, false}) {
+    MultiObjectTracker mot;
+    const mapping::Costmap2D free = test::free_grid(3.0, 0.0, 10.0, 0.1);
+    const mapping::Costmap2D unknown(free.geometry(), mapping::kUnknown);
+    for (int k = -40; k < 0; ++k) mot.set_static_map(seen_free ? free : unknown, 0.1 * k);
+    Rng rng(11);
+    const auto at = [](double t) { return Eigen::Vector2d(3.0, -1.0 + 0.5 * t); };
+    double mover_s = -1.0;
+    for (int k = 0; k <= 20 && mover_s < 0.0; ++k) {
+      const double t = 0.1 * k;
+      mot.set_static_map(seen_free ? free : unknown, t);
+      const Track* track = observe_person(mot, at(t), t, rng);
+      if (track != nullptr && track->mover) mover_s = t;
+    }
+    const double span_s = seen_free ? 0.6 : 1.2;  // a cycle more when the 5 standard errors need it
+    EXPECT_GT(mover_s, span_s - 0.05) << (seen_free ? "free" : "unknown");
+    EXPECT_LT(mover_s, span_s + 0.15) << (seen_free ? "free" : "unknown");
+  }
 }
 
 TEST(Tracker, WallRevealedBitByBitIsNoMover) {
